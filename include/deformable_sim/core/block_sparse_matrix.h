@@ -1,0 +1,48 @@
+// A square matrix of 3x3 blocks in compressed-row form, with a fixed pattern: built once from the
+// element connectivity, then filled in place every step through precomputed block indices.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "deformable_sim/core/mesh.h"
+
+namespace deformable_sim::core {
+
+class BlockSparseMatrix {
+ public:
+  BlockSparseMatrix() = default;
+
+  /// Pattern with a block (i, j) for every pair of nodes that share a tetrahedron (i == j
+  /// included), both triangles stored. All blocks start at zero.
+  BlockSparseMatrix(int num_nodes, const std::vector<Tetrahedron>& tetrahedra);
+
+  int numBlockRows() const { return static_cast<int>(row_start_.size()) - 1; }
+  int numBlocks() const { return static_cast<int>(blocks_.size()); }
+
+  /// Index of block (row, col) in blocks(), or -1 if it is not in the pattern. A binary search:
+  /// for set-up, not for the step.
+  int blockIndex(int row, int col) const;
+  int diagonalIndex(int row) const { return diagonal_[row]; }
+
+  const std::vector<int>& rowStart() const { return row_start_; }
+  const std::vector<int>& columns() const { return columns_; }
+  std::vector<Eigen::Matrix3d>& blocks() { return blocks_; }
+  const std::vector<Eigen::Matrix3d>& blocks() const { return blocks_; }
+
+  void setZero();
+
+  /// y = A x (x and y of size 3 * numBlockRows(); y must not alias x).
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+
+  /// The same matrix as a dense one (for tests and small diagnostics).
+  Eigen::MatrixXd toDense() const;
+
+ private:
+  std::vector<int> row_start_{0};
+  std::vector<int> columns_;
+  std::vector<int> diagonal_;
+  std::vector<Eigen::Matrix3d> blocks_;
+};
+
+}  // namespace deformable_sim::core

@@ -1,0 +1,52 @@
+// Warped-stiffness (corotational) elasticity of a tetrahedral mesh, after Müller et al. 2002 and
+// OpenTissue's stiffness assembly: each element's rest stiffness Ke is rotated by the element's
+// current rotation Re, giving
+//   K'_ij = sum_e Re Ke_ij Re^T,   f0'_i = -sum_e Re sum_j Ke_ij x0_j,   f_elastic = -(K' x + f0').
+// With Re = I (warping off) this is plain linear FEM.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "deformable_sim/core/block_sparse_matrix.h"
+#include "deformable_sim/core/material.h"
+#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/tetrahedron.h"
+
+namespace deformable_sim::core {
+
+class CorotationalElasticity {
+ public:
+  /// Validates the material (std::invalid_argument) and precomputes every element's rest data and
+  /// its block indices in the global pattern.
+  CorotationalElasticity(const Mesh& mesh, const LinearElasticMaterial& material);
+
+  /// Sets the element rotations from positions x (3n): polar rotations of F when warping, the
+  /// identity otherwise; then fills K' and f0' in place. Returns the number of inverted or flat
+  /// elements (det F <= 0). Allocates nothing.
+  int update(const Eigen::VectorXd& x, bool warping);
+
+  const BlockSparseMatrix& stiffness() const { return stiffness_; }  ///< K', N/m
+  const Eigen::VectorXd& forceOffset() const { return force_offset_; }  ///< f0', N
+  const std::vector<Eigen::Matrix3d>& rotations() const { return rotations_; }
+  const std::vector<TetrahedronRest>& restData() const { return rest_; }
+
+  /// f += -(K' x + f0') with the K' and f0' of the last update. `scratch` has size 3n.
+  void addElasticForces(const Eigen::VectorXd& x, Eigen::VectorXd& f, Eigen::VectorXd& scratch) const;
+
+  /// Elastic energy with the rotations of the last update: sum_e 1/2 u_e^T Ke u_e with
+  /// u_e,i = Re^T x_i - x0_i, J.
+  double elasticEnergy(const Eigen::VectorXd& x) const;
+
+ private:
+  std::vector<Tetrahedron> tetrahedra_;
+  Eigen::VectorXd rest_positions_;
+  std::vector<TetrahedronRest> rest_;
+  std::vector<std::array<int, 16>> block_index_;  ///< per element, slot of block (i, j) at 4i + j
+  std::vector<Eigen::Matrix3d> rotations_;
+  BlockSparseMatrix stiffness_;
+  Eigen::VectorXd force_offset_;
+};
+
+}  // namespace deformable_sim::core

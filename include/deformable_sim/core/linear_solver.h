@@ -1,0 +1,75 @@
+// Solvers for A x = b with A = c_m M + c_k K (M lumped mass, diagonal per node; K block-sparse)
+// and some nodes constrained to prescribed values. Constrained rows and columns are projected out
+// (the filtering of Baraff & Witkin 1998 / OpenTissue), so the pattern of K never changes when
+// nodes are fixed or released.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <cstdint>
+#include <vector>
+
+#include "deformable_sim/core/block_sparse_matrix.h"
+
+namespace deformable_sim::core {
+
+struct SolverSettings {
+  enum class Method { kConjugateGradient, kDirect };
+  Method method = Method::kConjugateGradient;
+  double tolerance = 1.0e-6;  ///< conjugate gradient: relative residual ||r|| / ||b_free||
+  int max_iterations = 1000;  ///< conjugate gradient: iteration cap
+};
+
+struct SolveReport {
+  int iterations = 0;              ///< CG iterations (0 for the direct solver)
+  double relative_residual = 0.0;  ///< ||b - A x|| / ||b_free|| over the free rows
+  bool converged = true;
+};
+
+/// The matrix of one solve: A = mass_coefficient M + stiffness_coefficient K.
+struct SystemMatrix {
+  const BlockSparseMatrix* stiffness = nullptr;
+  const std::vector<double>* nodal_mass = nullptr;  ///< kg per node (may be null if c_m == 0)
+  double mass_coefficient = 0.0;
+  double stiffness_coefficient = 1.0;
+
+  /// y = A x.
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+};
+
+/// Which nodes are constrained (non-zero) for a solve.
+using ConstraintMask = std::vector<std::uint8_t>;
+
+/// Block-Jacobi preconditioned conjugate gradients. `x` comes in with the prescribed values on
+/// constrained nodes and the initial guess elsewhere (a warm start), and leaves with the solution.
+/// Buffers are sized on the first call; later calls of the same size allocate nothing.
+class ConjugateGradientSolver {
+ public:
+  SolveReport solve(const SystemMatrix& a, const ConstraintMask& constrained,
+                    const Eigen::VectorXd& b, const SolverSettings& settings, Eigen::VectorXd& x);
+
+ private:
+  std::vector<Eigen::Matrix3d> inverse_diagonal_;
+  Eigen::VectorXd r_, z_, p_, q_;
+};
+
+/// Sparse LDL^T factorization (Eigen's SimplicialLDLT). The scalar pattern and its ordering are
+/// computed on the first solve; later solves refill values and refactorize only when told the
+/// matrix or the constraint set changed.
+class DirectSolver {
+ public:
+  SolveReport solve(const SystemMatrix& a, const ConstraintMask& constrained,
+                    const Eigen::VectorXd& b, bool matrix_changed, Eigen::VectorXd& x);
+
+ private:
+  void buildPattern(const BlockSparseMatrix& k);
+
+  Eigen::SparseMatrix<double> matrix_;
+  std::vector<int> value_of_block_entry_;  ///< 9 per block: index into matrix_.valuePtr()
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factorization_;
+  Eigen::VectorXd rhs_, product_;
+  bool analysed_ = false;
+};
+
+}  // namespace deformable_sim::core

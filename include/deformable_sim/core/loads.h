@@ -1,0 +1,22 @@
+// Turning distributed and resultant loads into nodal forces.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "deformable_sim/core/mesh.h"
+
+namespace deformable_sim::core {
+
+/// Adds to f (3n, N) the consistent nodal loads of a uniform traction (Pa) on every surface
+/// triangle whose three nodes are all in `selected` (node indices): a third of the triangle's
+/// area times the traction to each of its nodes. Returns the loaded area, m^2 (0: no face).
+double addTractionLoad(const Mesh& mesh, const std::vector<Triangle>& surface,
+                       const std::vector<int>& selected, const Eigen::Vector3d& traction,
+                       Eigen::VectorXd& f);
+
+/// Adds to f the force `total` (N) split equally among the selected nodes (at least one).
+void addTotalForce(const std::vector<int>& selected, const Eigen::Vector3d& total,
+                   Eigen::VectorXd& f);
+
+}  // namespace deformable_sim::core

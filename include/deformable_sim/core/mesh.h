@@ -1,0 +1,48 @@
+// A volumetric mesh of linear tetrahedra: rest positions, the mesh file's own node numbers,
+// connectivity, and the geometric queries every body needs (volumes, surface, lumped mass).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+namespace deformable_sim::core {
+
+/// Four node indices into Mesh::positions, ordered so that
+/// (x1 - x0) x (x2 - x0) . (x3 - x0) > 0 (positive volume).
+using Tetrahedron = std::array<int, 4>;
+
+/// Three node indices of a boundary triangle, counter-clockwise seen from outside.
+using Triangle = std::array<int, 3>;
+
+struct Mesh {
+  std::vector<Eigen::Vector3d> positions;  ///< rest positions, m
+  std::vector<long> node_numbers;          ///< the file's number of each node (same order)
+  std::vector<Tetrahedron> tetrahedra;
+
+  int numNodes() const { return static_cast<int>(positions.size()); }
+  int numTetrahedra() const { return static_cast<int>(tetrahedra.size()); }
+};
+
+/// Signed volume of a tetrahedron with corners a, b, c, d, m^3 (positive when right-handed).
+double signedVolume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                    const Eigen::Vector3d& d);
+
+/// Signed volume of tetrahedron t of the mesh at the given positions, m^3.
+double signedVolume(const std::vector<Eigen::Vector3d>& positions, const Tetrahedron& t);
+
+/// Sum of the element volumes at rest, m^3.
+double totalVolume(const Mesh& mesh);
+
+/// The faces that belong to exactly one tetrahedron, oriented with outward normals.
+std::vector<Triangle> extractSurface(const Mesh& mesh);
+
+/// Lumped (diagonal) nodal masses: each element gives a quarter of density x volume to each of
+/// its nodes. density in kg/m^3, result in kg per node.
+std::vector<double> lumpedMasses(const Mesh& mesh, double density);
+
+/// Index of each node given by its file number. Throws std::invalid_argument naming the first
+/// number that is not a node of the mesh.
+std::vector<int> nodeIndices(const Mesh& mesh, const std::vector<long>& node_numbers);
+
+}  // namespace deformable_sim::core

@@ -1,0 +1,52 @@
+// What a scene asks for, as plain data: time step, effects, solver, and the bodies with their
+// meshes, materials, fixed nodes and loads. Filled by the scene-file reader (io/scene_file.h) or
+// in code; turned into a running Simulation by core/simulation.h.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "deformable_sim/core/fem_body.h"
+#include "deformable_sim/core/linear_solver.h"
+#include "deformable_sim/core/material.h"
+#include "deformable_sim/core/selection.h"
+
+namespace deformable_sim::core {
+
+struct LoadSpec {
+  enum class Kind {
+    kTraction,    ///< value in Pa on the boundary faces whose nodes are all selected
+    kTotalForce,  ///< value in N split equally among the selected nodes
+  };
+  NodeSelection where;
+  Kind kind = Kind::kTraction;
+  Eigen::Vector3d value = Eigen::Vector3d::Zero();
+};
+
+/// A generated structured mesh (core/box_mesh.h) instead of a mesh file.
+struct BoxMeshSpec {
+  Eigen::Vector3d min = Eigen::Vector3d::Zero();  ///< m
+  Eigen::Vector3d max = Eigen::Vector3d::Ones();  ///< m
+  Eigen::Vector3i cells = Eigen::Vector3i::Ones();
+};
+
+struct BodySpec {
+  std::string name;
+  std::string mesh;                     ///< path of the mesh file, or empty with box_mesh
+  std::optional<BoxMeshSpec> box_mesh;  ///< generated mesh, when there is no mesh file
+  LinearElasticMaterial material;
+  std::vector<NodeSelection> fixed;
+  std::vector<LoadSpec> loads;
+};
+
+struct SceneSpec {
+  double dt = 0.01;  ///< s
+  BodyEffects effects;
+  SolverSettings solver;
+  StaticSettings statics;
+  std::vector<BodySpec> bodies;
+};
+
+}  // namespace deformable_sim::core

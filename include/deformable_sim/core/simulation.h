@@ -1,0 +1,41 @@
+// A scene made runnable: its bodies, built from a SceneSpec and one mesh per body, stepped together.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "deformable_sim/core/fem_body.h"
+#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/scene.h"
+
+namespace deformable_sim::core {
+
+class Simulation {
+ public:
+  /// meshes[i] is the mesh of spec.bodies[i]. Throws std::invalid_argument naming the key of the
+  /// offending entry ("bodies[0].fixed[1]: selects no node") for bad selections and loads.
+  Simulation(const SceneSpec& spec, std::vector<Mesh> meshes);
+
+  double dt() const { return dt_; }
+  long stepCount() const { return step_count_; }
+  double time() const { return static_cast<double>(step_count_) * dt_; }
+
+  std::vector<FemBody>& bodies() { return bodies_; }
+  const std::vector<FemBody>& bodies() const { return bodies_; }
+  /// Throws std::out_of_range naming the body if there is none of that name.
+  FemBody& body(const std::string& name);
+
+  /// One step of every body; reports[i] belongs to bodies()[i]. `reports` is resized once.
+  void step(std::vector<StepReport>& reports);
+
+  /// Quasi-static equilibrium of every body.
+  std::vector<StaticReport> solveStatic();
+
+ private:
+  double dt_;
+  StaticSettings statics_;
+  long step_count_ = 0;
+  std::vector<FemBody> bodies_;
+};
+
+}  // namespace deformable_sim::core

@@ -1,0 +1,45 @@
+// Scene files (YAML): read into core::SceneSpec, then into a runnable core::Simulation.
+//
+//   dt: 0.01                                   # s
+//   effects: {gravity: [0, 0, -9.81], warping: true, damping: {mass: 0.0, stiffness: 0.0}}
+//   solver: {method: cg, tolerance: 1.0e-6, max_iterations: 1000}    # method: cg | direct
+//   static: {load_steps: 1, max_iterations: 200, tolerance: 1.0e-8}
+//   bodies:
+//     - name: beam
+//       mesh: meshes/beam.msh      # relative to the scene file; or {box: {min, max, cells}}
+//       model: fem
+//       material: {youngs_modulus: 1.0e6, poisson_ratio: 0.3, density: 1000.0}
+//       fixed: [{box: {min: [...], max: [...]}}, {nodes: [12, 40]}, {sphere: {center, radius}}]
+//       loads: [{box: {...}, traction: [0, 0, -2.5]}, {nodes: [7], total_force: [0, 0, -0.01]}]
+//
+// Effects that are not named are off. Unknown keys, wrong types and impossible values throw
+// SceneError with the file, the line and the key ("scene.yaml:7: bodies[0].material.density: ...").
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "deformable_sim/core/scene.h"
+#include "deformable_sim/core/simulation.h"
+
+namespace deformable_sim::io {
+
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Parses scene YAML text. `source` names it in messages; relative mesh paths are resolved
+/// against `base_directory`.
+core::SceneSpec parseScene(const std::string& yaml_text, const std::string& source,
+                           const std::string& base_directory);
+
+/// Reads and parses a scene file.
+core::SceneSpec readSceneFile(const std::string& path);
+
+/// Reads every body's mesh and builds the simulation. Mesh repairs are appended to `warnings`.
+/// Throws SceneError (bad selections, loads) or MeshError (bad mesh files).
+core::Simulation buildSimulation(const core::SceneSpec& spec, std::vector<std::string>* warnings);
+
+}  // namespace deformable_sim::io

@@ -1,0 +1,262 @@
+#include "deformable_sim/core/fem_body.h"
+
+#include <stdexcept>
+#include <utility>
+
+namespace deformable_sim::core {
+
+namespace {
+
+// The readers validate files; this guards meshes built in code. Throws naming the element/node.
+void validateMesh(const std::string& body, const Mesh& mesh) {
+  const std::string where = "body '" + body + "': ";
+  if (mesh.tetrahedra.empty()) throw std::invalid_argument(where + "mesh has no tetrahedra");
+  if (mesh.node_numbers.size() != mesh.positions.size()) {
+    throw std::invalid_argument(where + "mesh has " + std::to_string(mesh.positions.size()) +
+                                " positions but " + std::to_string(mesh.node_numbers.size()) +
+                                " node numbers");
+  }
+  for (int i = 0; i < mesh.numNodes(); ++i) {
+    if (!mesh.positions[i].allFinite()) {
+      throw std::invalid_argument(where + "node " + std::to_string(mesh.node_numbers[i]) +
+                                  " has a non-finite coordinate");
+    }
+  }
+  for (int e = 0; e < mesh.numTetrahedra(); ++e) {
+    const Tetrahedron& t = mesh.tetrahedra[e];
+    for (int i : t) {
+      if (i < 0 || i >= mesh.numNodes()) {
+        throw std::invalid_argument(where + "tetrahedron " + std::to_string(e) +
+                                    " refers to node index " + std::to_string(i) +
+                                    " outside the mesh");
+      }
+    }
+    if (!(signedVolume(mesh.positions, t) > 0.0)) {
+      throw std::invalid_argument(where + "tetrahedron " + std::to_string(e) +
+                                  " has non-positive volume");
+    }
+  }
+}
+
+Eigen::VectorXd stack(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::VectorXd stacked(3 * points.size());
+  for (size_t i = 0; i < points.size(); ++i) stacked.segment<3>(3 * i) = points[i];
+  return stacked;
+}
+
+const Mesh& validated(const std::string& name, const Mesh& mesh) {
+  validateMesh(name, mesh);
+  return mesh;
+}
+
+}  // namespace
+
+FemBody::FemBody(std::string name, Mesh mesh, const LinearElasticMaterial& material,
+                 const BodyEffects& effects, const SolverSettings& solver)
+    : name_(std::move(name)),
+      mesh_(std::move(mesh)),
+      material_(material),
+      effects_(effects),
+      solver_settings_(solver),
+      x0_(stack(validated(name_, mesh_).positions)),
+      x_(x0_),
+      v_(Eigen::VectorXd::Zero(x0_.size())),
+      mass_(lumpedMasses(mesh_, material.density)),
+      elasticity_(mesh_, material),
+      constrained_(mesh_.numNodes(), 0),
+      targets_(x0_),
+      external_forces_(Eigen::VectorXd::Zero(x0_.size())),
+      reaction_(Eigen::VectorXd::Zero(x0_.size())),
+      rhs_(x0_.size()),
+      next_(x0_.size()),
+      scratch_(x0_.size()) {
+  if (!(solver.tolerance > 0.0) || solver.max_iterations < 1) {
+    throw std::invalid_argument("body '" + name_ +
+                                "': solver tolerance must be > 0 and max_iterations >= 1");
+  }
+  if (solver.method == SolverSettings::Method::kDirect) direct_ = std::make_unique<DirectSolver>();
+}
+
+void FemBody::setState(const Eigen::VectorXd& positions, const Eigen::VectorXd& velocities) {
+  if (positions.size() != x_.size() || velocities.size() != v_.size()) {
+    throw std::invalid_argument("body '" + name_ + "': state of the wrong size");
+  }
+  x_ = positions;
+  v_ = velocities;
+}
+
+void FemBody::fixNodes(const std::vector<int>& nodes) {
+  std::vector<Eigen::Vector3d> here;
+  for (int i : nodes) here.emplace_back(x_.segment<3>(3 * i));
+  setNodeTargets(nodes, here);
+}
+
+void FemBody::setNodeTargets(const std::vector<int>& nodes,
+                             const std::vector<Eigen::Vector3d>& targets) {
+  if (nodes.size() != targets.size()) {
+    throw std::invalid_argument("body '" + name_ + "': " + std::to_string(nodes.size()) +
+                                " nodes but " + std::to_string(targets.size()) + " targets");
+  }
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    if (nodes[k] < 0 || nodes[k] >= numNodes()) {
+      throw std::invalid_argument("body '" + name_ + "': node index " + std::to_string(nodes[k]) +
+                                  " out of range");
+    }
+    if (!targets[k].allFinite()) {
+      throw std::invalid_argument("body '" + name_ + "': non-finite target for node " +
+                                  std::to_string(mesh_.node_numbers[nodes[k]]));
+    }
+  }
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    if (!constrained_[nodes[k]]) matrix_changed_ = true;
+    constrained_[nodes[k]] = 1;
+    targets_.segment<3>(3 * nodes[k]) = targets[k];
+  }
+}
+
+void FemBody::releaseNodes(const std::vector<int>& nodes) {
+  for (int i : nodes) {
+    if (i < 0 || i >= numNodes()) {
+      throw std::invalid_argument("body '" + name_ + "': node index " + std::to_string(i) +
+                                  " out of range");
+    }
+    if (constrained_[i]) matrix_changed_ = true;
+    constrained_[i] = 0;
+    reaction_.segment<3>(3 * i).setZero();
+  }
+}
+
+int FemBody::numConstrained() const {
+  int count = 0;
+  for (std::uint8_t c : constrained_) count += c;
+  return count;
+}
+
+int FemBody::updateStiffness() {
+  if (stiffness_assembled_ && !effects_.warping) return 0;  // linear FEM: K is constant
+  stiffness_assembled_ = true;
+  matrix_changed_ = true;
+  return elasticity_.update(x_, effects_.warping);
+}
+
+SystemMatrix FemBody::systemMatrix(double mass_coefficient, double stiffness_coefficient) const {
+  SystemMatrix a;
+  a.stiffness = &elasticity_.stiffness();
+  a.nodal_mass = &mass_;
+  a.mass_coefficient = mass_coefficient;
+  a.stiffness_coefficient = stiffness_coefficient;
+  return a;
+}
+
+SolveReport FemBody::solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (a.mass_coefficient != last_mass_coefficient_ ||
+      a.stiffness_coefficient != last_stiffness_coefficient_) {
+    matrix_changed_ = true;
+    last_mass_coefficient_ = a.mass_coefficient;
+    last_stiffness_coefficient_ = a.stiffness_coefficient;
+  }
+  SolveReport report;
+  if (solver_settings_.method == SolverSettings::Method::kDirect) {
+    report = direct_->solve(a, constrained_, b, matrix_changed_, x);
+  } else {
+    report = cg_.solve(a, constrained_, b, solver_settings_, x);
+  }
+  matrix_changed_ = false;
+  return report;
+}
+
+StepReport FemBody::step(double dt) {
+  StepReport report;
+  report.inverted_elements = updateStiffness();
+  const double h = dt;
+  const RayleighDamping damping = effects_.damping.value_or(RayleighDamping{});
+  const SystemMatrix a = systemMatrix(1.0 + h * damping.mass, h * damping.stiffness + h * h);
+
+  // b = M v - h (K' x + f0' - f_ext - M g)
+  elasticity_.stiffness().multiply(x_, scratch_);
+  const Eigen::VectorXd& f0 = elasticity_.forceOffset();
+  for (int i = 0; i < numNodes(); ++i) {
+    Eigen::Vector3d load = external_forces_.segment<3>(3 * i);
+    if (effects_.gravity) load += mass_[i] * *effects_.gravity;
+    rhs_.segment<3>(3 * i) = mass_[i] * v_.segment<3>(3 * i) -
+                             h * (scratch_.segment<3>(3 * i) + f0.segment<3>(3 * i) - load);
+  }
+  // Warm start from the last velocity; constrained nodes move to their targets in this step.
+  next_ = v_;
+  for (int i = 0; i < numNodes(); ++i) {
+    if (constrained_[i]) next_.segment<3>(3 * i) = (targets_.segment<3>(3 * i) - x_.segment<3>(3 * i)) / h;
+  }
+  report.solve = solve(a, rhs_, next_);
+
+  // A v+ - b = h (M (v+ - v) / h - f_ext - f_elastic - f_damping): h times the constraint force.
+  a.multiply(next_, scratch_);
+  for (int i = 0; i < numNodes(); ++i) {
+    reaction_.segment<3>(3 * i) =
+        constrained_[i] ? Eigen::Vector3d((scratch_.segment<3>(3 * i) - rhs_.segment<3>(3 * i)) / h)
+                        : Eigen::Vector3d::Zero();
+  }
+  x_ += h * next_;
+  v_ = next_;
+  return report;
+}
+
+StaticReport FemBody::solveStatic(const StaticSettings& settings) {
+  if (settings.load_steps < 1 || settings.max_iterations < 1 || !(settings.tolerance > 0.0)) {
+    throw std::invalid_argument("body '" + name_ +
+                                "': static settings need load_steps >= 1, max_iterations >= 1 "
+                                "and tolerance > 0");
+  }
+  StaticReport report;
+  const SystemMatrix a = systemMatrix(0.0, 1.0);
+  Eigen::VectorXd load = external_forces_;
+  if (effects_.gravity) {
+    for (int i = 0; i < numNodes(); ++i) load.segment<3>(3 * i) += mass_[i] * *effects_.gravity;
+  }
+  const Eigen::VectorXd start = x_;
+  for (int s = 1; s <= settings.load_steps; ++s) {
+    const double fraction = static_cast<double>(s) / settings.load_steps;
+    for (int iteration = 0; iteration < settings.max_iterations; ++iteration) {
+      updateStiffness();
+      rhs_ = fraction * load - elasticity_.forceOffset();
+      next_ = x_;
+      for (int i = 0; i < numNodes(); ++i) {
+        if (constrained_[i]) {
+          next_.segment<3>(3 * i) = start.segment<3>(3 * i) +
+                                    fraction * (targets_.segment<3>(3 * i) - start.segment<3>(3 * i));
+        }
+      }
+      report.last_solve = solve(a, rhs_, next_);
+      report.linear_iterations += report.last_solve.iterations;
+      ++report.iterations;
+      const double change = (next_ - x_).norm();
+      const double displacement = (next_ - x0_).norm();
+      report.last_change = displacement > 0.0 ? change / displacement : change;
+      x_ = next_;
+      if (!effects_.warping || report.last_change <= settings.tolerance) break;
+    }
+    report.converged = report.last_solve.converged &&
+                       (!effects_.warping || report.last_change <= settings.tolerance);
+  }
+  v_.setZero();
+  // Reactions at equilibrium, with the stiffness of the final configuration.
+  updateStiffness();
+  elasticity_.stiffness().multiply(x_, scratch_);
+  for (int i = 0; i < numNodes(); ++i) {
+    reaction_.segment<3>(3 * i) =
+        constrained_[i] ? Eigen::Vector3d(scratch_.segment<3>(3 * i) +
+                                          elasticity_.forceOffset().segment<3>(3 * i) -
+                                          load.segment<3>(3 * i))
+                        : Eigen::Vector3d::Zero();
+  }
+  return report;
+}
+
+double FemBody::kineticEnergy() const {
+  double energy = 0.0;
+  for (int i = 0; i < numNodes(); ++i) energy += 0.5 * mass_[i] * v_.segment<3>(3 * i).squaredNorm();
+  return energy;
+}
+
+double FemBody::elasticEnergy() const { return elasticity_.elasticEnergy(x_); }
+
+}  // namespace deformable_sim::core

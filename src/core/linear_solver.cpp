@@ -1,0 +1,189 @@
+#include "deformable_sim/core/linear_solver.h"
+
+#include <Eigen/LU>
+#include <cmath>
+
+namespace deformable_sim::core {
+
+namespace {
+
+void zeroConstrained(const ConstraintMask& constrained, Eigen::VectorXd& v) {
+  for (size_t i = 0; i < constrained.size(); ++i) {
+    if (constrained[i]) v.segment<3>(3 * i).setZero();
+  }
+}
+
+// v = x on constrained nodes, 0 elsewhere.
+void keepConstrained(const ConstraintMask& constrained, const Eigen::VectorXd& x,
+                     Eigen::VectorXd& v) {
+  for (size_t i = 0; i < constrained.size(); ++i) {
+    v.segment<3>(3 * i) = constrained[i] ? Eigen::Vector3d(x.segment<3>(3 * i))
+                                         : Eigen::Vector3d::Zero();
+  }
+}
+
+}  // namespace
+
+void SystemMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  stiffness->multiply(x, y);
+  if (stiffness_coefficient != 1.0) y *= stiffness_coefficient;
+  if (mass_coefficient != 0.0) {
+    const std::vector<double>& m = *nodal_mass;
+    for (size_t i = 0; i < m.size(); ++i) {
+      y.segment<3>(3 * i) += (mass_coefficient * m[i]) * x.segment<3>(3 * i);
+    }
+  }
+}
+
+SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const ConstraintMask& constrained,
+                                           const Eigen::VectorXd& b,
+                                           const SolverSettings& settings, Eigen::VectorXd& x) {
+  const int num_nodes = a.stiffness->numBlockRows();
+  if (r_.size() != b.size()) {
+    r_.resize(b.size());
+    z_.resize(b.size());
+    p_.resize(b.size());
+    q_.resize(b.size());
+    inverse_diagonal_.resize(num_nodes);
+  }
+  const std::vector<Eigen::Matrix3d>& blocks = a.stiffness->blocks();
+  for (int i = 0; i < num_nodes; ++i) {
+    if (constrained[i]) {
+      inverse_diagonal_[i].setZero();  // keeps every search direction zero on constrained nodes
+      continue;
+    }
+    Eigen::Matrix3d d = a.stiffness_coefficient * blocks[a.stiffness->diagonalIndex(i)];
+    if (a.mass_coefficient != 0.0) d.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
+    inverse_diagonal_[i] = d.inverse();
+  }
+  auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+    for (int i = 0; i < num_nodes; ++i) {
+      z.segment<3>(3 * i).noalias() = inverse_diagonal_[i] * r.segment<3>(3 * i);
+    }
+  };
+
+  // Reference norm: the right-hand side of the free rows once the prescribed values are moved
+  // over, i.e. the residual of x = 0 on the free nodes.
+  keepConstrained(constrained, x, p_);
+  a.multiply(p_, q_);
+  r_ = b - q_;
+  zeroConstrained(constrained, r_);
+  const double reference = r_.norm();
+  SolveReport report;
+  if (!(reference > 0.0)) {
+    // Free rows have a zero right-hand side: the solution is zero there.
+    x = p_;
+    return report;
+  }
+
+  a.multiply(x, q_);
+  r_ = b - q_;
+  zeroConstrained(constrained, r_);
+  precondition(r_, z_);
+  p_ = z_;
+  double rz = r_.dot(z_);
+  double residual = r_.norm() / reference;
+  while (residual > settings.tolerance && report.iterations < settings.max_iterations) {
+    a.multiply(p_, q_);
+    zeroConstrained(constrained, q_);
+    const double pq = p_.dot(q_);
+    if (!(pq > 0.0)) break;  // not positive definite along p (or NaN): stop, report below
+    const double alpha = rz / pq;
+    x += alpha * p_;
+    r_ -= alpha * q_;
+    precondition(r_, z_);
+    const double rz_next = r_.dot(z_);
+    p_ = z_ + (rz_next / rz) * p_;
+    rz = rz_next;
+    residual = r_.norm() / reference;
+    ++report.iterations;
+  }
+  report.relative_residual = residual;
+  report.converged = residual <= settings.tolerance;
+  return report;
+}
+
+void DirectSolver::buildPattern(const BlockSparseMatrix& k) {
+  const int n = k.numBlockRows();
+  // Tag each scalar entry with its own id, then read back where the compressed matrix put it.
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(9 * k.numBlocks());
+  for (int i = 0; i < n; ++i) {
+    for (int s = k.rowStart()[i]; s < k.rowStart()[i + 1]; ++s) {
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) {
+          entries.emplace_back(3 * i + r, 3 * k.columns()[s] + c, 1.0 + 9.0 * s + 3 * r + c);
+        }
+      }
+    }
+  }
+  matrix_.resize(3 * n, 3 * n);
+  matrix_.setFromTriplets(entries.begin(), entries.end());
+  matrix_.makeCompressed();
+  value_of_block_entry_.assign(entries.size(), -1);
+  for (int v = 0; v < matrix_.nonZeros(); ++v) {
+    value_of_block_entry_[static_cast<int>(matrix_.valuePtr()[v]) - 1] = v;
+  }
+  factorization_.analyzePattern(matrix_);
+  rhs_.resize(3 * n);
+  product_.resize(3 * n);
+  analysed_ = true;
+}
+
+SolveReport DirectSolver::solve(const SystemMatrix& a, const ConstraintMask& constrained,
+                                const Eigen::VectorXd& b, bool matrix_changed,
+                                Eigen::VectorXd& x) {
+  const BlockSparseMatrix& k = *a.stiffness;
+  const bool refactor = matrix_changed || !analysed_;
+  if (!analysed_) buildPattern(k);
+  if (refactor) {
+    double* values = matrix_.valuePtr();
+    for (int i = 0; i < k.numBlockRows(); ++i) {
+      for (int s = k.rowStart()[i]; s < k.rowStart()[i + 1]; ++s) {
+        const int j = k.columns()[s];
+        const bool projected = constrained[i] || constrained[j];
+        Eigen::Matrix3d block = a.stiffness_coefficient * k.blocks()[s];
+        if (i == j && a.mass_coefficient != 0.0) {
+          block.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
+        }
+        // Constrained rows and columns become identity rows: x_c = prescribed value.
+        if (projected) {
+          block.setZero();
+          if (i == j) block.setIdentity();
+        }
+        for (int e = 0; e < 9; ++e) values[value_of_block_entry_[9 * s + e]] = block(e / 3, e % 3);
+      }
+    }
+    factorization_.factorize(matrix_);
+  }
+  SolveReport report;
+  if (factorization_.info() != Eigen::Success) {
+    report.converged = false;
+    report.relative_residual = std::nan("");
+    return report;
+  }
+  // Move the prescribed values to the right-hand side of the free rows.
+  keepConstrained(constrained, x, rhs_);
+  a.multiply(rhs_, product_);
+  const Eigen::VectorXd& prescribed = x;
+  for (int i = 0; i < k.numBlockRows(); ++i) {
+    rhs_.segment<3>(3 * i) = constrained[i] ? Eigen::Vector3d(prescribed.segment<3>(3 * i))
+                                            : Eigen::Vector3d(b.segment<3>(3 * i) -
+                                                              product_.segment<3>(3 * i));
+  }
+  const double reference = [&] {
+    double sum = 0.0;
+    for (int i = 0; i < k.numBlockRows(); ++i) {
+      if (!constrained[i]) sum += rhs_.segment<3>(3 * i).squaredNorm();
+    }
+    return std::sqrt(sum);
+  }();
+  x = factorization_.solve(rhs_);
+  a.multiply(x, product_);
+  product_ = b - product_;
+  zeroConstrained(constrained, product_);
+  report.relative_residual = reference > 0.0 ? product_.norm() / reference : 0.0;
+  return report;
+}
+
+}  // namespace deformable_sim::core

@@ -1,0 +1,279 @@
+// readMesh dispatch plus what both readers share: line reading and number parsing with line
+// numbers, and the validation/repair of the raw nodes and tetrahedra (finalizeMesh).
+#include "deformable_sim/io/mesh_reader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <sstream>
+#include <unordered_map>
+#include <utility>
+
+#include "raw_mesh.h"
+
+namespace deformable_sim::io {
+namespace internal {
+namespace {
+
+// How many numbers a warning lists before it just gives the count.
+constexpr std::size_t kListedNumbers = 5;
+
+std::string listNumbers(const std::vector<long>& numbers) {
+  std::string text;
+  for (std::size_t i = 0; i < numbers.size() && i < kListedNumbers; ++i) {
+    if (i > 0) text += ", ";
+    text += std::to_string(numbers[i]);
+  }
+  if (numbers.size() > kListedNumbers) text += ", ...";
+  return text;
+}
+
+std::string counted(std::size_t count, const std::string& singular, const std::string& plural) {
+  return std::to_string(count) + " " + (count == 1 ? singular : plural);
+}
+
+std::string quoted(std::string_view text) { return "'" + std::string(text) + "'"; }
+
+// from_chars rejects a leading '+', which strtod accepts and some writers emit.
+std::string_view withoutPlus(std::string_view text) {
+  if (text.size() > 1 && text[0] == '+' && text[1] != '-') text.remove_prefix(1);
+  return text;
+}
+
+}  // namespace
+
+std::string located(const std::string& path, long line, const std::string& message) {
+  return path + ", line " + std::to_string(line) + ": " + message;
+}
+
+// --- LineReader ---------------------------------------------------------------------------------
+
+LineReader::LineReader(std::string path, char comment_char)
+    : path_(std::move(path)), comment_char_(comment_char) {
+  std::error_code error;
+  // An ifstream happily "opens" a directory and then reads nothing; say what is wrong instead.
+  if (std::filesystem::is_directory(path_, error)) {
+    throw MeshError("cannot read mesh file '" + path_ + "': it is a directory");
+  }
+  stream_.open(path_);
+  if (!stream_) {
+    throw MeshError("cannot open mesh file '" + path_ + "': " + std::strerror(errno));
+  }
+}
+
+bool LineReader::next() {
+  while (std::getline(stream_, line_)) {
+    ++line_number_;
+    std::string_view rest(line_);
+    if (comment_char_ != '\0') rest = rest.substr(0, rest.find(comment_char_));
+    tokens_.clear();
+    context_.clear();
+    // Split on any whitespace; '\r' included so CRLF files read the same.
+    static constexpr const char* kSpace = " \t\r\v\f";
+    std::size_t begin = rest.find_first_not_of(kSpace);
+    while (begin != std::string_view::npos) {
+      const std::size_t end = rest.find_first_of(kSpace, begin);
+      tokens_.push_back(rest.substr(begin, end == std::string_view::npos ? end : end - begin));
+      begin = rest.find_first_not_of(kSpace, end);
+    }
+    if (!tokens_.empty()) return true;
+  }
+  if (stream_.bad()) fail("read error");
+  tokens_.clear();
+  context_.clear();
+  return false;
+}
+
+void LineReader::expectCount(std::size_t count, const std::string& what) const {
+  if (tokens_.size() != count) {
+    fail("expected " + counted(count, "value", "values") + " (" + what + ") but found " +
+         std::to_string(tokens_.size()));
+  }
+}
+
+long LineReader::integer(std::size_t i, const std::string& what) const {
+  const std::string_view text = withoutPlus(tokens_.at(i));
+  long value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error == std::errc::result_out_of_range) {
+    fail(what + " " + quoted(tokens_[i]) + " is out of range");
+  }
+  if (error != std::errc() || end != text.data() + text.size()) {
+    fail("expected an integer " + what + " but found " + quoted(tokens_[i]));
+  }
+  return value;
+}
+
+long LineReader::nonNegative(std::size_t i, const std::string& what) const {
+  const long value = integer(i, what);
+  if (value < 0) fail(what + " must not be negative, found " + quoted(tokens_[i]));
+  return value;
+}
+
+double LineReader::real(std::size_t i, const std::string& what) const {
+  const std::string_view text = withoutPlus(tokens_.at(i));
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error == std::errc::result_out_of_range) {
+    fail(what + " " + quoted(tokens_[i]) + " is out of range");
+  }
+  if (error != std::errc() || end != text.data() + text.size()) {
+    fail("expected a number for the " + what + " but found " + quoted(tokens_[i]));
+  }
+  return value;
+}
+
+void LineReader::fail(const std::string& message) const {
+  throw MeshError(
+      located(path_, line_number_, context_.empty() ? message : context_ + ": " + message));
+}
+
+// --- Validation and repair ----------------------------------------------------------------------
+
+MeshReadResult finalizeMesh(const RawMesh& raw) {
+  const int num_raw_nodes = static_cast<int>(raw.nodes.size());
+
+  // Nodes: finite coordinates and unique numbers.
+  std::unordered_map<long, int> raw_index_of;
+  raw_index_of.reserve(raw.nodes.size());
+  for (int i = 0; i < num_raw_nodes; ++i) {
+    const RawNode& node = raw.nodes[i];
+    if (!node.position.allFinite()) {
+      std::ostringstream coordinates;
+      coordinates << node.position.x() << " " << node.position.y() << " " << node.position.z();
+      throw MeshError(located(raw.node_path, node.position_line,
+                              "node " + std::to_string(node.number) +
+                                  " has a coordinate that is not a finite number (" +
+                                  coordinates.str() + ")"));
+    }
+    const auto [it, inserted] = raw_index_of.emplace(node.number, i);
+    if (!inserted) {
+      throw MeshError(located(raw.node_path, node.line,
+                              "duplicate node number " + std::to_string(node.number) + " (node " +
+                                  std::to_string(node.number) + " was already defined on line " +
+                                  std::to_string(raw.nodes[it->second].line) + ")"));
+    }
+  }
+
+  if (raw.tetrahedra.empty()) {
+    std::string message = "the mesh has no tetrahedra";
+    if (raw.skipped_elements > 0) {
+      message +=
+          " (" +
+          counted(raw.skipped_elements, "lower-dimensional element", "lower-dimensional elements") +
+          " skipped)";
+    }
+    throw MeshError(located(raw.element_path, raw.element_section_line, message));
+  }
+
+  // Elements: every node known and listed once.
+  std::vector<std::array<int, 4>> raw_corners(raw.tetrahedra.size());
+  std::vector<bool> used(raw.nodes.size(), false);
+  for (std::size_t e = 0; e < raw.tetrahedra.size(); ++e) {
+    const RawTetrahedron& tet = raw.tetrahedra[e];
+    const std::string element = "element " + std::to_string(tet.number);
+    for (int k = 0; k < 4; ++k) {
+      const long number = tet.nodes[k];
+      const auto it = raw_index_of.find(number);
+      if (it == raw_index_of.end()) {
+        throw MeshError(located(raw.element_path, tet.line,
+                                element + " references node " + std::to_string(number) +
+                                    ", which is not defined in " + raw.node_path));
+      }
+      for (int j = 0; j < k; ++j) {
+        if (tet.nodes[j] == number) {
+          throw MeshError(
+              located(raw.element_path, tet.line,
+                      element + " lists node " + std::to_string(number) + " more than once"));
+        }
+      }
+      raw_corners[e][k] = it->second;
+      used[it->second] = true;
+    }
+  }
+
+  // Drop unused nodes, keeping file order for the rest.
+  MeshReadResult result;
+  core::Mesh& mesh = result.mesh;
+  std::vector<int> new_index(raw.nodes.size(), -1);
+  std::vector<long> dropped;
+  for (int i = 0; i < num_raw_nodes; ++i) {
+    if (!used[i]) {
+      dropped.push_back(raw.nodes[i].number);
+      continue;
+    }
+    new_index[i] = mesh.numNodes();
+    mesh.positions.push_back(raw.nodes[i].position);
+    mesh.node_numbers.push_back(raw.nodes[i].number);
+  }
+  if (!dropped.empty()) {
+    result.warnings.push_back(raw.node_path + ": dropped " +
+                              counted(dropped.size(), "node", "nodes") +
+                              " that no tetrahedron uses: " + listNumbers(dropped));
+  }
+
+  // Tetrahedra: reject degenerate ones, reorient inverted ones.
+  std::vector<long> reoriented;
+  mesh.tetrahedra.reserve(raw.tetrahedra.size());
+  for (std::size_t e = 0; e < raw.tetrahedra.size(); ++e) {
+    const RawTetrahedron& raw_tet = raw.tetrahedra[e];
+    core::Tetrahedron tet;
+    for (int k = 0; k < 4; ++k) tet[k] = new_index[raw_corners[e][k]];
+
+    double longest_edge = 0.0;
+    for (int a = 0; a < 4; ++a) {
+      for (int b = a + 1; b < 4; ++b) {
+        longest_edge =
+            std::max(longest_edge, (mesh.positions[tet[a]] - mesh.positions[tet[b]]).norm());
+      }
+    }
+    const double volume = core::signedVolume(mesh.positions, tet);
+    // Scale-free test: 6V relative to the cube of the element size.
+    if (std::abs(6.0 * volume) <= 1e-12 * longest_edge * longest_edge * longest_edge) {
+      std::ostringstream details;
+      details << "element " << raw_tet.number << " (nodes " << raw_tet.nodes[0] << " "
+              << raw_tet.nodes[1] << " " << raw_tet.nodes[2] << " " << raw_tet.nodes[3]
+              << ") has zero volume (" << volume << " m^3, longest edge " << longest_edge
+              << " m): its corners are coplanar or coincide";
+      throw MeshError(located(raw.element_path, raw_tet.line, details.str()));
+    }
+    if (volume < 0.0) {
+      std::swap(tet[2], tet[3]);
+      reoriented.push_back(raw_tet.number);
+    }
+    mesh.tetrahedra.push_back(tet);
+  }
+  if (!reoriented.empty()) {
+    result.warnings.push_back(raw.element_path + ": reoriented " +
+                              counted(reoriented.size(), "negatively oriented tetrahedron",
+                                      "negatively oriented tetrahedra") +
+                              " by swapping the 3rd and 4th node: " +
+                              (reoriented.size() == 1 ? "element " : "elements ") +
+                              listNumbers(reoriented));
+  }
+  return result;
+}
+
+}  // namespace internal
+
+// --- Dispatch -----------------------------------------------------------------------------------
+
+MeshReadResult readMesh(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) {
+    throw MeshError("cannot read mesh file '" + path + "': it is a directory");
+  }
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".msh") return readGmsh(path);
+  if (extension.empty() || extension == ".node" || extension == ".ele") return readTetGen(path);
+  throw MeshError("cannot read mesh file '" + path + "': unknown extension '" + extension +
+                  "' (expected .msh for Gmsh, or .node, .ele or no extension for TetGen)");
+}
+
+}  // namespace deformable_sim::io

@@ -1,0 +1,365 @@
+#include "deformable_sim/io/scene_file.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "deformable_sim/core/box_mesh.h"
+#include "deformable_sim/io/mesh_reader.h"
+
+namespace deformable_sim::io {
+
+namespace {
+
+// Reads typed values out of YAML nodes; every error names the source, the line and the key.
+class SceneParser {
+ public:
+  SceneParser(std::string source, std::string base_directory)
+      : source_(std::move(source)), base_directory_(std::move(base_directory)) {}
+
+  core::SceneSpec parse(const YAML::Node& root) {
+    core::SceneSpec scene;
+    expectMap(root, "scene");
+    checkKeys(root, "", {"dt", "effects", "solver", "static", "bodies"});
+    if (root["dt"]) scene.dt = positive(root["dt"], "dt");
+    parseEffects(root["effects"], scene.effects);
+    parseSolver(root["solver"], scene.solver);
+    parseStatic(root["static"], scene.statics);
+    const YAML::Node bodies = root["bodies"];
+    if (!bodies) fail(root, "bodies", "missing: a scene needs at least one body");
+    if (!bodies.IsSequence() || bodies.size() == 0) {
+      fail(bodies, "bodies", "expected a non-empty list of bodies");
+    }
+    std::set<std::string> names;
+    for (size_t b = 0; b < bodies.size(); ++b) {
+      const std::string key = "bodies[" + std::to_string(b) + "]";
+      scene.bodies.push_back(parseBody(bodies[b], key));
+      if (!names.insert(scene.bodies.back().name).second) {
+        fail(bodies[b], key + ".name", "'" + scene.bodies.back().name + "' is used twice");
+      }
+    }
+    return scene;
+  }
+
+ private:
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& key,
+                         const std::string& message) const {
+    std::ostringstream text;
+    text << source_;
+    if (node.IsDefined() && node.Mark().line >= 0) text << ":" << node.Mark().line + 1;
+    text << ": " << (key.empty() ? "scene" : key) << ": " << message;
+    throw SceneError(text.str());
+  }
+
+  static std::string join(const std::string& parent, const std::string& child) {
+    return parent.empty() ? child : parent + "." + child;
+  }
+
+  void expectMap(const YAML::Node& node, const std::string& key) const {
+    if (!node.IsMap()) fail(node, key, "expected a map of keys");
+  }
+
+  void checkKeys(const YAML::Node& node, const std::string& key,
+                 const std::set<std::string>& allowed) const {
+    for (const auto& entry : node) {
+      const std::string name = entry.first.as<std::string>();
+      if (allowed.count(name) == 0) {
+        std::string expected;
+        for (const std::string& a : allowed) expected += (expected.empty() ? "" : ", ") + a;
+        fail(entry.first, join(key, name), "unknown key (expected one of: " + expected + ")");
+      }
+    }
+  }
+
+  double number(const YAML::Node& node, const std::string& key) const {
+    double value = 0.0;
+    if (!node.IsScalar() || !YAML::convert<double>::decode(node, value)) {
+      fail(node, key, "expected a number");
+    }
+    if (!std::isfinite(value)) fail(node, key, "must be finite");
+    return value;
+  }
+
+  double positive(const YAML::Node& node, const std::string& key) const {
+    const double value = number(node, key);
+    if (!(value > 0.0)) fail(node, key, "must be > 0");
+    return value;
+  }
+
+  double nonNegative(const YAML::Node& node, const std::string& key) const {
+    const double value = number(node, key);
+    if (!(value >= 0.0)) fail(node, key, "must be >= 0");
+    return value;
+  }
+
+  long integer(const YAML::Node& node, const std::string& key) const {
+    long value = 0;
+    if (!node.IsScalar() || !YAML::convert<long>::decode(node, value)) {
+      fail(node, key, "expected an integer");
+    }
+    return value;
+  }
+
+  bool boolean(const YAML::Node& node, const std::string& key) const {
+    bool value = false;
+    if (!node.IsScalar() || !YAML::convert<bool>::decode(node, value)) {
+      fail(node, key, "expected true or false");
+    }
+    return value;
+  }
+
+  std::string text(const YAML::Node& node, const std::string& key) const {
+    if (!node.IsScalar() || node.Scalar().empty()) fail(node, key, "expected a non-empty string");
+    return node.Scalar();
+  }
+
+  Eigen::Vector3d vector3(const YAML::Node& node, const std::string& key) const {
+    if (!node.IsSequence() || node.size() != 3) fail(node, key, "expected a list of 3 numbers");
+    return {number(node[0], key + "[0]"), number(node[1], key + "[1]"),
+            number(node[2], key + "[2]")};
+  }
+
+  void parseEffects(const YAML::Node& node, core::BodyEffects& effects) const {
+    if (!node) return;
+    expectMap(node, "effects");
+    checkKeys(node, "effects", {"gravity", "warping", "damping"});
+    if (node["gravity"]) effects.gravity = vector3(node["gravity"], "effects.gravity");
+    if (node["warping"]) effects.warping = boolean(node["warping"], "effects.warping");
+    if (const YAML::Node damping = node["damping"]) {
+      expectMap(damping, "effects.damping");
+      checkKeys(damping, "effects.damping", {"mass", "stiffness"});
+      core::RayleighDamping rayleigh;
+      if (damping["mass"]) rayleigh.mass = nonNegative(damping["mass"], "effects.damping.mass");
+      if (damping["stiffness"]) {
+        rayleigh.stiffness = nonNegative(damping["stiffness"], "effects.damping.stiffness");
+      }
+      effects.damping = rayleigh;
+    }
+  }
+
+  void parseSolver(const YAML::Node& node, core::SolverSettings& solver) const {
+    if (!node) return;
+    expectMap(node, "solver");
+    checkKeys(node, "solver", {"method", "tolerance", "max_iterations"});
+    if (node["method"]) {
+      const std::string method = text(node["method"], "solver.method");
+      if (method == "cg") {
+        solver.method = core::SolverSettings::Method::kConjugateGradient;
+      } else if (method == "direct") {
+        solver.method = core::SolverSettings::Method::kDirect;
+      } else {
+        fail(node["method"], "solver.method", "'" + method + "' is not one of: cg, direct");
+      }
+    }
+    if (node["tolerance"]) solver.tolerance = positive(node["tolerance"], "solver.tolerance");
+    if (node["max_iterations"]) {
+      solver.max_iterations =
+          static_cast<int>(integer(node["max_iterations"], "solver.max_iterations"));
+      if (solver.max_iterations < 1)
+        fail(node["max_iterations"], "solver.max_iterations", "must be >= 1");
+    }
+  }
+
+  void parseStatic(const YAML::Node& node, core::StaticSettings& statics) const {
+    if (!node) return;
+    expectMap(node, "static");
+    checkKeys(node, "static", {"load_steps", "max_iterations", "tolerance"});
+    if (node["load_steps"]) {
+      statics.load_steps = static_cast<int>(integer(node["load_steps"], "static.load_steps"));
+      if (statics.load_steps < 1) fail(node["load_steps"], "static.load_steps", "must be >= 1");
+    }
+    if (node["max_iterations"]) {
+      statics.max_iterations =
+          static_cast<int>(integer(node["max_iterations"], "static.max_iterations"));
+      if (statics.max_iterations < 1)
+        fail(node["max_iterations"], "static.max_iterations", "must be >= 1");
+    }
+    if (node["tolerance"]) statics.tolerance = positive(node["tolerance"], "static.tolerance");
+  }
+
+  core::BodySpec parseBody(const YAML::Node& node, const std::string& key) const {
+    expectMap(node, key);
+    checkKeys(node, key, {"name", "mesh", "model", "material", "fixed", "loads"});
+    core::BodySpec body;
+    if (!node["name"]) fail(node, key + ".name", "missing");
+    body.name = text(node["name"], key + ".name");
+    parseMesh(node["mesh"], node, key + ".mesh", body);
+    if (node["model"]) {
+      const std::string model = text(node["model"], key + ".model");
+      if (model != "fem")
+        fail(node["model"], key + ".model", "'" + model + "' is not supported (fem)");
+    }
+    if (!node["material"]) fail(node, key + ".material", "missing");
+    parseMaterial(node["material"], key + ".material", body.material);
+    if (const YAML::Node fixed = node["fixed"]) {
+      if (!fixed.IsSequence()) fail(fixed, key + ".fixed", "expected a list of selections");
+      for (size_t k = 0; k < fixed.size(); ++k) {
+        const std::string item = key + ".fixed[" + std::to_string(k) + "]";
+        expectMap(fixed[k], item);
+        checkKeys(fixed[k], item, {"nodes", "box", "sphere"});
+        body.fixed.push_back(parseSelection(fixed[k], item));
+      }
+    }
+    if (const YAML::Node loads = node["loads"]) {
+      if (!loads.IsSequence()) fail(loads, key + ".loads", "expected a list of loads");
+      for (size_t k = 0; k < loads.size(); ++k) {
+        body.loads.push_back(parseLoad(loads[k], key + ".loads[" + std::to_string(k) + "]"));
+      }
+    }
+    return body;
+  }
+
+  void parseMesh(const YAML::Node& node, const YAML::Node& parent, const std::string& key,
+                 core::BodySpec& body) const {
+    if (!node) fail(parent, key, "missing: a mesh file or {box: {min, max, cells}}");
+    if (node.IsScalar()) {
+      std::filesystem::path path = text(node, key);
+      if (path.is_relative()) path = std::filesystem::path(base_directory_) / path;
+      body.mesh = path.lexically_normal().string();
+      return;
+    }
+    expectMap(node, key);
+    checkKeys(node, key, {"box"});
+    const YAML::Node box = node["box"];
+    if (!box) fail(node, key + ".box", "missing");
+    expectMap(box, key + ".box");
+    checkKeys(box, key + ".box", {"min", "max", "cells"});
+    for (const char* required : {"min", "max", "cells"}) {
+      if (!box[required]) fail(box, key + ".box." + required, "missing");
+    }
+    core::BoxMeshSpec spec;
+    spec.min = vector3(box["min"], key + ".box.min");
+    spec.max = vector3(box["max"], key + ".box.max");
+    const Eigen::Vector3d cells = vector3(box["cells"], key + ".box.cells");
+    if (!(spec.min.array() < spec.max.array()).all()) {
+      fail(box, key + ".box", "min must be below max on every axis");
+    }
+    if ((cells.array() < 1.0).any() || (cells.array() != cells.array().round()).any()) {
+      fail(box["cells"], key + ".box.cells", "expected three whole numbers >= 1");
+    }
+    spec.cells = cells.cast<int>();
+    body.box_mesh = spec;
+  }
+
+  void parseMaterial(const YAML::Node& node, const std::string& key,
+                     core::LinearElasticMaterial& material) const {
+    expectMap(node, key);
+    checkKeys(node, key, {"youngs_modulus", "poisson_ratio", "density"});
+    if (node["youngs_modulus"]) {
+      material.youngs_modulus = positive(node["youngs_modulus"], key + ".youngs_modulus");
+    }
+    if (node["poisson_ratio"]) {
+      material.poisson_ratio = number(node["poisson_ratio"], key + ".poisson_ratio");
+      if (!(material.poisson_ratio > -1.0 && material.poisson_ratio < 0.5)) {
+        fail(node["poisson_ratio"], key + ".poisson_ratio", "must be in (-1, 0.5)");
+      }
+    }
+    if (node["density"]) material.density = positive(node["density"], key + ".density");
+  }
+
+  // A map with exactly one of nodes / box / sphere (other keys are checked by the caller).
+  core::NodeSelection parseSelection(const YAML::Node& node, const std::string& key) const {
+    core::NodeSelection selection;
+    const int kinds = (node["nodes"] ? 1 : 0) + (node["box"] ? 1 : 0) + (node["sphere"] ? 1 : 0);
+    if (kinds != 1) fail(node, key, "expected exactly one of: nodes, box, sphere");
+    if (const YAML::Node nodes = node["nodes"]) {
+      if (!nodes.IsSequence() || nodes.size() == 0) {
+        fail(nodes, key + ".nodes", "expected a non-empty list of node numbers");
+      }
+      selection.kind = core::NodeSelection::Kind::kNodes;
+      for (size_t i = 0; i < nodes.size(); ++i) {
+        selection.node_numbers.push_back(
+            integer(nodes[i], key + ".nodes[" + std::to_string(i) + "]"));
+      }
+    } else if (const YAML::Node box = node["box"]) {
+      expectMap(box, key + ".box");
+      checkKeys(box, key + ".box", {"min", "max"});
+      if (!box["min"] || !box["max"]) fail(box, key + ".box", "needs min and max");
+      selection.kind = core::NodeSelection::Kind::kBox;
+      selection.box.min = vector3(box["min"], key + ".box.min");
+      selection.box.max = vector3(box["max"], key + ".box.max");
+      if ((selection.box.min.array() > selection.box.max.array()).any()) {
+        fail(box, key + ".box", "min must not exceed max on any axis");
+      }
+    } else {
+      const YAML::Node sphere = node["sphere"];
+      expectMap(sphere, key + ".sphere");
+      checkKeys(sphere, key + ".sphere", {"center", "radius"});
+      if (!sphere["center"] || !sphere["radius"])
+        fail(sphere, key + ".sphere", "needs center and radius");
+      selection.kind = core::NodeSelection::Kind::kSphere;
+      selection.sphere.center = vector3(sphere["center"], key + ".sphere.center");
+      selection.sphere.radius = nonNegative(sphere["radius"], key + ".sphere.radius");
+    }
+    return selection;
+  }
+
+  core::LoadSpec parseLoad(const YAML::Node& node, const std::string& key) const {
+    expectMap(node, key);
+    checkKeys(node, key, {"nodes", "box", "sphere", "traction", "total_force"});
+    core::LoadSpec load;
+    load.where = parseSelection(node, key);
+    if (node["traction"] && node["total_force"]) {
+      fail(node, key, "give either traction or total_force, not both");
+    }
+    if (node["traction"]) {
+      load.kind = core::LoadSpec::Kind::kTraction;
+      load.value = vector3(node["traction"], key + ".traction");
+    } else if (node["total_force"]) {
+      load.kind = core::LoadSpec::Kind::kTotalForce;
+      load.value = vector3(node["total_force"], key + ".total_force");
+    } else {
+      fail(node, key, "needs traction (Pa) or total_force (N)");
+    }
+    return load;
+  }
+
+  std::string source_;
+  std::string base_directory_;
+};
+
+}  // namespace
+
+core::SceneSpec parseScene(const std::string& yaml_text, const std::string& source,
+                           const std::string& base_directory) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw SceneError(source + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+  }
+  return SceneParser(source, base_directory).parse(root);
+}
+
+core::SceneSpec readSceneFile(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw SceneError(path + ": cannot open the scene file");
+  std::stringstream text;
+  text << file.rdbuf();
+  const std::string directory = std::filesystem::path(path).parent_path().string();
+  return parseScene(text.str(), path, directory.empty() ? "." : directory);
+}
+
+core::Simulation buildSimulation(const core::SceneSpec& spec, std::vector<std::string>* warnings) {
+  std::vector<core::Mesh> meshes;
+  for (const core::BodySpec& body : spec.bodies) {
+    if (body.box_mesh) {
+      meshes.push_back(
+          core::makeBoxMesh(body.box_mesh->min, body.box_mesh->max, body.box_mesh->cells));
+      continue;
+    }
+    MeshReadResult read = readMesh(body.mesh);
+    if (warnings) warnings->insert(warnings->end(), read.warnings.begin(), read.warnings.end());
+    meshes.push_back(std::move(read.mesh));
+  }
+  try {
+    return core::Simulation(spec, std::move(meshes));
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(e.what());
+  }
+}
+
+}  // namespace deformable_sim::io

@@ -1,0 +1,64 @@
+// The step must not allocate: every global operator new in this test binary is counted.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+
+#include "deformable_sim/core/box_mesh.h"
+#include "deformable_sim/core/fem_body.h"
+#include "deformable_sim/core/selection.h"
+
+// Every heap allocation of the process goes through malloc (operator new and Eigen both call it):
+// interpose it and count the calls, forwarding to glibc's own implementation.
+extern "C" {
+void* __libc_malloc(size_t size);
+void* __libc_calloc(size_t count, size_t size);
+void* __libc_realloc(void* p, size_t size);
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* malloc(size_t size) {
+  ++g_allocations;
+  return __libc_malloc(size);
+}
+void* calloc(size_t count, size_t size) {
+  ++g_allocations;
+  return __libc_calloc(count, size);
+}
+void* realloc(void* p, size_t size) {
+  ++g_allocations;
+  return __libc_realloc(p, size);
+}
+}
+
+namespace dc = deformable_sim::core;
+
+TEST(Allocations, NoneInAStepAfterTheFirst) {
+  // Sanity check of the counter itself.
+  const long start = g_allocations.load();
+  static void* volatile sink = nullptr;
+  (void)sink;
+  std::vector<double> probe(1000 + start % 2);
+  sink = probe.data();
+  EXPECT_GT(g_allocations.load(), start);
+  for (bool warping : {true, false}) {
+    dc::BodyEffects effects;
+    effects.warping = warping;
+    effects.gravity = Eigen::Vector3d(0, 0, -9.81);
+    effects.damping = dc::RayleighDamping{0.1, 0.01};
+    dc::FemBody body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {1, 0.05, 0.05}, {10, 2, 2}),
+                     {1e5, 0.3, 1000}, effects, {});
+    dc::NodeSelection end;
+    end.kind = dc::NodeSelection::Kind::kBox;
+    end.box = {{-1e-9, -1, -1}, {1e-9, 1, 1}};
+    body.fixNodes(dc::selectNodes(body.mesh(), end));
+    body.step(0.01);
+    const long before = g_allocations.load();
+    int iterations = 0;
+    for (int s = 0; s < 20; ++s) iterations += body.step(0.01).solve.iterations;
+    EXPECT_EQ(g_allocations.load() - before, 0) << "warping " << warping;
+    EXPECT_GT(iterations, 0);  // the steps really solved something
+  }
+}

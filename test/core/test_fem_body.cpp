@@ -1,0 +1,207 @@
+// Dynamics and statics of a whole body: free fall, momentum, constraints, reactions, solvers.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "deformable_sim/core/box_mesh.h"
+#include "deformable_sim/core/fem_body.h"
+#include "deformable_sim/core/selection.h"
+
+namespace dc = deformable_sim::core;
+
+namespace {
+
+const dc::LinearElasticMaterial kSoft{1.0e5, 0.3, 1000.0};
+
+dc::FemBody makeBeam(bool warping, std::optional<Eigen::Vector3d> gravity,
+                     dc::SolverSettings solver = {}) {
+  dc::BodyEffects effects;
+  effects.warping = warping;
+  effects.gravity = gravity;
+  return dc::FemBody("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {1.0, 0.05, 0.05}, {10, 2, 2}),
+                     kSoft, effects, solver);
+}
+
+std::vector<int> clampedEnd(const dc::FemBody& body) {
+  dc::NodeSelection end;
+  end.kind = dc::NodeSelection::Kind::kBox;
+  end.box = {{-1e-9, -1, -1}, {1e-9, 1, 1}};
+  return dc::selectNodes(body.mesh(), end);
+}
+
+Eigen::Vector3d total(const Eigen::VectorXd& stacked) {
+  return stacked.reshaped(3, stacked.size() / 3).rowwise().sum();
+}
+
+Eigen::Vector3d momentum(const dc::FemBody& body) {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  for (int i = 0; i < body.numNodes(); ++i) p += body.nodalMasses()[i] * body.velocities().segment<3>(3 * i);
+  return p;
+}
+
+}  // namespace
+
+TEST(FemBody, FallsFreelyWithExactlyGravitysAcceleration) {
+  const Eigen::Vector3d g(0, 0, -9.81);
+  for (bool warping : {false, true}) {
+    dc::FemBody body = makeBeam(warping, g);
+    const double dt = 0.01;
+    for (int s = 0; s < 50; ++s) body.step(dt);
+    // Implicit Euler with a uniform field: v_n = n h g, x_n = x0 + h^2 g n (n + 1) / 2.
+    for (int i = 0; i < body.numNodes(); ++i) {
+      EXPECT_NEAR((body.velocities().segment<3>(3 * i) - 50 * dt * g).norm(), 0.0, 1e-9);
+      const Eigen::Vector3d drop = body.positions().segment<3>(3 * i) - body.restPositions().segment<3>(3 * i);
+      EXPECT_NEAR((drop - dt * dt * g * 50 * 51 / 2).norm(), 0.0, 1e-9);
+    }
+  }
+}
+
+TEST(FemBody, ConservesMomentumWithoutExternalForces) {
+  dc::FemBody body = makeBeam(true, std::nullopt);
+  // Start from a bent, spinning state.
+  Eigen::VectorXd x = body.restPositions(), v = Eigen::VectorXd::Zero(x.size());
+  for (int i = 0; i < body.numNodes(); ++i) {
+    const Eigen::Vector3d p = x.segment<3>(3 * i);
+    x[3 * i + 2] += 0.2 * p.x() * p.x();
+    v.segment<3>(3 * i) = Eigen::Vector3d(0.0, 0.0, 3.0).cross(p) + Eigen::Vector3d(0.1, 0.2, -0.3);
+  }
+  body.setState(x, v);
+  const Eigen::Vector3d p0 = momentum(body);
+  for (int s = 0; s < 100; ++s) {
+    const dc::StepReport report = body.step(0.01);
+    ASSERT_TRUE(report.solve.converged);
+  }
+  // Internal forces sum to zero; CG at 1e-6 leaves a small residual.
+  EXPECT_NEAR((momentum(body) - p0).norm(), 0.0, 1e-4 * p0.norm());
+  EXPECT_TRUE(body.positions().allFinite());
+}
+
+TEST(FemBody, ClampedBeamSettlesAndItsReactionsCarryItsWeight) {
+  const Eigen::Vector3d g(0, 0, -9.81);
+  for (bool warping : {false, true}) {
+    dc::BodyEffects effects;
+    effects.warping = warping;
+    effects.gravity = g;
+    effects.damping = dc::RayleighDamping{2.0, 0.01};
+    dc::FemBody body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {1.0, 0.05, 0.05}, {10, 2, 2}),
+                     kSoft, effects, dc::SolverSettings{});
+    const std::vector<int> clamp = clampedEnd(body);
+    body.fixNodes(clamp);
+    for (int s = 0; s < 600; ++s) body.step(0.01);
+    double weight = 0.0;
+    for (double m : body.nodalMasses()) weight += m * 9.81;
+    EXPECT_LT(body.kineticEnergy(), 1e-8);
+    // At rest the clamp carries the whole weight.
+    EXPECT_NEAR((total(body.reactionForces()) + weight * g.normalized()).norm(), 0.0, 1e-3 * weight);
+    for (int i : clamp) {
+      EXPECT_EQ((body.positions() - body.restPositions()).segment<3>(3 * i).norm(), 0.0);
+    }
+  }
+}
+
+TEST(FemBody, StaticSolveMatchesTheSettledDynamicStateAndBalancesLoads) {
+  dc::SolverSettings direct;
+  direct.method = dc::SolverSettings::Method::kDirect;
+  dc::FemBody statics = makeBeam(false, Eigen::Vector3d(0, 0, -9.81), direct);
+  statics.fixNodes(clampedEnd(statics));
+  const dc::StaticReport report = statics.solveStatic({});
+  EXPECT_TRUE(report.converged);
+  double weight = 0.0;
+  for (double m : statics.nodalMasses()) weight += m * 9.81;
+  EXPECT_NEAR(total(statics.reactionForces()).z(), weight, 1e-9 * weight);
+
+  dc::SolverSettings tight;
+  tight.tolerance = 1e-10;
+  dc::FemBody dynamics = makeBeam(false, Eigen::Vector3d(0, 0, -9.81), tight);
+  dynamics.fixNodes(clampedEnd(dynamics));
+  // A huge step of implicit Euler with no inertia left is the static solution.
+  for (int s = 0; s < 5; ++s) dynamics.step(1000.0);
+  EXPECT_LT((dynamics.positions() - statics.positions()).norm(),
+            1e-6 * (statics.positions() - statics.restPositions()).norm());
+}
+
+TEST(FemBody, ConjugateGradientAndDirectSolversAgree) {
+  dc::SolverSettings cg;
+  cg.tolerance = 1e-12;
+  cg.max_iterations = 5000;
+  dc::SolverSettings direct;
+  direct.method = dc::SolverSettings::Method::kDirect;
+  dc::FemBody a = makeBeam(true, Eigen::Vector3d(0, 0, -9.81), cg);
+  dc::FemBody b = makeBeam(true, Eigen::Vector3d(0, 0, -9.81), direct);
+  a.fixNodes(clampedEnd(a));
+  b.fixNodes(clampedEnd(b));
+  for (int s = 0; s < 30; ++s) {
+    const dc::StepReport ra = a.step(0.02);
+    const dc::StepReport rb = b.step(0.02);
+    ASSERT_TRUE(ra.solve.converged);
+    EXPECT_GT(ra.solve.iterations, 0);
+    EXPECT_LT(rb.solve.relative_residual, 1e-10);
+  }
+  EXPECT_LT((a.positions() - b.positions()).norm(), 1e-8 * (b.positions() - b.restPositions()).norm());
+}
+
+TEST(FemBody, FixingAndReleasingAtRunTimeKeepsThePattern) {
+  dc::FemBody body = makeBeam(true, Eigen::Vector3d(0, 0, -9.81));
+  const std::vector<int> clamp = clampedEnd(body);
+  const int blocks = body.elasticity().stiffness().numBlocks();
+  const Eigen::Matrix3d* storage = body.elasticity().stiffness().blocks().data();
+  body.fixNodes(clamp);
+  for (int s = 0; s < 20; ++s) body.step(0.01);
+  const Eigen::VectorXd held = body.positions();
+  body.releaseNodes(clamp);
+  EXPECT_EQ(body.numConstrained(), 0);
+  body.step(0.01);
+  // Released: the end now falls too; its reaction is gone.
+  EXPECT_LT(body.positions()[3 * clamp[0] + 2], held[3 * clamp[0] + 2]);
+  EXPECT_EQ(body.reactionForces().norm(), 0.0);
+  EXPECT_EQ(body.elasticity().stiffness().numBlocks(), blocks);
+  EXPECT_EQ(body.elasticity().stiffness().blocks().data(), storage);
+}
+
+TEST(FemBody, TargetsDragTheNodesExactlyThere) {
+  dc::FemBody body = makeBeam(true, std::nullopt);
+  const std::vector<int> clamp = clampedEnd(body);
+  std::vector<Eigen::Vector3d> targets;
+  for (int i : clamp) targets.push_back(body.positions().segment<3>(3 * i) + Eigen::Vector3d(0, 0, 0.1));
+  body.setNodeTargets(clamp, targets);
+  body.step(0.01);
+  for (size_t k = 0; k < clamp.size(); ++k) {
+    EXPECT_NEAR((body.positions().segment<3>(3 * clamp[k]) - targets[k]).norm(), 0.0, 1e-12);
+  }
+  EXPECT_THROW(body.setNodeTargets({clamp[0]}, {Eigen::Vector3d(NAN, 0, 0)}), std::invalid_argument);
+  EXPECT_THROW(body.fixNodes({body.numNodes()}), std::invalid_argument);
+}
+
+TEST(FemBody, EnergyDecaysAfterReleaseWithImplicitEuler) {
+  dc::FemBody body = makeBeam(true, std::nullopt);
+  body.fixNodes(clampedEnd(body));
+  Eigen::VectorXd x = body.restPositions();
+  for (int i = 0; i < body.numNodes(); ++i) x[3 * i + 2] += 0.3 * std::pow(x[3 * i], 2);
+  body.setState(x, Eigen::VectorXd::Zero(x.size()));
+  body.step(0.01);
+  double previous = body.kineticEnergy() + body.elasticEnergy();
+  for (int s = 0; s < 200; ++s) {
+    body.step(0.01);
+    const double energy = body.kineticEnergy() + body.elasticEnergy();
+    EXPECT_LE(energy, previous * (1.0 + 1e-3)) << "step " << s;
+    previous = energy;
+  }
+}
+
+TEST(FemBody, RejectsBadMeshesAndSettings) {
+  dc::Mesh mesh = dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1});
+  std::swap(mesh.tetrahedra[2][0], mesh.tetrahedra[2][1]);
+  try {
+    dc::FemBody("cube", mesh, kSoft, {}, {});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "body 'cube': tetrahedron 2 has non-positive volume");
+  }
+  dc::SolverSettings bad;
+  bad.tolerance = 0.0;
+  EXPECT_THROW(dc::FemBody("cube", dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1}), kSoft, {}, bad),
+               std::invalid_argument);
+  EXPECT_THROW(dc::FemBody("cube", dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1}),
+                           dc::LinearElasticMaterial{1e6, 0.5, 1000}, {}, {}),
+               std::invalid_argument);
+}

@@ -1,0 +1,87 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <map>
+
+#include "deformable_sim/core/box_mesh.h"
+#include "deformable_sim/core/loads.h"
+#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/selection.h"
+
+namespace dc = deformable_sim::core;
+
+TEST(BoxMesh, CountsVolumesAndOrientation) {
+  const dc::Mesh mesh = dc::makeBoxMesh({0, 0, 0}, {1.0, 0.5, 0.25}, {4, 2, 3});
+  EXPECT_EQ(mesh.numNodes(), 5 * 3 * 4);
+  EXPECT_EQ(mesh.numTetrahedra(), 6 * 4 * 2 * 3);
+  for (const dc::Tetrahedron& t : mesh.tetrahedra) EXPECT_GT(dc::signedVolume(mesh.positions, t), 0.0);
+  EXPECT_NEAR(dc::totalVolume(mesh), 0.125, 1e-15);
+  EXPECT_THROW(dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {0, 1, 1}), std::invalid_argument);
+}
+
+TEST(Surface, IsClosedOutwardAndConforming) {
+  const dc::Mesh mesh = dc::makeBoxMesh({0, 0, 0}, {1.0, 0.5, 0.25}, {4, 2, 3});
+  const std::vector<dc::Triangle> surface = dc::extractSurface(mesh);
+  // Each face of the box has 2 cells' worth of triangles per cell: 2 (xy + xz + yz) areas.
+  EXPECT_EQ(surface.size(), 2u * 2 * (4 * 2 + 4 * 3 + 2 * 3));
+  // Closed: every directed edge appears once, and its reverse once.
+  std::map<std::pair<int, int>, int> edges;
+  for (const dc::Triangle& t : surface) {
+    for (int k = 0; k < 3; ++k) ++edges[{t[k], t[(k + 1) % 3]}];
+  }
+  for (const auto& [edge, count] : edges) {
+    EXPECT_EQ(count, 1);
+    EXPECT_EQ(edges.count({edge.second, edge.first}), 1u);
+  }
+  // Outward normals: the divergence theorem gives the volume, sum (c . n) A / 3.
+  double volume = 0.0;
+  for (const dc::Triangle& t : surface) {
+    const Eigen::Vector3d& a = mesh.positions[t[0]];
+    const Eigen::Vector3d& b = mesh.positions[t[1]];
+    const Eigen::Vector3d& c = mesh.positions[t[2]];
+    volume += ((a + b + c) / 3.0).dot((b - a).cross(c - a) / 2.0) / 3.0;
+  }
+  EXPECT_NEAR(volume, 0.125, 1e-14);
+}
+
+TEST(Selection, ByNumbersBoxAndSphere) {
+  const dc::Mesh mesh = dc::makeBoxMesh({0, 0, 0}, {1.0, 1.0, 1.0}, {2, 2, 2});
+  dc::NodeSelection box;
+  box.kind = dc::NodeSelection::Kind::kBox;
+  box.box = {{-0.1, -0.1, -0.1}, {0.1, 1.1, 1.1}};
+  EXPECT_EQ(dc::selectNodes(mesh, box).size(), 9u);  // the x = 0 face
+  dc::NodeSelection sphere;
+  sphere.kind = dc::NodeSelection::Kind::kSphere;
+  sphere.sphere = {{0.5, 0.5, 0.5}, 0.51};
+  EXPECT_EQ(dc::selectNodes(mesh, sphere).size(), 7u);  // centre and its 6 neighbours
+  dc::NodeSelection numbers;
+  numbers.node_numbers = {27, 1, 1};
+  EXPECT_EQ(dc::selectNodes(mesh, numbers), (std::vector<int>{0, 26}));
+  numbers.node_numbers = {5, 99};
+  try {
+    dc::selectNodes(mesh, numbers);
+    FAIL() << "expected an unknown node to be refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "node 99 is not a node of the mesh");
+  }
+  sphere.sphere.radius = -1.0;
+  EXPECT_THROW(dc::selectNodes(mesh, sphere), std::invalid_argument);
+}
+
+TEST(Loads, TractionGivesConsistentNodalForcesWithTheRightResultant) {
+  const dc::Mesh mesh = dc::makeBoxMesh({0, 0, 0}, {1.0, 0.1, 0.1}, {5, 2, 2});
+  dc::NodeSelection tip;
+  tip.kind = dc::NodeSelection::Kind::kBox;
+  tip.box = {{0.999, -1, -1}, {1.001, 1, 1}};
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh.numNodes());
+  const double area = dc::addTractionLoad(mesh, dc::extractSurface(mesh), dc::selectNodes(mesh, tip),
+                                          Eigen::Vector3d(0, 0, -2.5), f);
+  EXPECT_NEAR(area, 0.01, 1e-15);
+  const Eigen::Vector3d resultant = f.reshaped(3, mesh.numNodes()).rowwise().sum();
+  EXPECT_NEAR((resultant - Eigen::Vector3d(0, 0, -0.025)).norm(), 0.0, 1e-15);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(3 * mesh.numNodes());
+  dc::addTotalForce({0, 1}, Eigen::Vector3d(2, 0, 0), g);
+  EXPECT_EQ(g[0], 1.0);
+  EXPECT_EQ(g[3], 1.0);
+  EXPECT_THROW(dc::addTotalForce({}, Eigen::Vector3d(1, 0, 0), g), std::invalid_argument);
+}

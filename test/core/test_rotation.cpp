@@ -1,0 +1,62 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+#include "deformable_sim/core/rotation.h"
+
+namespace dc = deformable_sim::core;
+
+namespace {
+
+void expectProperRotation(const Eigen::Matrix3d& r) {
+  ASSERT_TRUE(r.allFinite());
+  EXPECT_NEAR((r.transpose() * r - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(r.determinant(), 1.0, 1e-12);
+}
+
+Eigen::Matrix3d someRotation(double angle, Eigen::Vector3d axis) {
+  return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
+}
+
+}  // namespace
+
+TEST(Rotation, RecoversTheRotationOfAStretchedRotatedElement) {
+  for (int k = 0; k < 20; ++k) {
+    const Eigen::Matrix3d q = someRotation(0.3 * k - 2.5, Eigen::Vector3d(1.0, 0.2 * k, -0.5));
+    Eigen::Matrix3d s;  // symmetric positive definite stretch
+    s << 1.3, 0.1, -0.05, 0.1, 0.8, 0.02, -0.05, 0.02, 1.1;
+    const Eigen::Matrix3d r = dc::extractRotation(q * s);
+    expectProperRotation(r);
+    EXPECT_NEAR((r - q).norm(), 0.0, 1e-10);
+  }
+}
+
+TEST(Rotation, IdentityAtRest) {
+  EXPECT_NEAR((dc::extractRotation(Eigen::Matrix3d::Identity()) - Eigen::Matrix3d::Identity()).norm(),
+              0.0, 1e-14);
+}
+
+TEST(Rotation, FlatElementsGetAProperRotation) {
+  const Eigen::Matrix3d q = someRotation(1.1, Eigen::Vector3d(0.3, -1.0, 0.4));
+  // Squashed flat along z, along a line, and to a point.
+  expectProperRotation(dc::extractRotation(q * Eigen::Vector3d(1.0, 1.0, 0.0).asDiagonal()));
+  expectProperRotation(dc::extractRotation(q * Eigen::Vector3d(2.0, 0.0, 0.0).asDiagonal()));
+  expectProperRotation(dc::extractRotation(Eigen::Matrix3d::Zero()));
+  // The flat element keeps the rotation of its plane.
+  const Eigen::Matrix3d r = dc::extractRotation(q * Eigen::Vector3d(1.0, 0.9, 0.0).asDiagonal());
+  EXPECT_NEAR((r - q).norm(), 0.0, 1e-10);
+}
+
+TEST(Rotation, InvertedElementsGetAProperRotation) {
+  const Eigen::Matrix3d q = someRotation(-0.7, Eigen::Vector3d(1.0, 1.0, 1.0));
+  // Inverted through z by a small amount: the closest proper rotation is q itself.
+  const Eigen::Matrix3d f = q * Eigen::Vector3d(1.0, 0.95, -0.1).asDiagonal();
+  ASSERT_LT(f.determinant(), 0.0);
+  const Eigen::Matrix3d r = dc::extractRotation(f);
+  expectProperRotation(r);
+  EXPECT_NEAR((r - q).norm(), 0.0, 1e-10);
+  // A mirror image (det F = -1) and a fully inverted element (F = -I) too.
+  expectProperRotation(dc::extractRotation(Eigen::Vector3d(1.0, -1.0, 1.0).asDiagonal()));
+  expectProperRotation(dc::extractRotation(-Eigen::Matrix3d::Identity()));
+}

@@ -1,0 +1,414 @@
+// Tests for the Gmsh and TetGen mesh readers: the shipped reference meshes in all three formats,
+// small hand-written meshes that need repairs, and malformed files whose errors must point at
+// the file, the line and the node or element.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/io/mesh_reader.h"
+
+namespace deformable_sim::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kReferenceMeshes = DEFORMABLE_SIM_REFERENCE_DIR "/meshes/";
+const std::string kTestMeshes = DEFORMABLE_SIM_SOURCE_DIR "/test/data/meshes/";
+
+// Passes when `text` contains every one of `parts`; on failure shows the whole text.
+::testing::AssertionResult containsAll(const std::string& text,
+                                       std::initializer_list<std::string> parts) {
+  for (const std::string& part : parts) {
+    if (text.find(part) == std::string::npos) {
+      return ::testing::AssertionFailure()
+             << "\"" << text << "\"\n  does not contain \"" << part << "\"";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// The MeshError message of `read`, or a test failure if it does not throw one.
+template <typename Read>
+std::string errorOf(Read read) {
+  try {
+    read();
+  } catch (const MeshError& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "expected a MeshError";
+  return "";
+}
+
+void expectSameMesh(const core::Mesh& a, const core::Mesh& b) {
+  EXPECT_EQ(a.node_numbers, b.node_numbers);
+  EXPECT_EQ(a.tetrahedra, b.tetrahedra);
+  ASSERT_EQ(a.positions.size(), b.positions.size());
+  for (std::size_t i = 0; i < a.positions.size(); ++i) {
+    EXPECT_EQ(a.positions[i], b.positions[i]) << "node " << a.node_numbers[i];
+  }
+}
+
+void expectAllPositive(const core::Mesh& mesh) {
+  for (const core::Tetrahedron& tet : mesh.tetrahedra) {
+    EXPECT_GT(core::signedVolume(mesh.positions, tet), 0.0);
+  }
+}
+
+// Reads the integer `"key": value` from a small JSON file such as mesh_info.json.
+long jsonInteger(const std::string& path, const std::string& key) {
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = text.find("\"" + key + "\":");
+  if (at == std::string::npos) {
+    ADD_FAILURE() << path << " has no key " << key;
+    return -1;
+  }
+  return std::stol(text.substr(at + key.size() + 3));
+}
+
+// --- Reference meshes ---------------------------------------------------------------------------
+
+// All tetrahedral reference meshes that ship with .msh (2.2 and 4.1) and .node/.ele files.
+class ReferenceMeshTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ReferenceMeshTest, AllThreeFormatsGiveTheSameMesh) {
+  const std::string prefix = kReferenceMeshes + GetParam() + "/" + GetParam();
+  const MeshReadResult v22 = readGmsh(prefix + ".msh");
+  const MeshReadResult v41 = readGmsh(prefix + "_v41.msh");
+  const MeshReadResult tetgen = readTetGen(prefix);
+
+  const std::string info = kReferenceMeshes + GetParam() + "/mesh_info.json";
+  EXPECT_EQ(v22.mesh.numNodes(), jsonInteger(info, "nodes"));
+  EXPECT_EQ(v22.mesh.numTetrahedra(), jsonInteger(info, "elements"));
+  expectSameMesh(v22.mesh, v41.mesh);
+  expectSameMesh(v22.mesh, tetgen.mesh);
+  EXPECT_NEAR(core::totalVolume(v22.mesh), 0.01, 1e-12);
+  expectAllPositive(v22.mesh);
+  EXPECT_TRUE(v22.warnings.empty()) << v22.warnings.front();
+  EXPECT_TRUE(v41.warnings.empty()) << v41.warnings.front();
+  EXPECT_TRUE(tetgen.warnings.empty()) << tetgen.warnings.front();
+}
+
+INSTANTIATE_TEST_SUITE_P(MeshReaders, ReferenceMeshTest,
+                         ::testing::Values("tetU_L1", "tetU_L2", "tetU_L3", "tetS_L1", "tetS_L2",
+                                           "tetS_L3"));
+
+TEST(MeshReadersReference, TetU1CountsAndNumbering) {
+  const std::string dir = kReferenceMeshes + "tetU_L1/";
+  const MeshReadResult v22 = readGmsh(dir + "tetU_L1.msh");
+  const MeshReadResult v41 = readGmsh(dir + "tetU_L1_v41.msh");
+  const MeshReadResult tetgen = readTetGen(dir + "tetU_L1.node");
+  for (const MeshReadResult* result : {&v22, &v41, &tetgen}) {
+    EXPECT_EQ(result->mesh.numNodes(), 86);
+    EXPECT_EQ(result->mesh.numTetrahedra(), 197);
+    EXPECT_NEAR(core::totalVolume(result->mesh), 0.01, 1e-12);
+  }
+  expectSameMesh(v22.mesh, v41.mesh);
+  expectSameMesh(v22.mesh, tetgen.mesh);
+
+  // File numbers are kept (1-based here), and the first tetrahedron is "1 82 72 27 53".
+  EXPECT_EQ(v22.mesh.node_numbers.front(), 1);
+  EXPECT_EQ(v22.mesh.node_numbers.back(), 86);
+  EXPECT_EQ(v22.mesh.tetrahedra.front(), (core::Tetrahedron{81, 71, 26, 52}));
+  EXPECT_EQ(v22.mesh.positions[4], Eigen::Vector3d(1.0, -0.05, 0.05));  // node 5
+}
+
+TEST(MeshReadersReference, TetS2Counts) {
+  const std::string prefix = kReferenceMeshes + "tetS_L2/tetS_L2";
+  for (const std::string& path : {prefix + ".msh", prefix + "_v41.msh", prefix + ".ele"}) {
+    const MeshReadResult result = readMesh(path);
+    EXPECT_EQ(result.mesh.numNodes(), 189) << path;
+    EXPECT_EQ(result.mesh.numTetrahedra(), 480) << path;
+    EXPECT_NEAR(core::totalVolume(result.mesh), 0.01, 1e-12) << path;
+  }
+}
+
+TEST(MeshReadersReference, HexahedralMeshIsRejectedWithTheElement) {
+  const std::string v22 = kReferenceMeshes + "hex_L1/hex_L1.msh";
+  EXPECT_TRUE(containsAll(
+      errorOf([&] { readGmsh(v22); }),
+      {v22, "line 57", "element 1 has type 5 (8-node hexahedron)", "not supported yet"}));
+  const std::string v41 = kReferenceMeshes + "hex_L1/hex_L1_v41.msh";
+  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(v41); }),
+                          {v41, "line 107", "element 1 has type 5 (8-node hexahedron)"}));
+}
+
+// --- Hand-written meshes ------------------------------------------------------------------------
+
+TEST(MeshReadersTetGen, ZeroBasedNumbering) {
+  const std::string prefix = kTestMeshes + "two_tets_0based";
+  const MeshReadResult result = readTetGen(prefix);
+  EXPECT_TRUE(result.warnings.empty());
+  EXPECT_EQ(result.mesh.node_numbers, (std::vector<long>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(result.mesh.tetrahedra, (std::vector<core::Tetrahedron>{{0, 1, 2, 3}, {0, 2, 1, 4}}));
+  EXPECT_EQ(result.mesh.positions[4], Eigen::Vector3d(0.0, 0.0, -1.0));
+  EXPECT_NEAR(core::totalVolume(result.mesh), 1.0 / 3.0, 1e-15);
+
+  // The prefix, either file and readMesh all name the same pair.
+  for (const std::string& path : {prefix + ".node", prefix + ".ele"}) {
+    expectSameMesh(readTetGen(path).mesh, result.mesh);
+    expectSameMesh(readMesh(path).mesh, result.mesh);
+  }
+  expectSameMesh(readMesh(prefix).mesh, result.mesh);
+}
+
+// repair_v22.msh and repair_v41.msh hold the same mesh: nodes 10..50 form two tetrahedra,
+// element 8 (10 20 30 50) is inverted, node 60 is used only by a point element.
+void expectRepairedMesh(const MeshReadResult& result, const std::string& path) {
+  SCOPED_TRACE(path);
+  EXPECT_EQ(result.mesh.node_numbers, (std::vector<long>{10, 20, 30, 40, 50}));
+  EXPECT_EQ(result.mesh.positions[1], Eigen::Vector3d(1.0, 0.0, 0.0));
+  EXPECT_EQ(result.mesh.positions[4], Eigen::Vector3d(0.0, 0.0, -1.0));
+  // Element 8 keeps its first two nodes and has the last two swapped.
+  EXPECT_EQ(result.mesh.tetrahedra, (std::vector<core::Tetrahedron>{{0, 1, 2, 3}, {0, 1, 4, 2}}));
+  expectAllPositive(result.mesh);
+  EXPECT_NEAR(core::totalVolume(result.mesh), 1.0 / 3.0, 1e-15);
+
+  ASSERT_EQ(result.warnings.size(), 2u);
+  EXPECT_TRUE(containsAll(result.warnings[0], {path, "dropped 1 node", "60"}));
+  EXPECT_TRUE(containsAll(result.warnings[1], {path, "1 negatively oriented", "element 8"}));
+  EXPECT_EQ(result.warnings[1].find("element 7"), std::string::npos);
+}
+
+TEST(MeshReadersGmsh, Version22RepairsInvertedElementAndDropsUnusedNode) {
+  const std::string path = kTestMeshes + "repair_v22.msh";
+  expectRepairedMesh(readGmsh(path), path);
+}
+
+TEST(MeshReadersGmsh, Version41RepairsInvertedElementAndDropsUnusedNode) {
+  // Also: nodes in four entity blocks, some with parametric coordinates, first block unused.
+  const std::string path = kTestMeshes + "repair_v41.msh";
+  expectRepairedMesh(readGmsh(path), path);
+  expectRepairedMesh(readMesh(path), path);
+}
+
+// --- Malformed files ----------------------------------------------------------------------------
+
+// Writes small files into a fresh directory that is removed after each test.
+class MalformedMeshTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("deformable_sim_mesh_readers_" + std::to_string(getpid()) + "_" + test->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& text) const {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path) << text;
+    return path;
+  }
+
+  fs::path dir_;
+};
+
+// Lines 1-3 of a 2.2 file, then lines 4-10 with four nodes of a unit tetrahedron.
+const std::string kFormat22 = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
+const std::string kNodes22 = "$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n";
+
+TEST_F(MalformedMeshTest, UnknownNodeReference) {
+  const std::string path = write(
+      "unknown.msh", kFormat22 + kNodes22 + "$Elements\n1\n5 4 2 1 1 1 2 3 9\n$EndElements\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(path); }),
+                          {path, "line 13", "element 5", "node 9", "not defined"}));
+}
+
+TEST_F(MalformedMeshTest, RepeatedNodeInElement) {
+  const std::string path = write(
+      "repeated.msh", kFormat22 + kNodes22 + "$Elements\n1\n5 4 2 1 1 1 2 2 3\n$EndElements\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(path); }),
+                          {path, "line 13", "element 5", "node 2 more than once"}));
+}
+
+TEST_F(MalformedMeshTest, DuplicateNodeNumber) {
+  const std::string node =
+      write("dup.node", "5 3 0 0\n1 0 0 0\n2 1 0 0\n2 0 1 0\n3 0 0 1\n4 1 1 1\n");
+  write("dup.ele", "1 4 0\n1 1 2 3 4\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readTetGen(node); }),
+                          {node, "line 4", "duplicate node number 2", "line 3"}));
+}
+
+TEST_F(MalformedMeshTest, ZeroVolumeElement) {
+  // 4.1: the four nodes lie in the plane z = 0.
+  const std::string path = write("flat.msh",
+                                 "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+                                 "$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n"
+                                 "0 0 0\n1 0 0\n0 1 0\n1 1 0\n$EndNodes\n"
+                                 "$Elements\n1 1 5 5\n3 1 4 1\n5 1 2 3 4\n$EndElements\n");
+  EXPECT_TRUE(
+      containsAll(errorOf([&] { readGmsh(path); }), {path, "line 19", "element 5", "zero volume"}));
+}
+
+TEST_F(MalformedMeshTest, DegeneracyToleranceIsRelativeToElementSize) {
+  // A valid tetrahedron 1e-4 m across (6V = 1e-12 m^3) is kept; one flattened to a height of
+  // 1e-13 of its size is rejected.
+  write("small.node", "4 3 0 0\n1 0 0 0\n2 1e-4 0 0\n3 0 1e-4 0\n4 0 0 1e-4\n");
+  write("small.ele", "1 4 0\n1 1 2 3 4\n");
+  EXPECT_NEAR(core::totalVolume(readTetGen((dir_ / "small").string()).mesh), 1e-12 / 6, 1e-24);
+
+  write("sliver.node", "4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1e-13\n");
+  write("sliver.ele", "1 4 0\n1 1 2 3 4\n");
+  const std::string ele = (dir_ / "sliver.ele").string();
+  EXPECT_TRUE(
+      containsAll(errorOf([&] { readTetGen(ele); }), {ele, "line 2", "element 1", "zero volume"}));
+}
+
+TEST_F(MalformedMeshTest, NanCoordinate) {
+  const std::string path =
+      write("nan.msh", kFormat22 + "$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 nan 0\n4 0 0 1\n$EndNodes\n" +
+                           "$Elements\n1\n1 4 0 1 2 3 4\n$EndElements\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(path); }),
+                          {path, "line 8", "node 3", "not a finite number"}));
+
+  const std::string node = write("inf.node", "4 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 -inf\n");
+  write("inf.ele", "1 4 0\n0 0 1 2 3\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readTetGen(node); }),
+                          {node, "line 5", "node 3", "not a finite number"}));
+}
+
+TEST_F(MalformedMeshTest, TruncatedFile) {
+  // The $Elements header announces two elements; the file ends after the first.
+  const std::string path =
+      write("truncated.msh", kFormat22 + kNodes22 + "$Elements\n2\n1 4 0 1 2 3 4\n");
+  EXPECT_TRUE(
+      containsAll(errorOf([&] { readGmsh(path); }),
+                  {path, "line 13", "ends inside the $Elements section", "element 2 of 2"}));
+
+  // A node line cut short.
+  const std::string cut =
+      write("cut.msh", kFormat22 + "$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0");
+  EXPECT_TRUE(
+      containsAll(errorOf([&] { readGmsh(cut); }), {cut, "line 9", "node 4", "expected 4 values"}));
+
+  // A TetGen .node file with fewer nodes than its header says.
+  const std::string node = write("short.node", "# comment\n5 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n");
+  write("short.ele", "1 4 0\n1 1 2 3 4\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readTetGen(node); }),
+                          {node, "line 5", "3 of the 5 nodes announced on line 2", "node 4 of 5"}));
+}
+
+TEST_F(MalformedMeshTest, UnsupportedHexahedron) {
+  // A triangle (skipped) and then element 12, a hexahedron, on line 18.
+  const std::string path = write(
+      "hex.msh", kFormat22 +
+                     "$Nodes\n8\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n"
+                     "5 0 0 1\n6 1 0 1\n7 1 1 1\n8 0 1 1\n$EndNodes\n"
+                     "$Elements\n2\n11 2 2 0 1 1 2 3\n12 5 2 0 1 1 2 3 4 5 6 7 8\n$EndElements\n");
+  EXPECT_TRUE(containsAll(
+      errorOf([&] { readGmsh(path); }),
+      {path, "line 18", "element 12 has type 5 (8-node hexahedron), which is not supported yet"}));
+
+  const std::string ele = (dir_ / "quadratic.ele").string();
+  write("quadratic.node", "4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n");
+  write("quadratic.ele", "1 10 0\n1 1 2 3 4 1 2 3 4 1 2\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readTetGen(ele); }), {ele, "line 1", "10-node"}));
+}
+
+TEST_F(MalformedMeshTest, MissingFile) {
+  const std::string msh = (dir_ / "absent.msh").string();
+  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(msh); }), {msh, "No such file"}));
+  EXPECT_TRUE(containsAll(errorOf([&] { readMesh(msh); }), {msh}));
+
+  const std::string prefix = (dir_ / "absent").string();
+  EXPECT_TRUE(containsAll(errorOf([&] { readTetGen(prefix); }), {prefix + ".node"}));
+
+  // A present .node with a missing .ele names the .ele.
+  write("half.node", "4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n");
+  const std::string ele = (dir_ / "half.ele").string();
+  EXPECT_TRUE(containsAll(errorOf([&] { readMesh((dir_ / "half.node").string()); }), {ele}));
+
+  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(dir_.string()); }), {dir_.string(), "directory"}));
+}
+
+TEST_F(MalformedMeshTest, UnsupportedFormats) {
+  const std::string binary = write("binary.msh", "$MeshFormat\n2.2 1 8\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(binary); }), {binary, "line 2", "binary"}));
+
+  const std::string v30 = write("v30.msh", "$MeshFormat\n3.0 0 8\n$EndMeshFormat\n");
+  EXPECT_TRUE(
+      containsAll(errorOf([&] { readGmsh(v30); }), {v30, "line 2", "version 3.0", "2.2 and 4.1"}));
+
+  const std::string other = write("other.msh", "hello\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(other); }), {other, "line 1", "$MeshFormat"}));
+
+  const std::string vtk = write("mesh.vtk", "");
+  EXPECT_TRUE(containsAll(errorOf([&] { readMesh(vtk); }), {vtk, "unknown extension '.vtk'"}));
+}
+
+TEST_F(MalformedMeshTest, CountsThatDoNotMatch) {
+  // The $Nodes header says 3, four nodes follow.
+  const std::string extra = write(
+      "extra.msh", kFormat22 + "$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n" + "4 0 0 1\n$EndNodes\n");
+  EXPECT_TRUE(
+      containsAll(errorOf([&] { readGmsh(extra); }),
+                  {extra, "line 9", "expected $EndNodes after the 3 nodes announced on line 5"}));
+
+  // 4.1: the header says 5 nodes, the only block holds 4.
+  const std::string blocks = write("blocks.msh",
+                                   "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+                                   "$Nodes\n1 5 1 5\n3 1 0 4\n1\n2\n3\n4\n"
+                                   "0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(blocks); }),
+                          {blocks, "line 14", "hold 4 nodes", "announces 5"}));
+
+  // TetGen: more elements than the header announces.
+  write("more.node", "4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n");
+  const std::string more = write("more.ele", "1 4 0\n1 1 2 3 4\n\n2 1 2 4 3\n");
+  EXPECT_TRUE(
+      containsAll(errorOf([&] { readTetGen(more); }),
+                  {more, "line 4", "element 2", "more elements than the 1 announced on line 1"}));
+}
+
+TEST_F(MalformedMeshTest, MalformedValues) {
+  // Letter O instead of zero.
+  const std::string letter =
+      write("letter.msh", kFormat22 + "$Nodes\n4\n1 0 0 0\n2 1 O 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(letter); }),
+                          {letter, "line 7", "node 2", "y coordinate", "'O'"}));
+
+  // A TetGen element with three nodes (and a comment, which does not count).
+  write("three.node", "4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n");
+  const std::string three = write("three.ele", "1 4 0\n7 1 2 3 # 4\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readTetGen(three); }),
+                          {three, "line 2", "element 7", "expected 5 values", "found 4"}));
+
+  // 2.2 element whose node count does not fit its type.
+  const std::string short_tet = write(
+      "short_tet.msh", kFormat22 + kNodes22 + "$Elements\n1\n3 4 2 1 1 1 2 3\n$EndElements\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(short_tet); }),
+                          {short_tet, "line 13", "element 3", "4-node tetrahedron"}));
+}
+
+TEST_F(MalformedMeshTest, NoTetrahedra) {
+  const std::string path =
+      write("surface.msh", kFormat22 + kNodes22 + "$Elements\n1\n1 2 2 0 1 1 2 3\n$EndElements\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(path); }),
+                          {path, "line 11", "no tetrahedra", "1 lower-dimensional element"}));
+
+  write("empty.node", "# nothing\n0 3 0 0\n");
+  const std::string ele = write("empty.ele", "0 4 0\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readTetGen(ele); }), {ele, "line 1", "no tetrahedra"}));
+}
+
+TEST_F(MalformedMeshTest, ManyUnusedNodesGiveOneWarningWithACount) {
+  std::string nodes = "$Nodes\n12\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n";
+  for (int n = 5; n <= 12; ++n) nodes += std::to_string(n) + " 5 5 5\n";
+  const std::string path = write(
+      "unused.msh", kFormat22 + nodes + "$EndNodes\n$Elements\n1\n1 4 0 1 2 3 4\n$EndElements\n");
+  const MeshReadResult result = readGmsh(path);
+  EXPECT_EQ(result.mesh.numNodes(), 4);
+  ASSERT_EQ(result.warnings.size(), 1u);
+  EXPECT_TRUE(containsAll(result.warnings[0], {path, "dropped 8 nodes", "5, 6, 7, 8, 9, ..."}));
+}
+
+}  // namespace
+}  // namespace deformable_sim::io

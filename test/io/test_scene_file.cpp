@@ -1,0 +1,149 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "deformable_sim/io/scene_file.h"
+
+namespace dc = deformable_sim::core;
+namespace dio = deformable_sim::io;
+
+namespace {
+
+const char* kScene = R"(
+dt: 0.005
+effects: {gravity: [0, 0, -9.81], warping: true, damping: {mass: 0.5, stiffness: 0.01}}
+solver: {method: direct, tolerance: 1.0e-8, max_iterations: 50}
+static: {load_steps: 3}
+bodies:
+  - name: beam
+    mesh: {box: {min: [0, -0.05, -0.05], max: [1, 0.05, 0.05], cells: [10, 2, 2]}}
+    model: fem
+    material: {youngs_modulus: 2.0e6, poisson_ratio: 0.25, density: 800.0}
+    fixed: [{box: {min: [-1.0e-6, -1, -1], max: [1.0e-6, 1, 1]}}, {nodes: [12]}]
+    loads:
+      - {box: {min: [0.999, -1, -1], max: [1.001, 1, 1]}, traction: [0, 0, -2.5]}
+      - {nodes: [7], total_force: [0, 0, -0.01]}
+)";
+
+// The message of the SceneError thrown by parsing (or building) `yaml`, or "" if none.
+std::string errorOf(const std::string& yaml, bool build = false) {
+  try {
+    const dc::SceneSpec spec = dio::parseScene(yaml, "test.yaml", ".");
+    if (build) dio::buildSimulation(spec, nullptr);
+  } catch (const dio::SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+}  // namespace
+
+TEST(SceneFile, ReadsEveryKey) {
+  const dc::SceneSpec spec = dio::parseScene(kScene, "test.yaml", "/scenes");
+  EXPECT_EQ(spec.dt, 0.005);
+  ASSERT_TRUE(spec.effects.gravity.has_value());
+  EXPECT_EQ(*spec.effects.gravity, Eigen::Vector3d(0, 0, -9.81));
+  EXPECT_TRUE(spec.effects.warping);
+  ASSERT_TRUE(spec.effects.damping.has_value());
+  EXPECT_EQ(spec.effects.damping->mass, 0.5);
+  EXPECT_EQ(spec.effects.damping->stiffness, 0.01);
+  EXPECT_EQ(spec.solver.method, dc::SolverSettings::Method::kDirect);
+  EXPECT_EQ(spec.solver.tolerance, 1e-8);
+  EXPECT_EQ(spec.solver.max_iterations, 50);
+  EXPECT_EQ(spec.statics.load_steps, 3);
+  ASSERT_EQ(spec.bodies.size(), 1u);
+  const dc::BodySpec& body = spec.bodies[0];
+  EXPECT_EQ(body.name, "beam");
+  ASSERT_TRUE(body.box_mesh.has_value());
+  EXPECT_EQ(body.box_mesh->cells, Eigen::Vector3i(10, 2, 2));
+  EXPECT_EQ(body.material.youngs_modulus, 2.0e6);
+  EXPECT_EQ(body.material.poisson_ratio, 0.25);
+  EXPECT_EQ(body.material.density, 800.0);
+  ASSERT_EQ(body.fixed.size(), 2u);
+  EXPECT_EQ(body.fixed[1].kind, dc::NodeSelection::Kind::kNodes);
+  EXPECT_EQ(body.fixed[1].node_numbers, std::vector<long>{12});
+  ASSERT_EQ(body.loads.size(), 2u);
+  EXPECT_EQ(body.loads[0].kind, dc::LoadSpec::Kind::kTraction);
+  EXPECT_EQ(body.loads[1].kind, dc::LoadSpec::Kind::kTotalForce);
+  EXPECT_EQ(body.loads[1].value, Eigen::Vector3d(0, 0, -0.01));
+}
+
+TEST(SceneFile, EffectsNotNamedAreOff) {
+  const dc::SceneSpec spec = dio::parseScene(
+      "bodies: [{name: b, mesh: {box: {min: [0,0,0], max: [1,1,1], cells: [1,1,1]}}, material: {}}]",
+      "minimal.yaml", ".");
+  EXPECT_FALSE(spec.effects.gravity.has_value());
+  EXPECT_FALSE(spec.effects.warping);
+  EXPECT_FALSE(spec.effects.damping.has_value());
+}
+
+TEST(SceneFile, BuildsTheSimulationWithLoadsAndConstraints) {
+  dc::Simulation sim = dio::buildSimulation(dio::parseScene(kScene, "test.yaml", "."), nullptr);
+  ASSERT_EQ(sim.bodies().size(), 1u);
+  const dc::FemBody& beam = sim.body("beam");
+  EXPECT_EQ(beam.numConstrained(), 9 + 1);  // the 3x3 clamped face and node 12
+  const Eigen::Vector3d load = beam.externalForces().reshaped(3, beam.numNodes()).rowwise().sum();
+  EXPECT_NEAR((load - Eigen::Vector3d(0, 0, -0.035)).norm(), 0.0, 1e-15);
+  EXPECT_NEAR(beam.externalForces()[3 * 6 + 2], -0.01, 1e-15);  // node 7 is index 6
+  EXPECT_THROW(sim.body("nope"), std::out_of_range);
+}
+
+TEST(SceneFile, ResolvesMeshPathsAgainstTheSceneFile) {
+  const dc::SceneSpec spec = dio::parseScene(
+      "bodies: [{name: b, mesh: meshes/beam.msh, material: {}}]", "s.yaml", "/data/scenes");
+  EXPECT_EQ(spec.bodies[0].mesh, "/data/scenes/meshes/beam.msh");
+}
+
+TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
+  EXPECT_EQ(errorOf(replaced(kScene, "youngs_modulus", "youngs_modulu")),
+            "test.yaml:10: bodies[0].material.youngs_modulu: unknown key (expected one of: "
+            "density, poisson_ratio, youngs_modulus)");
+  EXPECT_EQ(errorOf(replaced(kScene, "density: 800.0", "density: heavy")),
+            "test.yaml:10: bodies[0].material.density: expected a number");
+  EXPECT_EQ(errorOf(replaced(kScene, "poisson_ratio: 0.25", "poisson_ratio: 0.5")),
+            "test.yaml:10: bodies[0].material.poisson_ratio: must be in (-1, 0.5)");
+  EXPECT_EQ(errorOf(replaced(kScene, "density: 800.0", "density: .nan")),
+            "test.yaml:10: bodies[0].material.density: must be finite");
+  EXPECT_EQ(errorOf(replaced(kScene, "gravity: [0, 0, -9.81]", "gravity: [0, -9.81]")),
+            "test.yaml:3: effects.gravity: expected a list of 3 numbers");
+  EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: magic")),
+            "test.yaml:4: solver.method: 'magic' is not one of: cg, direct");
+  EXPECT_EQ(errorOf(replaced(kScene, "dt: 0.005", "dt: -1")), "test.yaml:2: dt: must be > 0");
+  EXPECT_EQ(errorOf(replaced(kScene, "model: fem", "model: rigid")),
+            "test.yaml:9: bodies[0].model: 'rigid' is not supported (fem)");
+  EXPECT_EQ(errorOf(replaced(kScene, "traction: [0, 0, -2.5]", "pressure: 3")),
+            "test.yaml:13: bodies[0].loads[0].pressure: unknown key (expected one of: box, "
+            "nodes, sphere, total_force, traction)");
+  EXPECT_EQ(errorOf("bodies: [}"), "test.yaml:1: not valid YAML: unexpected end of sequence");
+  EXPECT_EQ(errorOf("dt: 0.1"), "test.yaml:1: bodies: missing: a scene needs at least one body");
+}
+
+TEST(SceneFile, EmptyOrUnknownSelectionsAreErrorsNamingTheKey) {
+  EXPECT_EQ(errorOf(replaced(kScene, "{nodes: [12]}", "{box: {min: [5, 5, 5], max: [6, 6, 6]}}"), true),
+            "bodies[0].fixed[1]: selects no node");
+  EXPECT_EQ(errorOf(replaced(kScene, "{nodes: [12]}", "{nodes: [12, 100000]}"), true),
+            "bodies[0].fixed[1]: node 100000 is not a node of the mesh");
+  // A traction needs whole boundary faces inside its selection.
+  EXPECT_EQ(errorOf(replaced(kScene, "{box: {min: [0.999, -1, -1], max: [1.001, 1, 1]}, traction",
+                             "{nodes: [7], traction"),
+                    true),
+            "bodies[0].loads[0]: traction selects no boundary face (all three nodes of a surface "
+            "triangle must be selected)");
+}
+
+TEST(SceneFile, MissingFileIsAClearError) {
+  try {
+    dio::readSceneFile("/nonexistent/scene.yaml");
+    FAIL();
+  } catch (const dio::SceneError& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/scene.yaml: cannot open the scene file");
+  }
+}
