@@ -55,16 +55,27 @@ if ! catkin_make tests -j2 > "$ws/test_build.log" 2>&1; then
 fi
 catkin_make run_tests -j2 > "$ws/test.log" 2>&1 || true  # exits 0 even on failures: judged below
 grep -E "^\[  (FAILED|PASSED)  \]|RESULT: " "$ws/test.log" || true
-summary=$(catkin_test_results "$ws/build/test_results" --verbose 2>&1 | tail -n 40 || true)
-echo "$summary"
-line=$(grep -E '^Summary: ' <<<"$summary" | tail -n 1)
-read -r total errors failures skipped < <(sed -E 's/Summary: ([0-9]+) tests, ([0-9]+) errors, ([0-9]+) failures, ([0-9]+) skipped/\1 \2 \3 \4/' <<<"$line")
-total=${total:-0}; errors=${errors:-0}; failures=${failures:-0}; skipped=${skipped:-0}
-failed=$((errors + failures))
-passed=$((total - failed - skipped))
-if [ "$total" -eq 0 ]; then
+catkin_test_results "$ws/build/test_results" > "$ws/test_summary.txt" 2>&1 && results_ok=1 || results_ok=0
+tail -n 3 "$ws/test_summary.txt"
+# Count test cases from the result files (catkin's own summary counts suites and cases alike).
+read -r passed failed < <(/usr/bin/python3 - "$ws/build/test_results" <<'PY'
+import pathlib, sys, xml.etree.ElementTree as ET
+passed = failed = 0
+for path in pathlib.Path(sys.argv[1]).rglob("*.xml"):
+    for case in ET.parse(path).getroot().iter("testcase"):
+        if case.find("skipped") is not None:
+            continue
+        if case.find("failure") is not None or case.find("error") is not None:
+            failed += 1
+        else:
+            passed += 1
+print(passed, failed)
+PY
+)
+if [ "$results_ok" -ne 1 ] && [ "$failed" -eq 0 ]; then failed=1; fi  # e.g. a test binary crashed
+if [ "$passed" -eq 0 ] && [ "$failed" -eq 0 ]; then
   echo "no test ran (see $ws/test.log)" >&2
-  failed=$((failed + 1))
+  failed=1
 fi
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
         const Eigen::Vector3d reaction = sumOfReactions(sim.bodies()[b]);
         std::printf(
             "static %s: %s in %.1f ms, %d corotational iterations, %d CG iterations, last change "
-            "%.3g, residual %.3g; reactions sum to (%.6g, %.6g, %.6g) N\n",
+            "%.3g, residual %.3g; reactions sum to (%.9g, %.9g, %.9g) N\n",
             sim.bodies()[b].name().c_str(), r.converged ? "converged" : "NOT converged", ms,
             r.iterations, r.linear_iterations, r.last_change, r.last_solve.relative_residual,
             reaction.x(), reaction.y(), reaction.z());

@@ -43,8 +43,10 @@ Eigen::Vector3d momentum(const dc::FemBody& body) {
 
 TEST(FemBody, FallsFreelyWithExactlyGravitysAcceleration) {
   const Eigen::Vector3d g(0, 0, -9.81);
+  dc::SolverSettings tight;
+  tight.tolerance = 1e-13;
   for (bool warping : {false, true}) {
-    dc::FemBody body = makeBeam(warping, g);
+    dc::FemBody body = makeBeam(warping, g, tight);
     const double dt = 0.01;
     for (int s = 0; s < 50; ++s) body.step(dt);
     // Implicit Euler with a uniform field: v_n = n h g, x_n = x0 + h^2 g n (n + 1) / 2.
@@ -82,12 +84,13 @@ TEST(FemBody, ClampedBeamSettlesAndItsReactionsCarryItsWeight) {
     dc::BodyEffects effects;
     effects.warping = warping;
     effects.gravity = g;
-    effects.damping = dc::RayleighDamping{2.0, 0.01};
+    effects.damping = dc::RayleighDamping{5.0, 0.001};
+    // Stiff enough to ring at ~1.6 Hz, damped at 2.5/s: at rest after 10 s.
     dc::FemBody body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {1.0, 0.05, 0.05}, {10, 2, 2}),
-                     kSoft, effects, dc::SolverSettings{});
+                     {1.0e7, 0.3, 1000.0}, effects, dc::SolverSettings{});
     const std::vector<int> clamp = clampedEnd(body);
     body.fixNodes(clamp);
-    for (int s = 0; s < 600; ++s) body.step(0.01);
+    for (int s = 0; s < 500; ++s) body.step(0.02);
     double weight = 0.0;
     for (double m : body.nodalMasses()) weight += m * 9.81;
     EXPECT_LT(body.kineticEnergy(), 1e-8);
@@ -147,12 +150,13 @@ TEST(FemBody, FixingAndReleasingAtRunTimeKeepsThePattern) {
   const Eigen::Matrix3d* storage = body.elasticity().stiffness().blocks().data();
   body.fixNodes(clamp);
   for (int s = 0; s < 20; ++s) body.step(0.01);
-  const Eigen::VectorXd held = body.positions();
   body.releaseNodes(clamp);
   EXPECT_EQ(body.numConstrained(), 0);
   body.step(0.01);
-  // Released: the end now falls too; its reaction is gone.
-  EXPECT_LT(body.positions()[3 * clamp[0] + 2], held[3 * clamp[0] + 2]);
+  // Released: what the clamp held up (the beam's weight) now pulls its end down.
+  double end_velocity_z = 0.0;
+  for (int i : clamp) end_velocity_z += body.velocities()[3 * i + 2];
+  EXPECT_LT(end_velocity_z, 0.0);
   EXPECT_EQ(body.reactionForces().norm(), 0.0);
   EXPECT_EQ(body.elasticity().stiffness().numBlocks(), blocks);
   EXPECT_EQ(body.elasticity().stiffness().blocks().data(), storage);
