@@ -29,6 +29,16 @@ CorotationalElasticity::CorotationalElasticity(const Mesh& mesh,
   }
 }
 
+void CorotationalElasticity::setMaterial(const Mesh& mesh, const LinearElasticMaterial& material) {
+  validate(material);
+  for (size_t e = 0; e < tetrahedra_.size(); ++e) {
+    const Tetrahedron& t = tetrahedra_[e];
+    rest_[e] = computeTetrahedronRest(
+        {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]], mesh.positions[t[3]]},
+        material);
+  }
+}
+
 int CorotationalElasticity::update(const Eigen::VectorXd& x, bool warping) {
   stiffness_.setZero();
   force_offset_.setZero();

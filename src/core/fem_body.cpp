@@ -1,5 +1,6 @@
 #include "deformable_sim/core/fem_body.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 
@@ -70,11 +71,50 @@ FemBody::FemBody(std::string name, Mesh mesh, const LinearElasticMaterial& mater
       rhs_(x0_.size()),
       next_(x0_.size()),
       scratch_(x0_.size()) {
-  if (!(solver.tolerance > 0.0) || solver.max_iterations < 1) {
-    throw std::invalid_argument("body '" + name_ +
-                                "': solver tolerance must be > 0 and max_iterations >= 1");
-  }
+  setSolverLimits(solver.tolerance, solver.max_iterations);
+  setDamping(effects.damping);
   if (solver.method == SolverSettings::Method::kDirect) direct_ = std::make_unique<DirectSolver>();
+}
+
+void FemBody::setMaterial(const LinearElasticMaterial& material) {
+  try {
+    validate(material);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("body '" + name_ + "': " + e.what());
+  }
+  material_ = material;
+  elasticity_.setMaterial(mesh_, material);
+  mass_ = lumpedMasses(mesh_, material.density);
+  stiffness_assembled_ = false;
+  matrix_changed_ = true;
+}
+
+void FemBody::setDamping(const std::optional<RayleighDamping>& damping) {
+  if (damping && !(damping->mass >= 0.0 && damping->stiffness >= 0.0 &&
+                   std::isfinite(damping->mass) && std::isfinite(damping->stiffness))) {
+    throw std::invalid_argument("body '" + name_ +
+                                "': damping coefficients must be finite and >= 0");
+  }
+  effects_.damping = damping;
+}
+
+void FemBody::setSolverLimits(double tolerance, int max_iterations) {
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance) || max_iterations < 1) {
+    throw std::invalid_argument("body '" + name_ +
+                                "': solver tolerance must be finite and > 0, max_iterations >= 1");
+  }
+  solver_settings_.tolerance = tolerance;
+  solver_settings_.max_iterations = max_iterations;
+}
+
+void FemBody::addGroup(const std::string& name, std::vector<int> nodes) {
+  for (int i : nodes) {
+    if (i < 0 || i >= numNodes()) {
+      throw std::invalid_argument("body '" + name_ + "': group '" + name + "' has node index " +
+                                  std::to_string(i) + " out of range");
+    }
+  }
+  groups_[name] = std::move(nodes);
 }
 
 void FemBody::setState(const Eigen::VectorXd& positions, const Eigen::VectorXd& velocities) {

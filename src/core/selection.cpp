@@ -6,7 +6,10 @@
 
 namespace deformable_sim::core {
 
-std::vector<int> selectNodes(const Mesh& mesh, const NodeSelection& selection) {
+namespace {
+
+template <typename Position>
+std::vector<int> select(const Mesh& mesh, const NodeSelection& selection, Position position) {
   std::vector<int> selected;
   switch (selection.kind) {
     case NodeSelection::Kind::kNodes:
@@ -18,7 +21,7 @@ std::vector<int> selectNodes(const Mesh& mesh, const NodeSelection& selection) {
         throw std::invalid_argument("box: min must not exceed max on any axis (and be finite)");
       }
       for (int i = 0; i < mesh.numNodes(); ++i) {
-        const Eigen::Vector3d& p = mesh.positions[i];
+        const Eigen::Vector3d p = position(i);
         if ((p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all()) {
           selected.push_back(i);
         }
@@ -31,7 +34,7 @@ std::vector<int> selectNodes(const Mesh& mesh, const NodeSelection& selection) {
         throw std::invalid_argument("sphere: radius must be finite and >= 0, centre finite");
       }
       for (int i = 0; i < mesh.numNodes(); ++i) {
-        if ((mesh.positions[i] - sphere.center).norm() <= sphere.radius) selected.push_back(i);
+        if ((position(i) - sphere.center).norm() <= sphere.radius) selected.push_back(i);
       }
       break;
     }
@@ -39,6 +42,18 @@ std::vector<int> selectNodes(const Mesh& mesh, const NodeSelection& selection) {
   std::sort(selected.begin(), selected.end());
   selected.erase(std::unique(selected.begin(), selected.end()), selected.end());
   return selected;
+}
+
+}  // namespace
+
+std::vector<int> selectNodes(const Mesh& mesh, const NodeSelection& selection) {
+  return select(mesh, selection, [&](int i) { return mesh.positions[i]; });
+}
+
+std::vector<int> selectNodesAt(const Mesh& mesh, const Eigen::VectorXd& positions,
+                               const NodeSelection& selection) {
+  return select(mesh, selection,
+                [&](int i) { return Eigen::Vector3d(positions.segment<3>(3 * i)); });
 }
 
 }  // namespace deformable_sim::core

@@ -1,8 +1,10 @@
 #include "deformable_sim/core/simulation.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "deformable_sim/core/loads.h"
+#include "deformable_sim/core/wrench.h"
 #include "deformable_sim/core/selection.h"
 
 namespace deformable_sim::core {
@@ -21,6 +23,27 @@ std::vector<int> selectSome(const Mesh& mesh, const NodeSelection& selection,
   return nodes;
 }
 
+void addWrench(FemBody& body, const std::vector<int>& nodes, const LoadSpec& load,
+               const std::string& key) {
+  if (!load.torque.allFinite()) throw std::invalid_argument(key + ": non-finite torque");
+  std::vector<Eigen::Vector3d> points, forces;
+  std::vector<double> weights;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double total = 0.0;
+  for (int i : nodes) {
+    points.push_back(body.mesh().positions[i]);
+    weights.push_back(body.nodalMasses()[i]);
+    centroid += weights.back() * points.back();
+    total += weights.back();
+  }
+  try {
+    distributeWrench(points, weights, load.value, load.torque, centroid / total, forces);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(key + ": " + e.what());
+  }
+  for (size_t k = 0; k < nodes.size(); ++k) body.externalForces().segment<3>(3 * nodes[k]) += forces[k];
+}
+
 }  // namespace
 
 Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
@@ -33,6 +56,7 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
                                 " bodies but " + std::to_string(meshes.size()) + " meshes");
   }
   bodies_.reserve(spec.bodies.size());
+  wrench_radii_.reserve(spec.bodies.size());
   for (size_t b = 0; b < spec.bodies.size(); ++b) {
     const BodySpec& body_spec = spec.bodies[b];
     const std::string key = "bodies[" + std::to_string(b) + "]";
@@ -43,6 +67,17 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
       throw std::invalid_argument(key + ": " + e.what());
     }
     FemBody& body = bodies_.back();
+    if (!(body_spec.wrench_radius >= 0.0) || !std::isfinite(body_spec.wrench_radius)) {
+      throw std::invalid_argument(key + ".wrench_radius: must be finite and >= 0 m");
+    }
+    wrench_radii_.push_back(body_spec.wrench_radius);
+    for (const auto& [name, selection] : body_spec.groups) {
+      if (name.empty() || name.find('/') != std::string::npos) {
+        throw std::invalid_argument(key + ".groups: '" + name +
+                                    "' is not a valid group name (non-empty, no '/')");
+      }
+      body.addGroup(name, selectSome(body.mesh(), selection, key + ".groups." + name));
+    }
     for (size_t k = 0; k < body_spec.fixed.size(); ++k) {
       body.fixNodes(selectSome(body.mesh(), body_spec.fixed[k],
                                key + ".fixed[" + std::to_string(k) + "]"));
@@ -55,6 +90,8 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
       const std::vector<int> nodes = selectSome(body.mesh(), load.where, load_key);
       if (load.kind == LoadSpec::Kind::kTotalForce) {
         addTotalForce(nodes, load.value, body.externalForces());
+      } else if (load.kind == LoadSpec::Kind::kWrench) {
+        addWrench(body, nodes, load, load_key);
       } else if (addTractionLoad(body.mesh(), surface, nodes, load.value, body.externalForces()) ==
                  0.0) {
         throw std::invalid_argument(load_key +
@@ -70,6 +107,13 @@ FemBody& Simulation::body(const std::string& name) {
     if (b.name() == name) return b;
   }
   throw std::out_of_range("no body named '" + name + "'");
+}
+
+int Simulation::bodyIndex(const std::string& name) const {
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    if (bodies_[b].name() == name) return static_cast<int>(b);
+  }
+  return -1;
 }
 
 void Simulation::step(std::vector<StepReport>& reports) {

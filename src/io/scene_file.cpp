@@ -182,7 +182,8 @@ class SceneParser {
 
   core::BodySpec parseBody(const YAML::Node& node, const std::string& key) const {
     expectMap(node, key);
-    checkKeys(node, key, {"name", "mesh", "model", "material", "fixed", "loads"});
+    checkKeys(node, key,
+              {"name", "mesh", "model", "material", "fixed", "loads", "groups", "wrench_radius"});
     core::BodySpec body;
     if (!node["name"]) fail(node, key + ".name", "missing");
     body.name = text(node["name"], key + ".name");
@@ -202,6 +203,19 @@ class SceneParser {
         checkKeys(fixed[k], item, {"nodes", "box", "sphere"});
         body.fixed.push_back(parseSelection(fixed[k], item));
       }
+    }
+    if (const YAML::Node groups = node["groups"]) {
+      expectMap(groups, key + ".groups");
+      for (const auto& entry : groups) {
+        const std::string name = entry.first.as<std::string>();
+        const std::string item = key + ".groups." + name;
+        expectMap(entry.second, item);
+        checkKeys(entry.second, item, {"nodes", "box", "sphere"});
+        body.groups[name] = parseSelection(entry.second, item);
+      }
+    }
+    if (node["wrench_radius"]) {
+      body.wrench_radius = nonNegative(node["wrench_radius"], key + ".wrench_radius");
     }
     if (const YAML::Node loads = node["loads"]) {
       if (!loads.IsSequence()) fail(loads, key + ".loads", "expected a list of loads");
@@ -299,11 +313,19 @@ class SceneParser {
 
   core::LoadSpec parseLoad(const YAML::Node& node, const std::string& key) const {
     expectMap(node, key);
-    checkKeys(node, key, {"nodes", "box", "sphere", "traction", "total_force"});
+    checkKeys(node, key, {"nodes", "box", "sphere", "traction", "total_force", "wrench"});
     core::LoadSpec load;
     load.where = parseSelection(node, key);
-    if (node["traction"] && node["total_force"]) {
-      fail(node, key, "give either traction or total_force, not both");
+    const int kinds = (node["traction"] ? 1 : 0) + (node["total_force"] ? 1 : 0) +
+                      (node["wrench"] ? 1 : 0);
+    if (kinds > 1) fail(node, key, "give one of traction, total_force or wrench");
+    if (const YAML::Node wrench = node["wrench"]) {
+      expectMap(wrench, key + ".wrench");
+      checkKeys(wrench, key + ".wrench", {"force", "torque"});
+      load.kind = core::LoadSpec::Kind::kWrench;
+      if (wrench["force"]) load.value = vector3(wrench["force"], key + ".wrench.force");
+      if (wrench["torque"]) load.torque = vector3(wrench["torque"], key + ".wrench.torque");
+      return load;
     }
     if (node["traction"]) {
       load.kind = core::LoadSpec::Kind::kTraction;
@@ -312,7 +334,7 @@ class SceneParser {
       load.kind = core::LoadSpec::Kind::kTotalForce;
       load.value = vector3(node["total_force"], key + ".total_force");
     } else {
-      fail(node, key, "needs traction (Pa) or total_force (N)");
+      fail(node, key, "needs traction (Pa), total_force (N) or wrench {force (N), torque (N m)}");
     }
     return load;
   }

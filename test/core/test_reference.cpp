@@ -169,3 +169,7 @@ TEST_P(LargeDeflection, WarpingFollowsTheNonlinearReference) {
 INSTANTIATE_TEST_SUITE_P(Meshes, LargeDeflection,
                          ::testing::Values("tetU_L1", "tetU_L2", "tetU_L3", "tetS_L1", "tetS_L2",
                                            "tetS_L3"));
+
+// The finest level takes minutes; run it with
+//   test_core_reference --gtest_also_run_disabled_tests --gtest_filter='DISABLED_Fine*'
+INSTANTIATE_TEST_SUITE_P(DISABLED_Fine, LargeDeflection, ::testing::Values("tetU_L4", "tetS_L4"));

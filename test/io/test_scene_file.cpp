@@ -121,7 +121,7 @@ TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
             "test.yaml:9: bodies[0].model: 'rigid' is not supported (fem)");
   EXPECT_EQ(errorOf(replaced(kScene, "traction: [0, 0, -2.5]", "pressure: 3")),
             "test.yaml:13: bodies[0].loads[0].pressure: unknown key (expected one of: box, "
-            "nodes, sphere, total_force, traction)");
+            "nodes, sphere, total_force, traction, wrench)");
   EXPECT_EQ(errorOf("bodies: [}"), "test.yaml:1: not valid YAML: illegal flow end");
   EXPECT_EQ(errorOf("dt: 0.1"), "test.yaml:1: bodies: missing: a scene needs at least one body");
 }
@@ -146,4 +146,30 @@ TEST(SceneFile, MissingFileIsAClearError) {
   } catch (const dio::SceneError& e) {
     EXPECT_STREQ(e.what(), "/nonexistent/scene.yaml: cannot open the scene file");
   }
+}
+
+TEST(SceneFile, GroupsAndWrenchLoads) {
+  const std::string yaml = replaced(
+      kScene, "    loads:\n",
+      "    groups: {tip: {box: {min: [0.999, -1, -1], max: [1.001, 1, 1]}}, one: {nodes: [7]}}\n"
+      "    wrench_radius: 0.2\n"
+      "    loads:\n"
+      "      - {box: {min: [0.999, -1, -1], max: [1.001, 1, 1]},"
+      " wrench: {force: [0, 1, 0], torque: [0.3, 0, 0]}}\n");
+  const dc::SceneSpec spec = dio::parseScene(yaml, "test.yaml", ".");
+  ASSERT_EQ(spec.bodies[0].groups.size(), 2u);
+  EXPECT_EQ(spec.bodies[0].wrench_radius, 0.2);
+  ASSERT_EQ(spec.bodies[0].loads[0].kind, dc::LoadSpec::Kind::kWrench);
+  dc::Simulation sim = dio::buildSimulation(spec, nullptr);
+  const dc::FemBody& body = sim.bodies()[0];
+  EXPECT_EQ(body.groups().at("tip").size(), 9u);
+  EXPECT_EQ(body.groups().at("one").size(), 1u);
+  EXPECT_EQ(sim.wrenchRadius(0), 0.2);
+  // Net load: the wrench's force plus the traction (2.5 Pa on 0.01 m^2) and the 0.01 N point load.
+  const Eigen::Vector3d net = body.externalForces().reshaped(3, body.numNodes()).rowwise().sum();
+  EXPECT_TRUE(net.isApprox(Eigen::Vector3d(0, 1, -0.025 - 0.01), 1e-12)) << net.transpose();
+  EXPECT_EQ(errorOf(replaced(yaml, "torque: [0.3, 0, 0]", "torque: [0.3, 0]")),
+            "test.yaml:15: bodies[0].loads[0].wrench.torque: expected a list of 3 numbers");
+  EXPECT_EQ(errorOf(replaced(yaml, "one: {nodes: [7]}", "one: {sphere: {center: [5, 5, 5], radius: 0.1}}"), true),
+            "bodies[0].groups.one: selects no node");
 }

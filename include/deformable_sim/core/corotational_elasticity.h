@@ -22,6 +22,10 @@ class CorotationalElasticity {
   /// its block indices in the global pattern.
   CorotationalElasticity(const Mesh& mesh, const LinearElasticMaterial& material);
 
+  /// Recomputes every element's rest stiffness for a new material (validated first); the pattern
+  /// and the block indices stay. `mesh` must be the one given to the constructor.
+  void setMaterial(const Mesh& mesh, const LinearElasticMaterial& material);
+
   /// Sets the element rotations from positions x (3n): polar rotations of F when warping, the
   /// identity otherwise; then fills K' and f0' in place. Returns the number of inverted or flat
   /// elements (det F <= 0). Allocates nothing.

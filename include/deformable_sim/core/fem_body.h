@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -59,6 +60,19 @@ class FemBody {
   const Mesh& mesh() const { return mesh_; }
   const LinearElasticMaterial& material() const { return material_; }
   const BodyEffects& effects() const { return effects_; }
+  const SolverSettings& solverSettings() const { return solver_settings_; }
+
+  /// Changes the material between steps: element stiffnesses and masses are recomputed in place,
+  /// the pattern is kept. Throws std::invalid_argument (body unchanged) for a bad material.
+  void setMaterial(const LinearElasticMaterial& material);
+  /// Changes Rayleigh damping between steps (nullopt: none). Throws for negative coefficients.
+  void setDamping(const std::optional<RayleighDamping>& damping);
+  /// Changes tolerance and iteration cap between steps (the method stays). Throws for bad values.
+  void setSolverLimits(double tolerance, int max_iterations);
+
+  /// Named node groups (indices into the mesh), e.g. from the scene's `groups`.
+  void addGroup(const std::string& name, std::vector<int> nodes);
+  const std::map<std::string, std::vector<int>>& groups() const { return groups_; }
   int numNodes() const { return mesh_.numNodes(); }
 
   /// Stacked 3n vectors: positions (m), velocities (m/s), rest positions (m).
@@ -110,6 +124,7 @@ class FemBody {
 
   std::string name_;
   Mesh mesh_;
+  std::map<std::string, std::vector<int>> groups_;
   LinearElasticMaterial material_;
   BodyEffects effects_;
   SolverSettings solver_settings_;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,10 +20,13 @@ struct LoadSpec {
   enum class Kind {
     kTraction,    ///< value in Pa on the boundary faces whose nodes are all selected
     kTotalForce,  ///< value in N split equally among the selected nodes
+    kWrench,      ///< force value (N) and torque (N m) about the selection's rest mass centroid,
+                  ///< spread by mass (core/wrench.h)
   };
   NodeSelection where;
   Kind kind = Kind::kTraction;
   Eigen::Vector3d value = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();  ///< kWrench only
 };
 
 /// A generated structured mesh (core/box_mesh.h) instead of a mesh file.
@@ -39,6 +43,10 @@ struct BodySpec {
   LinearElasticMaterial material;
   std::vector<NodeSelection> fixed;
   std::vector<LoadSpec> loads;
+  std::map<std::string, NodeSelection> groups;  ///< named node groups (by rest position)
+  /// A wrench given in a frame that is not one of the body's groups acts on the body's nodes
+  /// within this distance of the frame's origin, m.
+  double wrench_radius = 0.05;
 };
 
 struct SceneSpec {

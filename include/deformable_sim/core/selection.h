@@ -32,4 +32,8 @@ struct NodeSelection {
 /// a box with min > max, a negative or non-finite radius. An empty result is not an error here.
 std::vector<int> selectNodes(const Mesh& mesh, const NodeSelection& selection);
 
+/// The same, with regions tested against `positions` (stacked 3n, m): the body as it is now.
+std::vector<int> selectNodesAt(const Mesh& mesh, const Eigen::VectorXd& positions,
+                               const NodeSelection& selection);
+
 }  // namespace deformable_sim::core

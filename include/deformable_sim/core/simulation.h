@@ -24,6 +24,10 @@ class Simulation {
   const std::vector<FemBody>& bodies() const { return bodies_; }
   /// Throws std::out_of_range naming the body if there is none of that name.
   FemBody& body(const std::string& name);
+  /// Index of the body of that name in bodies(), or -1.
+  int bodyIndex(const std::string& name) const;
+  /// The scene's wrench_radius of bodies()[index], m.
+  double wrenchRadius(int index) const { return wrench_radii_[index]; }
 
   /// One step of every body; reports[i] belongs to bodies()[i]. `reports` is resized once.
   void step(std::vector<StepReport>& reports);
@@ -36,6 +40,7 @@ class Simulation {
   StaticSettings statics_;
   long step_count_ = 0;
   std::vector<FemBody> bodies_;
+  std::vector<double> wrench_radii_;
 };
 
 }  // namespace deformable_sim::core

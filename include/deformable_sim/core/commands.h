@@ -1,0 +1,104 @@
+// What a user asks of a running simulation — push on nodes, fix or drag or release them — as plain
+// data, and the processor that checks each command and applies it between steps. The ROS layer
+// turns messages into these (resolving tf frames to world coordinates); the checks live here so they
+// are tested without a roscore.
+#pragma once
+
+#include <Eigen/Core>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "deformable_sim/core/selection.h"
+#include "deformable_sim/core/simulation.h"
+
+namespace deformable_sim::core {
+
+/// A refused command; the message names what was wrong. The simulation is unchanged.
+class CommandError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// Which nodes of a body a command acts on: exactly one of the four. Regions are tested against
+/// the current positions, in the world frame.
+struct NodeTarget {
+  std::vector<long> node_numbers;  ///< the mesh file's node numbers
+  std::string group;               ///< a node group of the body (scene key `groups`)
+  std::optional<Box> box;
+  std::optional<Sphere> sphere;
+  /// All nodes of the body (none of the above given and this set).
+  bool whole_body = false;
+};
+
+/// A wrench that stays applied until the same source sends another (a zero wrench removes it).
+/// Resolved to nodal forces when applied (a dead load): its net force is `force` and its net
+/// torque about `point` is `torque`, exactly, on the nodes as they are at that moment.
+struct WrenchCommand {
+  std::string source;  ///< identity: a frame name, "<body>/<group>", "node_wrench/..."
+  std::string body;    ///< empty: the body with a node nearest to the sphere's centre
+  NodeTarget nodes;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   ///< N, world frame
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();  ///< N m, world frame, about `point`
+  std::optional<Eigen::Vector3d> point;              ///< m, world; default: the nodes' centroid
+};
+
+/// Fix (hold where they are, or move to targets) or release nodes.
+struct FixCommand {
+  std::string body;
+  NodeTarget nodes;
+  bool fix = true;
+  /// Fix only: empty (hold where they are), or one target per selected node in the order of
+  /// `node_numbers` (regions and groups: ascending node number), m, world.
+  std::vector<Eigen::Vector3d> targets;
+  /// Fix only: moves every selected node by this from where it is now, m, world.
+  std::optional<Eigen::Vector3d> translation;
+};
+
+/// Bounds beyond which a command is refused as absurd rather than applied.
+struct CommandLimits {
+  double max_force = 1.0e4;        ///< N, magnitude of a wrench's force
+  double max_torque = 1.0e4;       ///< N m
+  double max_target_distance = 10.0;  ///< m, how far a target may be from the node now
+};
+
+/// A wrench in effect, as applied: for markers and the record.
+struct ActiveWrench {
+  int body = -1;
+  std::vector<int> nodes;
+  std::vector<Eigen::Vector3d> forces;  ///< N per node
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+};
+
+class CommandProcessor {
+ public:
+  /// Keeps a reference to `simulation`; the scene's own loads are kept as the base load.
+  explicit CommandProcessor(Simulation& simulation, CommandLimits limits = {});
+
+  /// Each throws CommandError naming the problem and leaves the simulation as it was; on success
+  /// returns the number of nodes it acted on (0 for a wrench that cleared its source).
+  int apply(const WrenchCommand& command);
+  int apply(const FixCommand& command);
+
+  /// Removes the wrench of `source`; false if there was none.
+  bool clearWrench(const std::string& source);
+  const std::map<std::string, ActiveWrench>& activeWrenches() const { return wrenches_; }
+  const CommandLimits& limits() const { return limits_; }
+  void setLimits(const CommandLimits& limits) { limits_ = limits; }
+
+ private:
+  int findBody(const std::string& name, const NodeTarget& nodes) const;
+  std::vector<int> resolve(const FemBody& body, const NodeTarget& nodes) const;
+  void updateExternalForces(int body);
+
+  Simulation& simulation_;
+  CommandLimits limits_;
+  std::vector<Eigen::VectorXd> base_forces_;  ///< per body: the scene's loads
+  std::map<std::string, ActiveWrench> wrenches_;
+};
+
+}  // namespace deformable_sim::core

@@ -1,0 +1,214 @@
+#include "deformable_sim/core/commands.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "deformable_sim/core/wrench.h"
+
+namespace deformable_sim::core {
+
+namespace {
+
+std::string vectorText(const Eigen::Vector3d& v) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%g, %g, %g)", v.x(), v.y(), v.z());
+  return text;
+}
+
+}  // namespace
+
+CommandProcessor::CommandProcessor(Simulation& simulation, CommandLimits limits)
+    : simulation_(simulation), limits_(limits) {
+  for (const FemBody& body : simulation_.bodies()) base_forces_.push_back(body.externalForces());
+}
+
+int CommandProcessor::findBody(const std::string& name, const NodeTarget& nodes) const {
+  const std::vector<FemBody>& bodies = simulation_.bodies();
+  if (!name.empty()) {
+    const int index = simulation_.bodyIndex(name);
+    if (index >= 0) return index;
+    std::string known;
+    for (const FemBody& b : bodies) known += (known.empty() ? "'" : ", '") + b.name() + "'";
+    throw CommandError("unknown body '" + name + "' (bodies: " + known + ")");
+  }
+  if (bodies.size() == 1) return 0;
+  if (!nodes.sphere) throw CommandError("no body named and the scene has several bodies");
+  // The body with a node nearest to the centre.
+  int best = -1;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (size_t b = 0; b < bodies.size(); ++b) {
+    const Eigen::VectorXd& x = bodies[b].positions();
+    for (int i = 0; i < bodies[b].numNodes(); ++i) {
+      const double d = (x.segment<3>(3 * i) - nodes.sphere->center).norm();
+      if (d < best_distance) best_distance = d, best = static_cast<int>(b);
+    }
+  }
+  return best;
+}
+
+std::vector<int> CommandProcessor::resolve(const FemBody& body, const NodeTarget& nodes) const {
+  const int kinds = (nodes.node_numbers.empty() ? 0 : 1) + (nodes.group.empty() ? 0 : 1) +
+                    (nodes.box ? 1 : 0) + (nodes.sphere ? 1 : 0);
+  if (kinds == 0 && nodes.whole_body) {
+    std::vector<int> all(body.numNodes());
+    for (int i = 0; i < body.numNodes(); ++i) all[i] = i;
+    return all;
+  }
+  if (kinds != 1) {
+    throw CommandError("give exactly one of: node ids, a group, a box, a sphere (got " +
+                       std::to_string(kinds) + ")");
+  }
+  std::vector<int> selected;
+  if (!nodes.group.empty()) {
+    const auto group = body.groups().find(nodes.group);
+    if (group == body.groups().end()) {
+      std::string known;
+      for (const auto& [name, members] : body.groups()) known += (known.empty() ? "" : ", ") + name;
+      throw CommandError("body '" + body.name() + "' has no group '" + nodes.group + "'" +
+                         (known.empty() ? " (it has none)" : " (groups: " + known + ")"));
+    }
+    return group->second;
+  }
+  NodeSelection selection;
+  if (!nodes.node_numbers.empty()) {
+    selection.kind = NodeSelection::Kind::kNodes;
+    selection.node_numbers = nodes.node_numbers;
+  } else if (nodes.box) {
+    selection.kind = NodeSelection::Kind::kBox;
+    selection.box = *nodes.box;
+  } else {
+    selection.kind = NodeSelection::Kind::kSphere;
+    selection.sphere = *nodes.sphere;
+  }
+  try {
+    selected = selectNodesAt(body.mesh(), body.positions(), selection);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError("body '" + body.name() + "': " + e.what());
+  }
+  if (selected.empty()) {
+    throw CommandError("body '" + body.name() + "': the " +
+                       std::string(nodes.box ? "box" : "sphere") + " contains no node");
+  }
+  return selected;
+}
+
+int CommandProcessor::apply(const WrenchCommand& command) {
+  if (!command.force.allFinite() || !command.torque.allFinite() ||
+      (command.point && !command.point->allFinite())) {
+    throw CommandError("wrench from '" + command.source + "' has a NaN or infinite value");
+  }
+  if (command.force.norm() > limits_.max_force || command.torque.norm() > limits_.max_torque) {
+    throw CommandError("wrench from '" + command.source + "' exceeds the limits (|force| " +
+                       std::to_string(command.force.norm()) + " N of at most " +
+                       std::to_string(limits_.max_force) + ", |torque| " +
+                       std::to_string(command.torque.norm()) + " N m of at most " +
+                       std::to_string(limits_.max_torque) + ")");
+  }
+  if (command.force.isZero(0.0) && command.torque.isZero(0.0)) {
+    // A zero wrench clears its source; nothing to resolve (the target may be gone).
+    const auto previous = wrenches_.find(command.source);
+    if (previous != wrenches_.end()) {
+      const int body = previous->second.body;
+      wrenches_.erase(previous);
+      updateExternalForces(body);
+    }
+    return 0;
+  }
+  const int b = findBody(command.body, command.nodes);
+  const FemBody& body = simulation_.bodies()[b];
+  ActiveWrench active;
+  active.body = b;
+  active.nodes = resolve(body, command.nodes);
+  std::vector<Eigen::Vector3d> points;
+  std::vector<double> weights;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double total = 0.0;
+  for (int i : active.nodes) {
+    points.emplace_back(body.positions().segment<3>(3 * i));
+    weights.push_back(body.nodalMasses()[i]);
+    centroid += weights.back() * points.back();
+    total += weights.back();
+  }
+  active.force = command.force;
+  active.torque = command.torque;
+  active.point = command.point.value_or(centroid / total);
+  try {
+    distributeWrench(points, weights, command.force, command.torque, active.point, active.forces);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError("wrench from '" + command.source + "' on body '" + body.name() + "': " +
+                       e.what());
+  }
+  const auto previous = wrenches_.find(command.source);
+  const int previous_body = previous == wrenches_.end() ? -1 : previous->second.body;
+  wrenches_[command.source] = std::move(active);
+  if (previous_body >= 0 && previous_body != b) updateExternalForces(previous_body);
+  updateExternalForces(b);
+  return static_cast<int>(wrenches_[command.source].nodes.size());
+}
+
+int CommandProcessor::apply(const FixCommand& command) {
+  const int b = findBody(command.body, command.nodes);
+  FemBody& body = simulation_.bodies()[b];
+  const std::vector<int> nodes = resolve(body, command.nodes);
+  if (!command.fix) {
+    if (!command.targets.empty() || command.translation) {
+      throw CommandError("a release takes no targets or translation");
+    }
+    body.releaseNodes(nodes);
+    return static_cast<int>(nodes.size());
+  }
+  // Targets in the order the user gave node numbers (resolve() sorts them).
+  std::vector<int> order = nodes;
+  if (!command.nodes.node_numbers.empty()) {
+    order = nodeIndices(body.mesh(), command.nodes.node_numbers);
+  }
+  if (!command.targets.empty() && command.targets.size() != order.size()) {
+    throw CommandError("body '" + body.name() + "': " + std::to_string(command.targets.size()) +
+                       " targets for " + std::to_string(order.size()) + " nodes");
+  }
+  if (!command.targets.empty() && command.translation) {
+    throw CommandError("give targets or a translation, not both");
+  }
+  if (command.translation && !command.translation->allFinite()) {
+    throw CommandError("translation has a NaN or infinite value");
+  }
+  std::vector<Eigen::Vector3d> targets(order.size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    const Eigen::Vector3d here = body.positions().segment<3>(3 * order[k]);
+    targets[k] = !command.targets.empty() ? command.targets[k]
+                 : command.translation   ? Eigen::Vector3d(here + *command.translation)
+                                         : here;
+    if (!targets[k].allFinite()) {
+      throw CommandError("target of node " + std::to_string(body.mesh().node_numbers[order[k]]) +
+                         " has a NaN or infinite value");
+    }
+    if ((targets[k] - here).norm() > limits_.max_target_distance) {
+      throw CommandError("target " + vectorText(targets[k]) + " of node " +
+                         std::to_string(body.mesh().node_numbers[order[k]]) + " is more than " +
+                         std::to_string(limits_.max_target_distance) + " m from the node");
+    }
+  }
+  body.setNodeTargets(order, targets);
+  return static_cast<int>(order.size());
+}
+
+bool CommandProcessor::clearWrench(const std::string& source) {
+  const auto found = wrenches_.find(source);
+  if (found == wrenches_.end()) return false;
+  const int body = found->second.body;
+  wrenches_.erase(found);
+  updateExternalForces(body);
+  return true;
+}
+
+void CommandProcessor::updateExternalForces(int b) {
+  Eigen::VectorXd& f = simulation_.bodies()[b].externalForces();
+  f = base_forces_[b];
+  for (const auto& [source, wrench] : wrenches_) {
+    if (wrench.body != b) continue;
+    for (size_t k = 0; k < wrench.nodes.size(); ++k) f.segment<3>(3 * wrench.nodes[k]) += wrench.forces[k];
+  }
+}
+
+}  // namespace deformable_sim::core

@@ -1,0 +1,218 @@
+// Wrench distribution, best-fit frames and the command processor: what the node does with a
+// message, checked without ROS.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "deformable_sim/core/commands.h"
+#include "deformable_sim/core/default_scene.h"
+#include "deformable_sim/core/rigid_frame.h"
+#include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/box_mesh.h"
+#include "deformable_sim/core/wrench.h"
+#include "deformable_sim/io/scene_file.h"
+
+namespace dc = deformable_sim::core;
+
+namespace {
+
+dc::Simulation makeDefault() {
+  const dc::SceneSpec spec = dc::defaultScene();
+  const dc::BoxMeshSpec& box = *spec.bodies[0].box_mesh;
+  std::vector<dc::Mesh> meshes{dc::makeBoxMesh(box.min, box.max, box.cells)};
+  return dc::Simulation(spec, std::move(meshes));
+}
+
+void expectNetWrench(const std::vector<Eigen::Vector3d>& points,
+                     const std::vector<Eigen::Vector3d>& forces, const Eigen::Vector3d& point,
+                     const Eigen::Vector3d& force, const Eigen::Vector3d& torque) {
+  Eigen::Vector3d net_force = Eigen::Vector3d::Zero(), net_torque = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < points.size(); ++i) {
+    net_force += forces[i];
+    net_torque += (points[i] - point).cross(forces[i]);
+  }
+  EXPECT_LT((net_force - force).norm(), 1e-12 * (1 + force.norm()));
+  EXPECT_LT((net_torque - torque).norm(), 1e-12 * (1 + torque.norm() + force.norm()));
+}
+
+}  // namespace
+
+TEST(Wrench, NetForceAndTorqueAboutAnyPointAreExact) {
+  const std::vector<Eigen::Vector3d> points{{0, 0, 0}, {1, 0, 0}, {0, 2, 0}, {0.3, 0.1, 0.7}};
+  const std::vector<double> weights{1.0, 2.0, 0.5, 3.0};
+  const Eigen::Vector3d force(1, -2, 3), torque(0.5, 0.2, -1), point(2, -1, 4);
+  std::vector<Eigen::Vector3d> forces;
+  dc::distributeWrench(points, weights, force, torque, point, forces);
+  ASSERT_EQ(forces.size(), points.size());
+  expectNetWrench(points, forces, point, force, torque);
+}
+
+TEST(Wrench, CollinearNodesCarryBendingButNotTwist) {
+  const std::vector<Eigen::Vector3d> line{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+  const std::vector<double> weights{1, 1, 1};
+  std::vector<Eigen::Vector3d> forces;
+  // A torque about z (bending the line) is fine.
+  dc::distributeWrench(line, weights, {0, 0, 1}, {0, 0, 2}, {1, 0, 0}, forces);
+  expectNetWrench(line, forces, {1, 0, 0}, {0, 0, 1}, {0, 0, 2});
+  // A twist about the line is refused, not dropped.
+  EXPECT_THROW(dc::distributeWrench(line, weights, {0, 0, 0}, {1, 0, 0}, {1, 0, 0}, forces),
+               std::invalid_argument);
+  // One node: a force is fine, a torque is not.
+  dc::distributeWrench({{1, 2, 3}}, {1.0}, {0, 0, -1}, {0, 0, 0}, {1, 2, 3}, forces);
+  EXPECT_EQ(forces[0], Eigen::Vector3d(0, 0, -1));
+  EXPECT_THROW(dc::distributeWrench({{1, 2, 3}}, {1.0}, {0, 0, 0}, {0, 1, 0}, {1, 2, 3}, forces),
+               std::invalid_argument);
+}
+
+TEST(RigidFrame, RecoversARigidMotionAndIsIdentityAtRest) {
+  dc::Simulation sim = makeDefault();
+  const dc::FemBody& body = sim.bodies()[0];
+  const dc::RigidFrame rest = dc::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses());
+  EXPECT_TRUE(rest.rotation.isApprox(Eigen::Matrix3d::Identity(), 1e-12));
+  EXPECT_TRUE(rest.origin.isApprox(Eigen::Vector3d(0.25, 0, 0), 1e-12));
+  const Eigen::Matrix3d q = Eigen::AngleAxisd(2.5, Eigen::Vector3d(1, 2, -1).normalized()).toRotationMatrix();
+  const Eigen::Vector3d t(0.3, -1, 2);
+  Eigen::VectorXd moved = body.restPositions();
+  for (int i = 0; i < body.numNodes(); ++i) {
+    moved.segment<3>(3 * i) = q * (body.restPositions().segment<3>(3 * i) - rest.origin) + rest.origin + t;
+  }
+  const dc::RigidFrame frame = dc::bestFitFrame(moved, body.restPositions(), body.nodalMasses());
+  EXPECT_TRUE(frame.rotation.isApprox(q, 1e-12));
+  EXPECT_TRUE(frame.origin.isApprox(rest.origin + t, 1e-12));
+}
+
+TEST(Commands, GroupWrenchIsExactAndAZeroWrenchClearsIt) {
+  dc::Simulation sim = makeDefault();
+  dc::CommandProcessor commands(sim);
+  dc::FemBody& body = sim.bodies()[0];
+  const Eigen::VectorXd scene_forces = body.externalForces();
+  dc::WrenchCommand push;
+  push.source = "beam/tip";
+  push.body = "beam";
+  push.nodes.group = "tip";
+  push.force = {0, 0.5, -2};
+  push.torque = {0.1, 0, 0.05};
+  EXPECT_EQ(commands.apply(push), 16);  // the tip face of a 16 x 3 x 3 box: 4 x 4 nodes
+  const dc::ActiveWrench& active = commands.activeWrenches().at("beam/tip");
+  std::vector<Eigen::Vector3d> points, forces;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double mass = 0.0;
+  for (int i : active.nodes) {
+    points.emplace_back(body.positions().segment<3>(3 * i));
+    forces.emplace_back(body.externalForces().segment<3>(3 * i) - scene_forces.segment<3>(3 * i));
+    centroid += body.nodalMasses()[i] * points.back();
+    mass += body.nodalMasses()[i];
+  }
+  // About the group's mass centroid, on the tip face.
+  EXPECT_TRUE(active.point.isApprox(centroid / mass, 1e-12));
+  EXPECT_NEAR(active.point.x(), 0.5, 1e-12);
+  expectNetWrench(points, forces, active.point, push.force, push.torque);
+  // Replaced, not added.
+  push.force = {0, 0, -1};
+  push.torque.setZero();
+  commands.apply(push);
+  EXPECT_NEAR((body.externalForces() - scene_forces).sum(), -1.0, 1e-12);
+  push.force.setZero();
+  EXPECT_EQ(commands.apply(push), 0);
+  EXPECT_TRUE(commands.activeWrenches().empty());
+  EXPECT_EQ(body.externalForces(), scene_forces);
+}
+
+TEST(Commands, BadCommandsAreRefusedNamingTheProblemAndChangeNothing) {
+  dc::Simulation sim = makeDefault();
+  dc::CommandProcessor commands(sim);
+  dc::FemBody& body = sim.bodies()[0];
+  const Eigen::VectorXd forces = body.externalForces();
+  const int constrained = body.numConstrained();
+  auto expectRefused = [&](auto command, const std::string& words) {
+    try {
+      commands.apply(command);
+      ADD_FAILURE() << "accepted a command that should be refused for: " << words;
+    } catch (const dc::CommandError& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(body.externalForces(), forces);
+    EXPECT_EQ(body.numConstrained(), constrained);
+    EXPECT_TRUE(commands.activeWrenches().empty());
+  };
+  dc::WrenchCommand wrench;
+  wrench.source = "test";
+  wrench.nodes.group = "tip";
+  wrench.force = {0, 0, std::nan("")};
+  expectRefused(wrench, "NaN");
+  wrench.force = {0, 0, 1e9};
+  expectRefused(wrench, "exceeds the limits");
+  wrench.force = {0, 0, 1};
+  wrench.body = "sponge";
+  expectRefused(wrench, "unknown body 'sponge' (bodies: 'beam')");
+  wrench.body = "beam";
+  wrench.nodes.group = "middle";
+  expectRefused(wrench, "has no group 'middle' (groups: tip)");
+  wrench.nodes.group.clear();
+  wrench.nodes.node_numbers = {1, 99999};
+  expectRefused(wrench, "99999");
+  dc::FixCommand fix;
+  fix.body = "beam";
+  fix.nodes.sphere = dc::Sphere{{5, 5, 5}, 0.1};
+  expectRefused(fix, "contains no node");
+  fix.nodes.sphere = dc::Sphere{{0.5, 0, 0}, -1.0};
+  expectRefused(fix, "radius");
+  fix.nodes.sphere.reset();
+  fix.nodes.node_numbers = {17, 34};
+  fix.targets = {{0.5, 0, 0}};
+  expectRefused(fix, "1 targets for 2 nodes");
+  fix.targets = {{0.5, 0, 0}, {0.5, 0, std::numeric_limits<double>::infinity()}};
+  expectRefused(fix, "NaN or infinite");
+  fix.targets.clear();
+  fix.nodes.node_numbers.clear();
+  expectRefused(fix, "exactly one of");
+}
+
+TEST(Commands, FixDragAndReleaseNodes) {
+  dc::Simulation sim = makeDefault();
+  dc::CommandProcessor commands(sim);
+  dc::FemBody& body = sim.bodies()[0];
+  const int clamped = body.numConstrained();
+  dc::FixCommand drag;
+  drag.body = "beam";
+  drag.nodes.group = "tip";
+  drag.translation = Eigen::Vector3d(0, 0, 0.05);
+  EXPECT_EQ(commands.apply(drag), 16);
+  EXPECT_EQ(body.numConstrained(), clamped + 16);
+  std::vector<dc::StepReport> reports;
+  sim.step(reports);
+  for (int i : body.groups().at("tip")) {
+    EXPECT_NEAR(body.positions()[3 * i + 2] - body.restPositions()[3 * i + 2], 0.05, 1e-12);
+  }
+  dc::FixCommand release;
+  release.body = "beam";
+  release.nodes.group = "tip";
+  release.fix = false;
+  EXPECT_EQ(commands.apply(release), 16);
+  EXPECT_EQ(body.numConstrained(), clamped);
+}
+
+TEST(DefaultScene, TheShippedSceneFileIsTheBuiltInScene) {
+  const dc::SceneSpec built_in = dc::defaultScene();
+  const dc::SceneSpec file = deformable_sim::io::readSceneFile(
+      std::string(DEFORMABLE_SIM_SOURCE_DIR) + "/config/scenes/cantilever.yaml");
+  EXPECT_EQ(file.dt, built_in.dt);
+  EXPECT_EQ(*file.effects.gravity, *built_in.effects.gravity);
+  EXPECT_EQ(file.effects.warping, built_in.effects.warping);
+  EXPECT_EQ(file.effects.damping->mass, built_in.effects.damping->mass);
+  EXPECT_EQ(file.effects.damping->stiffness, built_in.effects.damping->stiffness);
+  ASSERT_EQ(file.bodies.size(), 1u);
+  const dc::BodySpec &a = file.bodies[0], &b = built_in.bodies[0];
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.box_mesh->min, b.box_mesh->min);
+  EXPECT_EQ(a.box_mesh->max, b.box_mesh->max);
+  EXPECT_EQ(a.box_mesh->cells, b.box_mesh->cells);
+  EXPECT_EQ(a.material.youngs_modulus, b.material.youngs_modulus);
+  EXPECT_EQ(a.material.poisson_ratio, b.material.poisson_ratio);
+  EXPECT_EQ(a.material.density, b.material.density);
+  EXPECT_EQ(a.wrench_radius, b.wrench_radius);
+  // Same selections: compare what they select on the same mesh.
+  const dc::Mesh mesh = dc::makeBoxMesh(b.box_mesh->min, b.box_mesh->max, b.box_mesh->cells);
+  EXPECT_EQ(dc::selectNodes(mesh, a.fixed.at(0)), dc::selectNodes(mesh, b.fixed.at(0)));
+  EXPECT_EQ(dc::selectNodes(mesh, a.groups.at("tip")), dc::selectNodes(mesh, b.groups.at("tip")));
+}
