@@ -116,10 +116,16 @@ int Simulation::bodyIndex(const std::string& name) const {
   return -1;
 }
 
+void Simulation::setDt(double dt) {
+  if (!(dt > 0.0) || !std::isfinite(dt)) throw std::invalid_argument("dt: must be finite and > 0 s");
+  dt_ = dt;
+}
+
 void Simulation::step(std::vector<StepReport>& reports) {
   reports.resize(bodies_.size());
   for (size_t b = 0; b < bodies_.size(); ++b) reports[b] = bodies_[b].step(dt_);
   ++step_count_;
+  time_ += dt_;
 }
 
 std::vector<StaticReport> Simulation::solveStatic() {

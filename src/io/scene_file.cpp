@@ -125,7 +125,10 @@ class SceneParser {
   void parseEffects(const YAML::Node& node, core::BodyEffects& effects) const {
     if (!node) return;
     expectMap(node, "effects");
-    checkKeys(node, "effects", {"gravity", "warping", "damping"});
+    checkKeys(node, "effects", {"gravity", "warping", "damping", "stress_colouring"});
+    if (node["stress_colouring"]) {
+      effects.stress_colouring = boolean(node["stress_colouring"], "effects.stress_colouring");
+    }
     if (node["gravity"]) effects.gravity = vector3(node["gravity"], "effects.gravity");
     if (node["warping"]) effects.warping = boolean(node["warping"], "effects.warping");
     if (const YAML::Node damping = node["damping"]) {

@@ -27,6 +27,7 @@ struct BodyEffects {
   bool warping = false;                    ///< corotation; false = plain linear FEM (R = I)
   std::optional<Eigen::Vector3d> gravity;  ///< m/s^2
   std::optional<RayleighDamping> damping;
+  bool stress_colouring = false;  ///< the surface marker is coloured by strain (ROS layer)
 };
 
 /// Quasi-static solve: load ramp and, with warping, the corotational fixed-point iteration.

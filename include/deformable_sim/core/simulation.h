@@ -17,8 +17,10 @@ class Simulation {
   Simulation(const SceneSpec& spec, std::vector<Mesh> meshes);
 
   double dt() const { return dt_; }
+  /// Changes the step between steps. Throws std::invalid_argument unless finite and > 0.
+  void setDt(double dt);
   long stepCount() const { return step_count_; }
-  double time() const { return static_cast<double>(step_count_) * dt_; }
+  double time() const { return time_; }  ///< s, simulated since the start
 
   std::vector<FemBody>& bodies() { return bodies_; }
   const std::vector<FemBody>& bodies() const { return bodies_; }
@@ -39,6 +41,7 @@ class Simulation {
   double dt_;
   StaticSettings statics_;
   long step_count_ = 0;
+  double time_ = 0.0;
   std::vector<FemBody> bodies_;
   std::vector<double> wrench_radii_;
 };

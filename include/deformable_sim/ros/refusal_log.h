@@ -1,0 +1,34 @@
+// Refused commands: every one is counted and the last reason kept; warnings are throttled per
+// topic (at most one a second each) and say how many were refused since the previous warning.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include <ros/time.h>
+
+namespace deformable_sim::ros_layer {
+
+class RefusalLog {
+ public:
+  explicit RefusalLog(double period_s = 1.0) : period_s_(period_s) {}
+
+  /// Records a refusal on `topic`; returns the warning to print now, or "" while throttled.
+  std::string refuse(const std::string& topic, const std::string& reason, ros::WallTime now);
+
+  std::uint64_t count() const { return count_; }
+  const std::string& last() const { return last_; }
+
+ private:
+  struct TopicLog {
+    ros::WallTime last_warning;
+    int silenced = 0;
+  };
+  double period_s_;
+  std::uint64_t count_ = 0;
+  std::string last_;
+  std::map<std::string, TopicLog> topics_;
+};
+
+}  // namespace deformable_sim::ros_layer

@@ -1,0 +1,122 @@
+#include "deformable_sim/ros/conversions.h"
+
+namespace deformable_sim::ros_layer {
+
+geometry_msgs::Point toPoint(const Eigen::Vector3d& v) {
+  geometry_msgs::Point p;
+  p.x = v.x();
+  p.y = v.y();
+  p.z = v.z();
+  return p;
+}
+
+geometry_msgs::Vector3 toVector3(const Eigen::Vector3d& v) {
+  geometry_msgs::Vector3 m;
+  m.x = v.x();
+  m.y = v.y();
+  m.z = v.z();
+  return m;
+}
+
+Eigen::Isometry3d toEigen(const geometry_msgs::Transform& t) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = toEigen(t.translation);
+  pose.linear() =
+      Eigen::Quaterniond(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z).normalized().toRotationMatrix();
+  return pose;
+}
+
+geometry_msgs::Transform toTransform(const Eigen::Isometry3d& pose) {
+  geometry_msgs::Transform t;
+  t.translation = toVector3(pose.translation());
+  const Eigen::Quaterniond q(pose.linear());
+  t.rotation.w = q.w();
+  t.rotation.x = q.x();
+  t.rotation.y = q.y();
+  t.rotation.z = q.z();
+  return t;
+}
+
+Eigen::Isometry3d toPose(const core::RigidFrame& frame) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = frame.origin;
+  pose.linear() = frame.rotation;
+  return pose;
+}
+
+core::WrenchCommand toCommand(const NodeWrench& message, const Eigen::Isometry3d& frame_in_world) {
+  core::WrenchCommand command;
+  command.body = message.body;
+  command.nodes.node_numbers.assign(message.nodes.begin(), message.nodes.end());
+  command.nodes.group = message.group;
+  command.force = frame_in_world.linear() * toEigen(message.wrench.force);
+  command.torque = frame_in_world.linear() * toEigen(message.wrench.torque);
+  // One source per body and node set: a later message for the same nodes replaces this one.
+  command.source = "node_wrench:" + message.body + ":";
+  if (!message.group.empty()) {
+    command.source += "group " + message.group;
+  } else {
+    for (int64_t n : message.nodes) command.source += std::to_string(n) + " ";
+  }
+  return command;
+}
+
+core::FixCommand toCommand(const FixedNodes& message, const Eigen::Isometry3d& frame_in_world) {
+  core::FixCommand command;
+  command.body = message.body;
+  if (message.action != FixedNodes::FIX && message.action != FixedNodes::RELEASE) {
+    throw core::CommandError("action " + std::to_string(message.action) +
+                             " is neither FIX (0) nor RELEASE (1)");
+  }
+  command.fix = message.action == FixedNodes::FIX;
+  command.nodes.node_numbers.assign(message.nodes.begin(), message.nodes.end());
+  command.nodes.group = message.group;
+  switch (message.region) {
+    case FixedNodes::REGION_NONE:
+      break;
+    case FixedNodes::REGION_BOX: {
+      Eigen::AlignedBox3d box;
+      const Eigen::Vector3d lo = toEigen(message.box_min), hi = toEigen(message.box_max);
+      if (!lo.allFinite() || !hi.allFinite() || (lo.array() > hi.array()).any()) {
+        throw core::CommandError("box: box_min must not exceed box_max on any axis (and be finite)");
+      }
+      for (int corner = 0; corner < 8; ++corner) {
+        const Eigen::Vector3d c((corner & 1) ? hi.x() : lo.x(), (corner & 2) ? hi.y() : lo.y(),
+                                (corner & 4) ? hi.z() : lo.z());
+        box.extend(frame_in_world * c);
+      }
+      command.nodes.box = core::Box{box.min(), box.max()};
+      break;
+    }
+    case FixedNodes::REGION_SPHERE:
+      command.nodes.sphere =
+          core::Sphere{frame_in_world * toEigen(message.sphere_center), message.sphere_radius};
+      break;
+    default:
+      throw core::CommandError("region " + std::to_string(message.region) +
+                               " is not REGION_NONE, REGION_BOX or REGION_SPHERE");
+  }
+  for (const geometry_msgs::Point& p : message.targets) {
+    command.targets.push_back(frame_in_world * toEigen(p));
+  }
+  const Eigen::Vector3d translation = toEigen(message.translation);
+  if (!translation.isZero(0.0) || !translation.allFinite()) {
+    command.translation = frame_in_world.linear() * translation;
+  }
+  return command;
+}
+
+void fillState(const core::FemBody& body, BodyState& message) {
+  const int n = body.numNodes();
+  message.body = body.name();
+  message.node_ids.resize(n);
+  message.positions.resize(n);
+  message.velocities.resize(n);
+  for (int i = 0; i < n; ++i) {
+    message.node_ids[i] = body.mesh().node_numbers[i];
+    message.positions[i] = toPoint(body.positions().segment<3>(3 * i));
+    message.velocities[i] = toVector3(body.velocities().segment<3>(3 * i));
+  }
+}
+
+}  // namespace deformable_sim::ros_layer

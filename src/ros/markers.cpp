@@ -1,0 +1,102 @@
+#include "deformable_sim/ros/markers.h"
+
+#include <algorithm>
+
+#include "deformable_sim/ros/conversions.h"
+
+namespace deformable_sim::ros_layer {
+
+namespace {
+
+std_msgs::ColorRGBA colour(float r, float g, float b, float a = 1.0f) {
+  std_msgs::ColorRGBA c;
+  c.r = r;
+  c.g = g;
+  c.b = b;
+  c.a = a;
+  return c;
+}
+
+visualization_msgs::Marker marker(const std_msgs::Header& header, const std::string& ns, int id,
+                                  int type, double scale, const std_msgs::ColorRGBA& c) {
+  visualization_msgs::Marker m;
+  m.header = header;
+  m.ns = ns;
+  m.id = id;
+  m.type = type;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.scale.x = m.scale.y = m.scale.z = scale;
+  m.color = c;
+  return m;
+}
+
+}  // namespace
+
+void fillSurfaceMarker(const core::FemBody& body, const std::vector<core::Triangle>& surface,
+                       const std::vector<double>* strain, double strain_scale,
+                       visualization_msgs::Marker& m) {
+  m.ns = body.name();
+  m.id = 0;
+  m.type = visualization_msgs::Marker::TRIANGLE_LIST;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.scale.x = m.scale.y = m.scale.z = 1.0;
+  m.color = colour(1.0f, 0.55f, 0.1f);
+  m.points.resize(3 * surface.size());
+  m.colors.resize(strain ? 3 * surface.size() : 0);
+  const Eigen::VectorXd& x = body.positions();
+  for (size_t t = 0; t < surface.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int node = surface[t][k];
+      m.points[3 * t + k] = toPoint(x.segment<3>(3 * node));
+      if (strain) {
+        const float s = static_cast<float>(std::min(1.0, (*strain)[node] / strain_scale));
+        m.colors[3 * t + k] = colour(s, 0.2f, 1.0f - s);
+      }
+    }
+  }
+}
+
+visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::FemBody>& bodies,
+                                                   const core::CommandProcessor& commands,
+                                                   const std_msgs::Header& header) {
+  visualization_msgs::MarkerArray array;
+  visualization_msgs::Marker clear;
+  clear.header = header;
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  array.markers.push_back(clear);
+  for (size_t b = 0; b < bodies.size(); ++b) {
+    const core::FemBody& body = bodies[b];
+    const Eigen::VectorXd& x = body.positions();
+    visualization_msgs::Marker fixed = marker(header, body.name() + "/fixed", 0,
+                                              visualization_msgs::Marker::SPHERE_LIST, 0.015,
+                                              colour(0.9f, 0.1f, 0.1f));
+    for (int i = 0; i < body.numNodes(); ++i) {
+      if (body.isConstrained(i)) fixed.points.push_back(toPoint(x.segment<3>(3 * i)));
+    }
+    if (!fixed.points.empty()) array.markers.push_back(fixed);
+    int id = 0;
+    for (const auto& [name, nodes] : body.groups()) {
+      visualization_msgs::Marker group = marker(header, body.name() + "/groups", id++,
+                                                visualization_msgs::Marker::POINTS, 0.01,
+                                                colour(0.1f, 0.3f, 0.9f));
+      for (int i : nodes) group.points.push_back(toPoint(x.segment<3>(3 * i)));
+      array.markers.push_back(group);
+    }
+  }
+  int id = 0;
+  for (const auto& [source, wrench] : commands.activeWrenches()) {
+    if (wrench.force.isZero(0.0)) continue;
+    visualization_msgs::Marker arrow =
+        marker(header, "wrenches", id++, visualization_msgs::Marker::ARROW, 0.0, colour(0.1f, 0.8f, 0.2f));
+    arrow.scale.x = 0.01;  // shaft diameter
+    arrow.scale.y = 0.02;  // head diameter
+    arrow.points.push_back(toPoint(wrench.point));
+    arrow.points.push_back(toPoint(wrench.point + 0.1 * wrench.force));
+    array.markers.push_back(arrow);
+  }
+  return array;
+}
+
+}  // namespace deformable_sim::ros_layer

@@ -1,0 +1,511 @@
+#include "deformable_sim/ros/sim_node.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "deformable_sim/core/default_scene.h"
+#include "deformable_sim/core/rigid_frame.h"
+#include "deformable_sim/core/strain.h"
+#include "deformable_sim/io/scene_file.h"
+#include "deformable_sim/ros/conversions.h"
+#include "deformable_sim/ros/markers.h"
+
+namespace deformable_sim::ros_layer {
+
+namespace {
+
+std::string withoutLeadingSlash(const std::string& frame) {
+  return !frame.empty() && frame[0] == '/' ? frame.substr(1) : frame;
+}
+
+// Reads a private parameter, keeping `value` (the default) when it is not set.
+template <typename T>
+void param(ros::NodeHandle& node, const std::string& name, T& value) {
+  node.param(name, value, value);
+}
+
+}  // namespace
+
+SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
+    : tf_listener_(tf_buffer_), diagnostics_(node, private_node) {
+  readParameters(private_node);
+  buildSimulation();
+
+  state_pub_ = private_node.advertise<BodyState>("state", 10);
+  stats_pub_ = private_node.advertise<Stats>("stats", 10);
+  mesh_pub_ = private_node.advertise<visualization_msgs::Marker>("mesh", 2);
+  markers_pub_ = private_node.advertise<visualization_msgs::MarkerArray>("markers", 2);
+  wrench_sub_ = private_node.subscribe("wrench", 100, &SimNode::onWrench, this);
+  node_wrench_sub_ = private_node.subscribe("node_wrench", 100, &SimNode::onNodeWrench, this);
+  fixed_nodes_sub_ = private_node.subscribe("fixed_nodes", 100, &SimNode::onFixedNodes, this);
+  reset_srv_ = private_node.advertiseService("reset", &SimNode::onReset, this);
+  pause_srv_ = private_node.advertiseService("pause", &SimNode::onPause, this);
+  resume_srv_ = private_node.advertiseService("resume", &SimNode::onResume, this);
+  step_srv_ = private_node.advertiseService("step", &SimNode::onStep, this);
+
+  diagnostics_.setHardwareID("deformable_sim");
+  diagnostics_.add("simulation", this, &SimNode::diagnose);
+
+  // Live tuning: start from the scene's values so that the first callback changes nothing.
+  const core::FemBody& first = sim_->bodies().front();
+  applied_config_.body = "";
+  applied_config_.youngs_modulus = first.material().youngs_modulus;
+  applied_config_.poisson_ratio = first.material().poisson_ratio;
+  applied_config_.density = first.material().density;
+  const core::RayleighDamping damping = first.effects().damping.value_or(core::RayleighDamping{});
+  applied_config_.damping_mass = damping.mass;
+  applied_config_.damping_stiffness = damping.stiffness;
+  applied_config_.solver_tolerance = first.solverSettings().tolerance;
+  applied_config_.solver_max_iterations = first.solverSettings().max_iterations;
+  applied_config_.rate = rate_hz_;
+  scene_config_ = applied_config_;
+  reconfigure_ = std::make_unique<dynamic_reconfigure::Server<SimConfig>>(reconfigure_mutex_,
+                                                                         private_node);
+  SimConfig initial = applied_config_;
+  reconfigure_->updateConfig(initial);
+  reconfigure_->setCallback([this](SimConfig& config, uint32_t) { onReconfigure(config); });
+
+  timer_ = node.createTimer(ros::Duration(1.0 / rate_hz_), &SimNode::onTimer, this);
+  for (const core::FemBody& body : sim_->bodies()) {
+    ROS_INFO("body '%s': %d nodes, %d tetrahedra, %d fixed; frame '%s'", body.name().c_str(),
+             body.numNodes(), body.mesh().numTetrahedra(), body.numConstrained(),
+             (frame_prefix_ + body.name()).c_str());
+  }
+  ROS_INFO("stepping %s at %.4g Hz x %d substeps (dt %.4g s) in frame '%s'",
+           scene_path_.empty() ? "the built-in default scene" : scene_path_.c_str(), rate_hz_,
+           substeps_, sim_->dt(), world_frame_.c_str());
+}
+
+void SimNode::readParameters(ros::NodeHandle& private_node) {
+  param(private_node, "scene", scene_path_);
+  try {
+    scene_ = scene_path_.empty() ? core::defaultScene() : io::readSceneFile(scene_path_);
+  } catch (const io::SceneError& e) {
+    throw std::runtime_error(std::string("~scene: ") + e.what());
+  }
+  world_frame_ = "world";
+  param(private_node, "world_frame", world_frame_);
+  world_frame_ = withoutLeadingSlash(world_frame_);
+  // Several instances side by side: frames are prefixed by the node's namespace by default.
+  std::string ns = withoutLeadingSlash(ros::this_node::getNamespace());
+  frame_prefix_ = ns.empty() ? "" : ns + "/";
+  param(private_node, "frame_prefix", frame_prefix_);
+  frame_prefix_ = withoutLeadingSlash(frame_prefix_);
+  param(private_node, "substeps", substeps_);
+  if (substeps_ < 1) throw std::runtime_error("~substeps: must be >= 1");
+  rate_hz_ = 1.0 / (scene_.dt * substeps_);
+  param(private_node, "rate", rate_hz_);
+  if (!(rate_hz_ > 0.0) || !std::isfinite(rate_hz_)) {
+    throw std::runtime_error("~rate: must be finite and > 0 Hz");
+  }
+  scene_.dt = 1.0 / (rate_hz_ * substeps_);
+  param(private_node, "wrench_timeout", wrench_timeout_s_);
+  param(private_node, "stats_rate", stats_rate_hz_);
+  param(private_node, "marker_rate", marker_rate_hz_);
+  param(private_node, "strain_colour_scale", strain_colour_scale_);
+  param(private_node, "max_force", limits_.max_force);
+  param(private_node, "max_torque", limits_.max_torque);
+  param(private_node, "max_target_distance", limits_.max_target_distance);
+  if (!(wrench_timeout_s_ >= 0.0)) throw std::runtime_error("~wrench_timeout: must be >= 0 s");
+  if (!(stats_rate_hz_ > 0.0)) throw std::runtime_error("~stats_rate: must be > 0 Hz");
+  if (!(marker_rate_hz_ > 0.0)) throw std::runtime_error("~marker_rate: must be > 0 Hz");
+  if (!(strain_colour_scale_ > 0.0)) throw std::runtime_error("~strain_colour_scale: must be > 0");
+  if (!(limits_.max_force > 0.0) || !(limits_.max_torque > 0.0) ||
+      !(limits_.max_target_distance > 0.0)) {
+    throw std::runtime_error("~max_force, ~max_torque, ~max_target_distance: must be > 0");
+  }
+}
+
+void SimNode::buildSimulation() {
+  std::vector<std::string> warnings;
+  try {
+    sim_ = std::make_unique<core::Simulation>(io::buildSimulation(scene_, &warnings));
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("~scene: ") + e.what());
+  }
+  for (const std::string& w : warnings) ROS_WARN("%s", w.c_str());
+  commands_ = std::make_unique<core::CommandProcessor>(*sim_, limits_);
+  surfaces_.clear();
+  for (const core::FemBody& body : sim_->bodies()) surfaces_.push_back(core::extractSurface(body.mesh()));
+  wrench_times_.clear();
+  sim_time_samples_.clear();
+  reports_.assign(sim_->bodies().size(), core::StepReport{});
+}
+
+std::string SimNode::bodyFrame(int body) const {
+  return frame_prefix_ + sim_->bodies()[body].name();
+}
+
+void SimNode::onTimer(const ros::TimerEvent&) {
+  const ros::Time now = ros::Time::now();
+  if (wrench_timeout_s_ > 0.0) {
+    for (auto it = wrench_times_.begin(); it != wrench_times_.end();) {
+      if ((now - it->second).toSec() > wrench_timeout_s_) {
+        commands_->clearWrench(it->first);
+        it = wrench_times_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+  }
+  if (!paused_) advance(substeps_);
+  // Real-time factor over the last second of ROS time (the simulated clock with /use_sim_time).
+  sim_time_samples_.emplace_back(now, sim_->time());
+  while (sim_time_samples_.size() > 2 && (now - sim_time_samples_.front().first).toSec() > 1.0) {
+    sim_time_samples_.pop_front();
+  }
+  const double elapsed = (now - sim_time_samples_.front().first).toSec();
+  real_time_factor_ = elapsed > 0.0 ? (sim_->time() - sim_time_samples_.front().second) / elapsed : 0.0;
+
+  publishState();
+  publishFrames();
+  if (last_markers_.isZero() || (now - last_markers_).toSec() >= 1.0 / marker_rate_hz_ ||
+      now < last_markers_) {
+    publishMarkers();
+    last_markers_ = now;
+  }
+  if (last_stats_.isZero() || (now - last_stats_).toSec() >= 1.0 / stats_rate_hz_ || now < last_stats_) {
+    publishStats();
+    last_stats_ = now;
+  }
+  diagnostics_.update();
+}
+
+void SimNode::advance(int steps) {
+  const ros::WallTime start = ros::WallTime::now();
+  for (int s = 0; s < steps; ++s) sim_->step(reports_);
+  step_time_s_ = (ros::WallTime::now() - start).toSec();
+}
+
+void SimNode::publishState() {
+  const ros::Time now = ros::Time::now();
+  for (const core::FemBody& body : sim_->bodies()) {
+    fillState(body, state_message_);
+    state_message_.header.stamp = now;
+    state_message_.header.frame_id = world_frame_;
+    state_message_.step = static_cast<uint64_t>(sim_->stepCount());
+    state_pub_.publish(state_message_);
+  }
+}
+
+void SimNode::publishFrames() {
+  std::vector<geometry_msgs::TransformStamped> frames;
+  const ros::Time now = ros::Time::now();
+  auto add = [&](const std::string& child, const core::RigidFrame& frame) {
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = now;
+    t.header.frame_id = world_frame_;
+    t.child_frame_id = child;
+    t.transform = toTransform(toPose(frame));
+    frames.push_back(t);
+  };
+  for (size_t b = 0; b < sim_->bodies().size(); ++b) {
+    const core::FemBody& body = sim_->bodies()[b];
+    add(bodyFrame(static_cast<int>(b)),
+        core::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses()));
+    for (const auto& [name, nodes] : body.groups()) {
+      add(bodyFrame(static_cast<int>(b)) + "/" + name,
+          core::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses(), nodes));
+    }
+  }
+  tf_broadcaster_.sendTransform(frames);
+}
+
+void SimNode::publishMarkers() {
+  std_msgs::Header header;
+  header.stamp = ros::Time::now();
+  header.frame_id = world_frame_;
+  if (mesh_pub_.getNumSubscribers() > 0) {
+    for (const core::FemBody& body : sim_->bodies()) {
+      const bool colour = body.effects().stress_colouring;
+      if (colour) core::nodalStrain(body, strain_);
+      const size_t b = &body - sim_->bodies().data();
+      fillSurfaceMarker(body, surfaces_[b], colour ? &strain_ : nullptr, strain_colour_scale_,
+                        mesh_message_);
+      mesh_message_.header = header;
+      mesh_pub_.publish(mesh_message_);
+    }
+  }
+  if (markers_pub_.getNumSubscribers() > 0) {
+    markers_pub_.publish(interactionMarkers(sim_->bodies(), *commands_, header));
+  }
+}
+
+void SimNode::publishStats() {
+  Stats stats;
+  stats.header.stamp = ros::Time::now();
+  stats.header.frame_id = world_frame_;
+  stats.step = static_cast<uint64_t>(sim_->stepCount());
+  stats.sim_time = sim_->time();
+  stats.paused = paused_;
+  stats.step_time = step_time_s_;
+  stats.real_time_factor = real_time_factor_;
+  stats.dropped_messages = refusals_.count();
+  stats.last_refusal = refusals_.last();
+  for (size_t b = 0; b < sim_->bodies().size(); ++b) {
+    const core::FemBody& body = sim_->bodies()[b];
+    BodyStats s;
+    s.body = body.name();
+    s.solver_iterations = static_cast<uint32_t>(reports_[b].solve.iterations);
+    s.solver_residual = reports_[b].solve.relative_residual;
+    s.solver_converged = reports_[b].solve.converged;
+    s.kinetic_energy = body.kineticEnergy();
+    s.elastic_energy = body.elasticEnergy();
+    s.inverted_elements = static_cast<uint32_t>(reports_[b].inverted_elements);
+    s.fixed_nodes = static_cast<uint32_t>(body.numConstrained());
+    for (const auto& [source, wrench] : commands_->activeWrenches()) {
+      s.applied_wrenches += wrench.body == static_cast<int>(b) ? 1 : 0;
+    }
+    stats.bodies.push_back(s);
+  }
+  stats_pub_.publish(stats);
+}
+
+bool SimNode::resolveFrame(const std::string& frame_id, FrameTarget& target,
+                           std::string& error) const {
+  const std::string frame = withoutLeadingSlash(frame_id);
+  target = FrameTarget{};
+  if (frame.empty() || frame == world_frame_) return true;
+  std::string own;
+  for (size_t b = 0; b < sim_->bodies().size(); ++b) {
+    const core::FemBody& body = sim_->bodies()[b];
+    const std::string name = bodyFrame(static_cast<int>(b));
+    own += (own.empty() ? "" : ", ") + name;
+    if (frame == name) {
+      target.body = static_cast<int>(b);
+      target.pose = toPose(core::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses()));
+      return true;
+    }
+    if (frame.rfind(name + "/", 0) == 0) {
+      const std::string group = frame.substr(name.size() + 1);
+      const auto found = body.groups().find(group);
+      if (found == body.groups().end()) {
+        std::string groups;
+        for (const auto& [g, nodes] : body.groups()) groups += (groups.empty() ? "" : ", ") + g;
+        error = "frame '" + frame + "': body '" + body.name() + "' has no group '" + group + "'" +
+                (groups.empty() ? "" : " (groups: " + groups + ")");
+        return false;
+      }
+      target.body = static_cast<int>(b);
+      target.group = group;
+      target.pose = toPose(core::bestFitFrame(body.positions(), body.restPositions(),
+                                              body.nodalMasses(), found->second));
+      return true;
+    }
+  }
+  try {
+    target.pose = toEigen(tf_buffer_.lookupTransform(world_frame_, frame, ros::Time(0)).transform);
+  } catch (const tf2::TransformException& e) {
+    error = "unknown frame '" + frame + "': not a body or group frame of this node (" + own +
+            ", and their groups) and not in tf (" + e.what() + ")";
+    return false;
+  }
+  if (!target.pose.matrix().allFinite()) {
+    error = "frame '" + frame + "' has a non-finite pose in tf";
+    return false;
+  }
+  return true;
+}
+
+void SimNode::refuse(const std::string& topic, const std::string& reason) {
+  const std::string warning = refusals_.refuse(topic, reason, ros::WallTime::now());
+  if (!warning.empty()) ROS_WARN("%s", warning.c_str());
+}
+
+void SimNode::onWrench(const geometry_msgs::WrenchStamped::ConstPtr& message) {
+  const std::string topic = "~wrench";
+  const std::string frame = withoutLeadingSlash(message->header.frame_id);
+  if (frame.empty()) {
+    return refuse(topic, "header.frame_id is empty: name a body, a node group (<body>/<group>) "
+                         "or a tf frame");
+  }
+  core::WrenchCommand command;
+  command.source = frame;
+  const Eigen::Vector3d force = toEigen(message->wrench.force);
+  const Eigen::Vector3d torque = toEigen(message->wrench.torque);
+  if (!(force.isZero(0.0) && torque.isZero(0.0))) {
+    FrameTarget target;
+    std::string error;
+    if (!resolveFrame(frame, target, error)) return refuse(topic, error);
+    command.force = target.pose.linear() * force;
+    command.torque = target.pose.linear() * torque;
+    command.point = target.pose.translation();
+    if (target.body >= 0) {
+      command.body = sim_->bodies()[target.body].name();
+      command.nodes.group = target.group;
+      command.nodes.whole_body = target.group.empty();
+    } else {
+      // Another tf frame: the nodes of the nearest body within its wrench_radius of the origin.
+      int nearest = 0;
+      double best = std::numeric_limits<double>::infinity();
+      for (size_t b = 0; b < sim_->bodies().size(); ++b) {
+        const Eigen::VectorXd& x = sim_->bodies()[b].positions();
+        for (int i = 0; i < sim_->bodies()[b].numNodes(); ++i) {
+          const double d = (x.segment<3>(3 * i) - *command.point).norm();
+          if (d < best) best = d, nearest = static_cast<int>(b);
+        }
+      }
+      command.body = sim_->bodies()[nearest].name();
+      command.nodes.sphere = core::Sphere{*command.point, sim_->wrenchRadius(nearest)};
+    }
+  } else {
+    command.force = force;  // zero (or -0): clears the wrench of this frame
+    command.torque = torque;
+  }
+  try {
+    commands_->apply(command);
+  } catch (const core::CommandError& e) {
+    return refuse(topic, "frame '" + frame + "': " + e.what());
+  }
+  if (command.force.isZero(0.0) && command.torque.isZero(0.0)) {
+    wrench_times_.erase(frame);
+  } else {
+    wrench_times_[frame] = ros::Time::now();
+  }
+}
+
+void SimNode::onNodeWrench(const NodeWrench::ConstPtr& message) {
+  const std::string topic = "~node_wrench";
+  FrameTarget frame;
+  std::string error;
+  if (!resolveFrame(message->header.frame_id, frame, error)) return refuse(topic, error);
+  try {
+    const core::WrenchCommand command = toCommand(*message, frame.pose);
+    commands_->apply(command);
+    if (command.force.isZero(0.0) && command.torque.isZero(0.0)) {
+      wrench_times_.erase(command.source);
+    } else {
+      wrench_times_[command.source] = ros::Time::now();
+    }
+  } catch (const core::CommandError& e) {
+    refuse(topic, e.what());
+  }
+}
+
+void SimNode::onFixedNodes(const FixedNodes::ConstPtr& message) {
+  const std::string topic = "~fixed_nodes";
+  FrameTarget frame;
+  std::string error;
+  if (!resolveFrame(message->header.frame_id, frame, error)) return refuse(topic, error);
+  try {
+    commands_->apply(toCommand(*message, frame.pose));
+  } catch (const core::CommandError& e) {
+    refuse(topic, e.what());
+  }
+}
+
+bool SimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  buildSimulation();
+  // Keep what was tuned live.
+  // Keep what was tuned live: re-apply what differs from the scene's own values.
+  SimConfig tuned = applied_config_;
+  applied_config_ = scene_config_;
+  applied_config_.body = tuned.body;
+  onReconfigure(tuned);
+  publishState();
+  publishFrames();
+  response.success = true;
+  response.message = "reset to the scene's initial state";
+  return true;
+}
+
+bool SimNode::onPause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  response.success = true;
+  response.message = paused_ ? "already paused" : "paused at step " + std::to_string(sim_->stepCount());
+  paused_ = true;
+  return true;
+}
+
+bool SimNode::onResume(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  response.success = true;
+  response.message = paused_ ? "resumed at step " + std::to_string(sim_->stepCount()) : "not paused";
+  paused_ = false;
+  return true;
+}
+
+bool SimNode::onStep(Step::Request& request, Step::Response& response) {
+  if (!paused_) {
+    response.success = false;
+    response.message = "not paused: call ~pause first";
+  } else {
+    advance(static_cast<int>(request.steps));
+    publishState();
+    publishFrames();
+    response.success = true;
+    response.message = "took " + std::to_string(request.steps) + " steps";
+  }
+  response.step = static_cast<uint64_t>(sim_->stepCount());
+  return true;
+}
+
+void SimNode::onReconfigure(SimConfig& config) {
+  const SimConfig before = applied_config_;
+  std::vector<core::FemBody*> bodies;
+  for (core::FemBody& body : sim_->bodies()) {
+    if (config.body.empty() || body.name() == config.body) bodies.push_back(&body);
+  }
+  if (bodies.empty()) {
+    ROS_WARN("reconfigure: no body named '%s'; nothing changed", config.body.c_str());
+    config = before;
+    return;
+  }
+  try {
+    if (config.youngs_modulus != before.youngs_modulus ||
+        config.poisson_ratio != before.poisson_ratio || config.density != before.density) {
+      for (core::FemBody* body : bodies) {
+        core::LinearElasticMaterial material = body->material();
+        if (config.youngs_modulus != before.youngs_modulus) material.youngs_modulus = config.youngs_modulus;
+        if (config.poisson_ratio != before.poisson_ratio) material.poisson_ratio = config.poisson_ratio;
+        if (config.density != before.density) material.density = config.density;
+        body->setMaterial(material);
+      }
+    }
+    if (config.damping_mass != before.damping_mass ||
+        config.damping_stiffness != before.damping_stiffness) {
+      for (core::FemBody* body : bodies) {
+        body->setDamping(core::RayleighDamping{config.damping_mass, config.damping_stiffness});
+      }
+    }
+    if (config.solver_tolerance != before.solver_tolerance ||
+        config.solver_max_iterations != before.solver_max_iterations) {
+      for (core::FemBody* body : bodies) {
+        body->setSolverLimits(config.solver_tolerance, config.solver_max_iterations);
+      }
+    }
+    if (config.rate != before.rate) {
+      sim_->setDt(1.0 / (config.rate * substeps_));
+      rate_hz_ = config.rate;
+      if (timer_.isValid()) timer_.setPeriod(ros::Duration(1.0 / rate_hz_));
+    }
+  } catch (const std::invalid_argument& e) {
+    ROS_WARN("reconfigure refused: %s", e.what());
+    config = before;
+    return;
+  }
+  applied_config_ = config;
+}
+
+void SimNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  bool converged = true;
+  int inverted = 0;
+  for (const core::StepReport& r : reports_) {
+    converged = converged && r.solve.converged;
+    inverted += r.inverted_elements;
+  }
+  if (!converged) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "a solve did not reach its tolerance");
+  } else if (!paused_ && real_time_factor_ < 0.9 && sim_->stepCount() > 10 * substeps_) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "cannot keep real time");
+  } else {
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, paused_ ? "paused" : "running");
+  }
+  status.add("step", sim_->stepCount());
+  status.add("simulated time (s)", sim_->time());
+  status.add("real-time factor", real_time_factor_);
+  status.add("step time (ms)", 1e3 * step_time_s_);
+  status.add("inverted elements", inverted);
+  status.add("dropped messages", refusals_.count());
+  status.add("last refusal", refusals_.last());
+}
+
+}  // namespace deformable_sim::ros_layer
