@@ -11,7 +11,7 @@ SceneSpec defaultScene() {
 
   BodySpec beam;
   beam.name = "beam";
-  beam.box_mesh = BoxMeshSpec{{0.0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {16, 3, 3}};
+  beam.box_mesh = BoxMeshSpec{{0.0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {16, 4, 4}};
   beam.material = {1.0e5, 0.3, 100.0};
   NodeSelection clamp;
   clamp.kind = NodeSelection::Kind::kBox;

@@ -99,6 +99,7 @@ void SimNode::readParameters(ros::NodeHandle& private_node) {
     throw std::runtime_error("~rate: must be finite and > 0 Hz");
   }
   scene_.dt = 1.0 / (rate_hz_ * substeps_);
+  param(private_node, "start_paused", paused_);
   param(private_node, "wrench_timeout", wrench_timeout_s_);
   param(private_node, "stats_rate", stats_rate_hz_);
   param(private_node, "marker_rate", marker_rate_hz_);

@@ -92,7 +92,7 @@ TEST(Commands, GroupWrenchIsExactAndAZeroWrenchClearsIt) {
   push.nodes.group = "tip";
   push.force = {0, 0.5, -2};
   push.torque = {0.1, 0, 0.05};
-  EXPECT_EQ(commands.apply(push), 16);  // the tip face of a 16 x 3 x 3 box: 4 x 4 nodes
+  EXPECT_EQ(commands.apply(push), 25);  // the tip face of a 16 x 4 x 4 box: 5 x 5 nodes
   const dc::ActiveWrench& active = commands.activeWrenches().at("beam/tip");
   std::vector<Eigen::Vector3d> points, forces;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
@@ -177,8 +177,8 @@ TEST(Commands, FixDragAndReleaseNodes) {
   drag.body = "beam";
   drag.nodes.group = "tip";
   drag.translation = Eigen::Vector3d(0, 0, 0.05);
-  EXPECT_EQ(commands.apply(drag), 16);
-  EXPECT_EQ(body.numConstrained(), clamped + 16);
+  EXPECT_EQ(commands.apply(drag), 25);
+  EXPECT_EQ(body.numConstrained(), clamped + 25);
   std::vector<dc::StepReport> reports;
   sim.step(reports);
   for (int i : body.groups().at("tip")) {
@@ -188,7 +188,7 @@ TEST(Commands, FixDragAndReleaseNodes) {
   release.body = "beam";
   release.nodes.group = "tip";
   release.fix = false;
-  EXPECT_EQ(commands.apply(release), 16);
+  EXPECT_EQ(commands.apply(release), 25);
   EXPECT_EQ(body.numConstrained(), clamped);
 }
 

@@ -8,7 +8,8 @@
 namespace deformable_sim::core {
 
 /// The box [min, max] cut into cells[0] x cells[1] x cells[2] cubes, each split into six
-/// tetrahedra around its main diagonal (a conforming split: neighbouring cells share faces).
+/// tetrahedra around a main diagonal, mirrored from cell to cell (a conforming split with the
+/// box's mirror symmetries).
 /// Node numbers run from 1 in x-fastest order. Throws std::invalid_argument for an empty box or
 /// fewer than one cell per axis.
 Mesh makeBoxMesh(const Eigen::Vector3d& min, const Eigen::Vector3d& max,

@@ -1,0 +1,69 @@
+"""A small client of deformable_sim_node for the rostests: latest messages, services, waits."""
+import math
+import threading
+import time
+
+import rospy
+from std_srvs.srv import Trigger
+
+from deformable_sim.msg import BodyState, Stats
+from deformable_sim.srv import Step
+
+
+class SimClient:
+    def __init__(self, node='/deformable_sim'):
+        self.node = node
+        self._lock = threading.Lock()
+        self._state = None
+        self._stats = None
+        rospy.Subscriber(node + '/state', BodyState, self._on_state, queue_size=10)
+        rospy.Subscriber(node + '/stats', Stats, self._on_stats, queue_size=10)
+        for name in ('pause', 'resume', 'reset', 'step'):
+            rospy.wait_for_service(node + '/' + name, timeout=30.0)
+        self.pause = rospy.ServiceProxy(node + '/pause', Trigger)
+        self.resume = rospy.ServiceProxy(node + '/resume', Trigger)
+        self.reset = rospy.ServiceProxy(node + '/reset', Trigger)
+        self.step = rospy.ServiceProxy(node + '/step', Step)
+
+    def _on_state(self, message):
+        with self._lock:
+            self._state = message
+
+    def _on_stats(self, message):
+        with self._lock:
+            self._stats = message
+
+    def wait(self, what, predicate=lambda m: True, timeout=10.0):
+        """The newest state or stats message published after this call for which predicate
+        holds."""
+        since = rospy.Time.now()
+        deadline = time.time() + timeout
+        while time.time() < deadline and not rospy.is_shutdown():
+            with self._lock:
+                message = self._state if what == 'state' else self._stats
+            if message is not None and message.header.stamp >= since and predicate(message):
+                return message
+            time.sleep(0.02)
+        raise AssertionError('no %s message of the expected kind within %.0f s' % (what, timeout))
+
+    def state_at(self, step, timeout=10.0):
+        return self.wait('state', lambda m: m.step == step, timeout)
+
+
+
+def connected(*publishers, timeout=10.0):
+    """Waits until every publisher has a subscriber (else the first messages are lost)."""
+    deadline = time.time() + timeout
+    while time.time() < deadline:
+        if all(p.get_num_connections() > 0 for p in publishers):
+            return
+        time.sleep(0.02)
+    raise AssertionError('the node did not subscribe to %s' % [p.name for p in publishers])
+
+
+def positions(state):
+    return [(p.x, p.y, p.z) for p in state.positions]
+
+
+def all_finite(points):
+    return all(math.isfinite(c) for p in points for c in p)

@@ -1,0 +1,38 @@
+#!/usr/bin/python3
+"""The node refuses to start on a scene with an error: it exits non-zero and the message names the
+key; likewise for a bad parameter."""
+import os
+import subprocess
+import unittest
+
+import rospkg
+import rostest
+
+SCENES = os.path.join(rospkg.RosPack().get_path('deformable_sim'), 'test', 'data', 'scenes')
+
+
+def start_node(*arguments):
+    return subprocess.run(['rosrun', 'deformable_sim', 'deformable_sim_node', *arguments],
+                          capture_output=True, text=True, timeout=60)
+
+
+class BadScene(unittest.TestCase):
+    def test_bad_material_names_the_key(self):
+        run = start_node('_scene:=' + os.path.join(SCENES, 'bad_material.yaml'), '__name:=bad_material')
+        self.assertEqual(run.returncode, 1, run.stdout + run.stderr)
+        self.assertIn('bad_material.yaml:5: bodies[0].material.poisson_ratio: must be in (-1, 0.5)',
+                      run.stderr)
+
+    def test_missing_scene_file(self):
+        run = start_node('_scene:=/nonexistent/scene.yaml', '__name:=missing_scene')
+        self.assertEqual(run.returncode, 1)
+        self.assertIn('/nonexistent/scene.yaml: cannot open the scene file', run.stderr)
+
+    def test_bad_rate(self):
+        run = start_node('_rate:=-5.0', '__name:=bad_rate')
+        self.assertEqual(run.returncode, 1)
+        self.assertIn('~rate: must be finite and > 0 Hz', run.stderr)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('deformable_sim', 'bad_scene', BadScene)

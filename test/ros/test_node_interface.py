@@ -1,0 +1,141 @@
+#!/usr/bin/python3
+"""deformable_sim_node on its built-in default scene, driven as a user would: markers, tf, state,
+pause / step / resume / reset, fixing and releasing nodes by topic."""
+import math
+import unittest
+
+import rospy
+import rostest
+import tf2_ros
+from geometry_msgs.msg import Point, Vector3
+from visualization_msgs.msg import Marker
+
+from deformable_sim.msg import FixedNodes
+from sim_client import SimClient, all_finite, connected, positions
+
+# The default scene: a 0.5 x 0.1 x 0.1 m box in 16 x 4 x 4 cells, six tetrahedra a cell.
+CELLS = (16, 4, 4)
+NODES = (CELLS[0] + 1) * (CELLS[1] + 1) * (CELLS[2] + 1)
+SURFACE_TRIANGLES = 4 * (CELLS[0] * CELLS[1] + CELLS[0] * CELLS[2] + CELLS[1] * CELLS[2])
+TIP_NODES = (CELLS[1] + 1) * (CELLS[2] + 1)
+CLAMPED_NODES = TIP_NODES
+
+
+class NodeInterface(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('test_node_interface')
+        cls.sim = SimClient()
+        cls.fixed_pub = rospy.Publisher('/deformable_sim/fixed_nodes', FixedNodes, queue_size=10)
+        connected(cls.fixed_pub)
+
+    def setUp(self):
+        self.sim.resume()
+
+    def test_mesh_marker_is_the_surface(self):
+        marker = rospy.wait_for_message('/deformable_sim/mesh', Marker, timeout=10.0)
+        self.assertEqual(marker.type, Marker.TRIANGLE_LIST)
+        self.assertEqual(marker.header.frame_id, 'world')
+        self.assertGreater(marker.header.stamp.to_sec(), 0.0)
+        self.assertEqual(marker.ns, 'beam')
+        self.assertEqual(len(marker.points), 3 * SURFACE_TRIANGLES)
+        self.assertTrue(all_finite([(p.x, p.y, p.z) for p in marker.points]))
+        # Outward normals: the signed volume enclosed by the surface is the box's.
+        volume = 0.0
+        for k in range(0, len(marker.points), 3):
+            a, b, c = marker.points[k:k + 3]
+            volume += (a.x * (b.y * c.z - b.z * c.y) - a.y * (b.x * c.z - b.z * c.x) +
+                       a.z * (b.x * c.y - b.y * c.x)) / 6.0
+        self.assertAlmostEqual(volume, 0.5 * 0.1 * 0.1, delta=0.005 * 0.005)
+
+    def test_body_frame_in_tf_is_its_centroid(self):
+        buffer = tf2_ros.Buffer()
+        tf2_ros.TransformListener(buffer)
+        t = buffer.lookup_transform('world', 'beam', rospy.Time(0), rospy.Duration(10.0))
+        # The clamped beam sags a little under gravity; its centroid stays near (0.25, 0, 0).
+        self.assertAlmostEqual(t.transform.translation.x, 0.25, delta=0.01)
+        self.assertAlmostEqual(t.transform.translation.y, 0.0, delta=1e-5)  # a symmetric mesh
+        self.assertLess(t.transform.translation.z, 0.0)
+        self.assertGreater(t.transform.translation.z, -0.1)
+        tip = buffer.lookup_transform('world', 'beam/tip', rospy.Time(0), rospy.Duration(10.0))
+        self.assertAlmostEqual(tip.transform.translation.x, 0.5, delta=0.02)
+
+    def test_state_has_every_node(self):
+        state = self.sim.wait('state')
+        self.assertEqual(state.body, 'beam')
+        self.assertEqual(state.header.frame_id, 'world')
+        self.assertEqual(len(state.node_ids), NODES)
+        self.assertEqual(sorted(state.node_ids), list(range(1, NODES + 1)))
+        self.assertEqual(len(state.positions), NODES)
+        self.assertEqual(len(state.velocities), NODES)
+        self.assertTrue(all_finite(positions(state)))
+
+    def test_pause_step_resume_reset_count_steps_exactly(self):
+        self.assertTrue(self.sim.pause().success)
+        paused = self.sim.wait('stats', lambda m: m.paused)
+        start = self.sim.step(0).step
+        self.assertEqual(paused.step, start)
+        rospy.sleep(0.3)  # the timer keeps ticking but takes no step
+        self.assertEqual(self.sim.wait('state').step, start)
+        answer = self.sim.step(7)
+        self.assertTrue(answer.success, answer.message)
+        self.assertEqual(answer.step, start + 7)
+        self.assertEqual(self.sim.state_at(start + 7).step, start + 7)
+        self.assertEqual(self.sim.step(25).step, start + 32)
+        self.assertTrue(self.sim.resume().success)
+        self.sim.wait('state', lambda m: m.step > start + 40)
+        refused = self.sim.step(3)
+        self.assertFalse(refused.success)
+        self.assertIn('pause', refused.message)
+        self.assertTrue(self.sim.pause().success)
+        self.assertTrue(self.sim.reset().success)
+        self.assertEqual(self.sim.step(0).step, 0)
+        state = self.sim.state_at(0)
+        # Back at the rest shape: the box, undeformed.
+        xs = [p.x for p in state.positions]
+        zs = [p.z for p in state.positions]
+        self.assertAlmostEqual(min(xs), 0.0, places=12)
+        self.assertAlmostEqual(max(xs), 0.5, places=12)
+        self.assertAlmostEqual(min(zs), -0.05, places=12)
+        self.assertAlmostEqual(max(zs), 0.05, places=12)
+        self.assertEqual(max(abs(v.x) + abs(v.y) + abs(v.z) for v in state.velocities), 0.0)
+
+    def test_fix_drag_and_release_by_topic(self):
+        self.sim.pause()
+        self.sim.reset()
+        rest = positions(self.sim.state_at(0))
+        message = FixedNodes(body='beam', action=FixedNodes.FIX, group='tip',
+                             translation=Vector3(0.0, 0.0, 0.04))
+        self.fixed_pub.publish(message)
+        stats = self.sim.wait('stats', lambda m: m.bodies[0].fixed_nodes == CLAMPED_NODES + TIP_NODES)
+        self.assertEqual(stats.dropped_messages, 0, stats.last_refusal)
+        self.sim.step(1)
+        state = self.sim.state_at(1)
+        tip = [k for k, p in enumerate(rest) if abs(p[0] - 0.5) < 1e-9]
+        self.assertEqual(len(tip), TIP_NODES)
+        for k in tip:  # dragged up by exactly 4 cm in one step
+            moved = [a - b for a, b in zip(positions(state)[k], rest[k])]
+            self.assertAlmostEqual(moved[0], 0.0, places=12)
+            self.assertAlmostEqual(moved[2], 0.04, places=12)
+        self.fixed_pub.publish(FixedNodes(body='beam', action=FixedNodes.RELEASE, group='tip'))
+        self.sim.wait('stats', lambda m: m.bodies[0].fixed_nodes == CLAMPED_NODES)
+        # Fix a region (a sphere around the middle of the beam) in place.
+        region = FixedNodes(body='beam', action=FixedNodes.FIX, region=FixedNodes.REGION_SPHERE,
+                            sphere_center=Point(0.25, 0.0, 0.02), sphere_radius=0.06)
+        self.fixed_pub.publish(region)
+        stats = self.sim.wait('stats', lambda m: m.bodies[0].fixed_nodes > CLAMPED_NODES)
+        held = stats.bodies[0].fixed_nodes - CLAMPED_NODES
+        self.assertGreater(held, 0)
+        before = positions(self.sim.state_at(1))
+        self.sim.step(5)
+        after = positions(self.sim.state_at(6))
+        still = sum(1 for a, b in zip(before, after) if a == b)
+        self.assertEqual(still, CLAMPED_NODES + held)
+        region.action = FixedNodes.RELEASE
+        self.fixed_pub.publish(region)
+        self.sim.wait('stats', lambda m: m.bodies[0].fixed_nodes == CLAMPED_NODES)
+        self.sim.reset()
+
+
+if __name__ == '__main__':
+    rostest.rosrun('deformable_sim', 'node_interface', NodeInterface)
