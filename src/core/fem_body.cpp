@@ -1,6 +1,8 @@
 #include "deformable_sim/core/fem_body.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -255,6 +257,9 @@ StaticReport FemBody::solveStatic(const StaticSettings& settings) {
   const Eigen::VectorXd start = x_;
   for (int s = 1; s <= settings.load_steps; ++s) {
     const double fraction = static_cast<double>(s) / settings.load_steps;
+    // The corotational fixed point can oscillate at large rotations on fine meshes: relax the
+    // update while its size grows, and return to full steps while it shrinks.
+    double relaxation = 1.0, previous_change = std::numeric_limits<double>::infinity();
     for (int iteration = 0; iteration < settings.max_iterations; ++iteration) {
       updateStiffness();
       rhs_ = fraction * load - elasticity_.forceOffset();
@@ -271,7 +276,15 @@ StaticReport FemBody::solveStatic(const StaticSettings& settings) {
       const double change = (next_ - x_).norm();
       const double displacement = (next_ - x0_).norm();
       report.last_change = displacement > 0.0 ? change / displacement : change;
-      x_ = next_;
+      relaxation = change > previous_change ? std::max(0.125, 0.5 * relaxation)
+                                            : std::min(1.0, 1.25 * relaxation);
+      previous_change = change;
+      for (int i = 0; i < numNodes(); ++i) {
+        x_.segment<3>(3 * i) = constrained_[i] ? Eigen::Vector3d(next_.segment<3>(3 * i))
+                                               : Eigen::Vector3d(x_.segment<3>(3 * i) +
+                                                                 relaxation * (next_.segment<3>(3 * i) -
+                                                                               x_.segment<3>(3 * i)));
+      }
       if (!effects_.warping || report.last_change <= settings.tolerance) break;
     }
     report.converged = report.last_solve.converged &&
