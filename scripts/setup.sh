@@ -2,14 +2,19 @@
 # Set up deformable_sim on a fresh Debian 12 machine: install the Debian packages it needs, build
 # it in a catkin workspace, then run the demo or the whole test suite.
 #
-#   scripts/setup.sh demo   # install, build, run the built-in default scene
-#   scripts/setup.sh test   # install, build, run every test; last line "N passed, N failed"
+#   scripts/setup.sh demo          # install, build, run the node headless (roscore included) on
+#                                  # the built-in default scene, pushed back and forth; live stats
+#   scripts/setup.sh demo --rviz   # the same with rviz
+#   scripts/setup.sh test          # install, build, run every test; last line "N passed, N failed"
 #
 # The workspace is $DEFORMABLE_SIM_WS (default ~/deformable_sim_ws); this clone is linked into it.
+# DEFORMABLE_SIM_DEMO_SECONDS stops the demo after that many seconds (default: run until Ctrl-C).
 set -euo pipefail
 
 mode=${1:-demo}
-case "$mode" in demo|test) ;; *) echo "usage: $0 demo|test" >&2; exit 2 ;; esac
+rviz=false
+case "$mode" in demo|test) ;; *) echo "usage: $0 demo [--rviz] | test" >&2; exit 2 ;; esac
+if [ "${2:-}" = "--rviz" ]; then rviz=true; fi
 
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 ws=${DEFORMABLE_SIM_WS:-$HOME/deformable_sim_ws}
@@ -19,7 +24,14 @@ export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
 packages=(
   build-essential cmake libgtest-dev libeigen3-dev libyaml-cpp-dev
   ros-core-dev catkin python3-catkin-pkg python3-rostest rosbash
+  libtf2-ros-dev libstd-srvs-dev libdiagnostic-updater-dev
+  libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  python3-geometry-msgs python3-visualization-msgs python3-std-srvs python3-tf2-msgs
+  python3-tf2-ros python3-diagnostic-msgs
 )
+# rviz for the demo when asked; rviz under Xvfb with imagemagick for the screenshot test.
+if [ "$mode" = test ]; then packages+=(rviz xvfb imagemagick x11-utils); fi
+if [ "$rviz" = true ]; then packages+=(rviz); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -41,8 +53,29 @@ catkin_make -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 -j2 
 set +u; source "$ws/devel/setup.bash"; set -u
 
 if [ "$mode" = demo ]; then
-  echo "== running the default scene (a soft cantilever under gravity, 2 s)"
-  exec rosrun deformable_sim deformable_sim_run "$repo/config/scenes/cantilever.yaml" --steps 200 --quiet
+  export ROSCONSOLE_STDOUT_LINE_BUFFERED=1
+  roslaunch deformable_sim demo.launch rviz:="$rviz" > "$ws/demo.log" 2>&1 &
+  launch=$!
+  trap 'kill -INT $launch 2>/dev/null; wait $launch 2>/dev/null' EXIT
+  cat <<EOF
+== deformable_sim_node is running the built-in default scene: a soft foam cantilever clamped at
+   x = 0, sagging under gravity and pushed back and forth at its tip (roslaunch log: $ws/demo.log).
+   In another terminal (after: source $ws/devel/setup.bash):
+     rostopic echo /deformable_sim/stats                   # solver, energy, real-time factor
+     rostopic echo -n 1 /deformable_sim/state              # every node's position and velocity
+     rostopic pub -1 /deformable_sim/wrench geometry_msgs/WrenchStamped \\
+       '{header: {frame_id: beam/tip}, wrench: {force: {z: -2.0}}}'   # push the tip down
+     rosservice call /deformable_sim/pause                 # pause, step, resume, reset
+     rviz -d $repo/config/deformable_sim.rviz              # or: $0 demo --rviz
+   Live stats (Ctrl-C stops the demo):
+EOF
+  sleep 3
+  if [ -n "${DEFORMABLE_SIM_DEMO_SECONDS:-}" ]; then
+    timeout -s INT "$DEFORMABLE_SIM_DEMO_SECONDS" rosrun deformable_sim print_stats || true
+  else
+    rosrun deformable_sim print_stats
+  fi
+  exit 0
 fi
 
 echo "== running the tests"
