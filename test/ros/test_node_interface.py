@@ -4,9 +4,11 @@ pause / step / resume / reset, fixing and releasing nodes by topic."""
 import math
 import unittest
 
+import dynamic_reconfigure.client
 import rospy
 import rostest
 import tf2_ros
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import Point, Vector3
 from visualization_msgs.msg import Marker
 
@@ -135,6 +137,39 @@ class NodeInterface(unittest.TestCase):
         self.fixed_pub.publish(region)
         self.sim.wait('stats', lambda m: m.bodies[0].fixed_nodes == CLAMPED_NODES)
         self.sim.reset()
+
+    def test_diagnostics_report_the_simulation(self):
+        deadline = rospy.Time.now() + rospy.Duration(10.0)
+        while rospy.Time.now() < deadline:
+            array = rospy.wait_for_message('/diagnostics', DiagnosticArray, timeout=10.0)
+            ours = [s for s in array.status if s.name.endswith('simulation')]
+            if ours:
+                break
+        self.assertTrue(ours)
+        values = {v.key: v.value for v in ours[0].values}
+        self.assertIn(ours[0].level, (DiagnosticStatus.OK, DiagnosticStatus.WARN))
+        self.assertIn('real-time factor', values)
+        self.assertIn('dropped messages', values)
+        self.assertEqual(ours[0].hardware_id, 'deformable_sim')
+
+    def test_live_tuning_stiffens_the_beam_between_steps(self):
+        def sag_after(steps):
+            self.sim.pause()
+            self.sim.reset()
+            self.sim.step(steps)
+            return min(p.z for p in self.sim.state_at(steps).positions) + 0.05
+
+        soft = sag_after(30)
+        client = dynamic_reconfigure.client.Client('/deformable_sim', timeout=10.0)
+        config = client.get_configuration(timeout=10.0)
+        self.assertEqual(config['youngs_modulus'], 1.0e5)  # the scene's value
+        self.assertEqual(config['density'], 100.0)
+        client.update_configuration({'youngs_modulus': 1.0e7})
+        stiff = sag_after(30)  # a reset keeps what was tuned
+        self.assertLess(soft, -0.01)
+        self.assertLess(abs(stiff), 0.1 * abs(soft))
+        client.update_configuration({'youngs_modulus': 1.0e5})
+        self.assertAlmostEqual(sag_after(30), soft, places=9)
 
 
 if __name__ == '__main__':
