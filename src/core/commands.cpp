@@ -136,8 +136,8 @@ int CommandProcessor::apply(const WrenchCommand& command) {
   try {
     distributeWrench(points, weights, command.force, command.torque, active.point, active.forces);
   } catch (const std::invalid_argument& e) {
-    throw CommandError("wrench from '" + command.source + "' on body '" + body.name() + "': " +
-                       e.what());
+    throw CommandError("wrench from '" + command.source + "' on body '" + body.name() +
+                       "': " + e.what());
   }
   const auto previous = wrenches_.find(command.source);
   const int previous_body = previous == wrenches_.end() ? -1 : previous->second.body;
@@ -177,8 +177,8 @@ int CommandProcessor::apply(const FixCommand& command) {
   for (size_t k = 0; k < order.size(); ++k) {
     const Eigen::Vector3d here = body.positions().segment<3>(3 * order[k]);
     targets[k] = !command.targets.empty() ? command.targets[k]
-                 : command.translation   ? Eigen::Vector3d(here + *command.translation)
-                                         : here;
+                 : command.translation    ? Eigen::Vector3d(here + *command.translation)
+                                          : here;
     if (!targets[k].allFinite()) {
       throw CommandError("target of node " + std::to_string(body.mesh().node_numbers[order[k]]) +
                          " has a NaN or infinite value");
@@ -207,7 +207,8 @@ void CommandProcessor::updateExternalForces(int b) {
   f = base_forces_[b];
   for (const auto& [source, wrench] : wrenches_) {
     if (wrench.body != b) continue;
-    for (size_t k = 0; k < wrench.nodes.size(); ++k) f.segment<3>(3 * wrench.nodes[k]) += wrench.forces[k];
+    for (size_t k = 0; k < wrench.nodes.size(); ++k)
+      f.segment<3>(3 * wrench.nodes[k]) += wrench.forces[k];
   }
 }
 

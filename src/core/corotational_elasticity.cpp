@@ -83,8 +83,8 @@ double CorotationalElasticity::elasticEnergy(const Eigen::VectorXd& x) const {
     const Tetrahedron& t = tetrahedra_[e];
     Eigen::Matrix<double, 12, 1> u;
     for (int i = 0; i < 4; ++i) {
-      u.segment<3>(3 * i) = rotations_[e].transpose() * x.segment<3>(3 * t[i]) -
-                            rest_positions_.segment<3>(3 * t[i]);
+      u.segment<3>(3 * i) =
+          rotations_[e].transpose() * x.segment<3>(3 * t[i]) - rest_positions_.segment<3>(3 * t[i]);
     }
     for (int i = 0; i < 4; ++i) {
       for (int j = 0; j < 4; ++j) {

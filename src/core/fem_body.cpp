@@ -226,7 +226,8 @@ StepReport FemBody::step(double dt) {
   // Warm start from the last velocity; constrained nodes move to their targets in this step.
   next_ = v_;
   for (int i = 0; i < numNodes(); ++i) {
-    if (constrained_[i]) next_.segment<3>(3 * i) = (targets_.segment<3>(3 * i) - x_.segment<3>(3 * i)) / h;
+    if (constrained_[i])
+      next_.segment<3>(3 * i) = (targets_.segment<3>(3 * i) - x_.segment<3>(3 * i)) / h;
   }
   report.solve = solve(a, rhs_, next_);
 
@@ -266,8 +267,9 @@ StaticReport FemBody::solveStatic(const StaticSettings& settings) {
       next_ = x_;
       for (int i = 0; i < numNodes(); ++i) {
         if (constrained_[i]) {
-          next_.segment<3>(3 * i) = start.segment<3>(3 * i) +
-                                    fraction * (targets_.segment<3>(3 * i) - start.segment<3>(3 * i));
+          next_.segment<3>(3 * i) =
+              start.segment<3>(3 * i) +
+              fraction * (targets_.segment<3>(3 * i) - start.segment<3>(3 * i));
         }
       }
       report.last_solve = solve(a, rhs_, next_);
@@ -280,10 +282,11 @@ StaticReport FemBody::solveStatic(const StaticSettings& settings) {
                                             : std::min(1.0, 1.25 * relaxation);
       previous_change = change;
       for (int i = 0; i < numNodes(); ++i) {
-        x_.segment<3>(3 * i) = constrained_[i] ? Eigen::Vector3d(next_.segment<3>(3 * i))
-                                               : Eigen::Vector3d(x_.segment<3>(3 * i) +
-                                                                 relaxation * (next_.segment<3>(3 * i) -
-                                                                               x_.segment<3>(3 * i)));
+        x_.segment<3>(3 * i) =
+            constrained_[i]
+                ? Eigen::Vector3d(next_.segment<3>(3 * i))
+                : Eigen::Vector3d(x_.segment<3>(3 * i) +
+                                  relaxation * (next_.segment<3>(3 * i) - x_.segment<3>(3 * i)));
       }
       if (!effects_.warping || report.last_change <= settings.tolerance) break;
     }
@@ -296,17 +299,18 @@ StaticReport FemBody::solveStatic(const StaticSettings& settings) {
   elasticity_.stiffness().multiply(x_, scratch_);
   for (int i = 0; i < numNodes(); ++i) {
     reaction_.segment<3>(3 * i) =
-        constrained_[i] ? Eigen::Vector3d(scratch_.segment<3>(3 * i) +
-                                          elasticity_.forceOffset().segment<3>(3 * i) -
-                                          load.segment<3>(3 * i))
-                        : Eigen::Vector3d::Zero();
+        constrained_[i]
+            ? Eigen::Vector3d(scratch_.segment<3>(3 * i) +
+                              elasticity_.forceOffset().segment<3>(3 * i) - load.segment<3>(3 * i))
+            : Eigen::Vector3d::Zero();
   }
   return report;
 }
 
 double FemBody::kineticEnergy() const {
   double energy = 0.0;
-  for (int i = 0; i < numNodes(); ++i) energy += 0.5 * mass_[i] * v_.segment<3>(3 * i).squaredNorm();
+  for (int i = 0; i < numNodes(); ++i)
+    energy += 0.5 * mass_[i] * v_.segment<3>(3 * i).squaredNorm();
   return energy;
 }
 

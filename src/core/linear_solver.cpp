@@ -17,8 +17,8 @@ void zeroConstrained(const ConstraintMask& constrained, Eigen::VectorXd& v) {
 void keepConstrained(const ConstraintMask& constrained, const Eigen::VectorXd& x,
                      Eigen::VectorXd& v) {
   for (size_t i = 0; i < constrained.size(); ++i) {
-    v.segment<3>(3 * i) = constrained[i] ? Eigen::Vector3d(x.segment<3>(3 * i))
-                                         : Eigen::Vector3d::Zero();
+    v.segment<3>(3 * i) =
+        constrained[i] ? Eigen::Vector3d(x.segment<3>(3 * i)) : Eigen::Vector3d::Zero();
   }
 }
 
@@ -36,8 +36,8 @@ void SystemMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const 
 }
 
 SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const ConstraintMask& constrained,
-                                           const Eigen::VectorXd& b,
-                                           const SolverSettings& settings, Eigen::VectorXd& x) {
+                                           const Eigen::VectorXd& b, const SolverSettings& settings,
+                                           Eigen::VectorXd& x) {
   const int num_nodes = a.stiffness->numBlockRows();
   if (r_.size() != b.size()) {
     r_.resize(b.size());
@@ -131,8 +131,7 @@ void DirectSolver::buildPattern(const BlockSparseMatrix& k) {
 }
 
 SolveReport DirectSolver::solve(const SystemMatrix& a, const ConstraintMask& constrained,
-                                const Eigen::VectorXd& b, bool matrix_changed,
-                                Eigen::VectorXd& x) {
+                                const Eigen::VectorXd& b, bool matrix_changed, Eigen::VectorXd& x) {
   const BlockSparseMatrix& k = *a.stiffness;
   const bool refactor = matrix_changed || !analysed_;
   if (!analysed_) buildPattern(k);
@@ -167,9 +166,9 @@ SolveReport DirectSolver::solve(const SystemMatrix& a, const ConstraintMask& con
   a.multiply(rhs_, product_);
   const Eigen::VectorXd& prescribed = x;
   for (int i = 0; i < k.numBlockRows(); ++i) {
-    rhs_.segment<3>(3 * i) = constrained[i] ? Eigen::Vector3d(prescribed.segment<3>(3 * i))
-                                            : Eigen::Vector3d(b.segment<3>(3 * i) -
-                                                              product_.segment<3>(3 * i));
+    rhs_.segment<3>(3 * i) =
+        constrained[i] ? Eigen::Vector3d(prescribed.segment<3>(3 * i))
+                       : Eigen::Vector3d(b.segment<3>(3 * i) - product_.segment<3>(3 * i));
   }
   const double reference = [&] {
     double sum = 0.0;

@@ -27,10 +27,13 @@ void validate(const LinearElasticMaterial& m) {
 }
 
 double lameLambda(const LinearElasticMaterial& m) {
-  return m.youngs_modulus * m.poisson_ratio / ((1.0 + m.poisson_ratio) * (1.0 - 2.0 * m.poisson_ratio));
+  return m.youngs_modulus * m.poisson_ratio /
+         ((1.0 + m.poisson_ratio) * (1.0 - 2.0 * m.poisson_ratio));
 }
 
-double lameMu(const LinearElasticMaterial& m) { return m.youngs_modulus / (2.0 * (1.0 + m.poisson_ratio)); }
+double lameMu(const LinearElasticMaterial& m) {
+  return m.youngs_modulus / (2.0 * (1.0 + m.poisson_ratio));
+}
 
 Eigen::Matrix<double, 6, 6> elasticityMatrix(const LinearElasticMaterial& m) {
   const double lambda = lameLambda(m);

@@ -6,7 +6,8 @@ namespace deformable_sim::core {
 
 RigidFrame bestFitFrame(const Eigen::VectorXd& x, const Eigen::VectorXd& x0,
                         const std::vector<double>& masses, const std::vector<int>& nodes) {
-  const int count = nodes.empty() ? static_cast<int>(masses.size()) : static_cast<int>(nodes.size());
+  const int count =
+      nodes.empty() ? static_cast<int>(masses.size()) : static_cast<int>(nodes.size());
   auto node = [&](int k) { return nodes.empty() ? k : nodes[k]; };
   RigidFrame frame;
   double total = 0.0;

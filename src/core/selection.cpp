@@ -17,7 +17,8 @@ std::vector<int> select(const Mesh& mesh, const NodeSelection& selection, Positi
       break;
     case NodeSelection::Kind::kBox: {
       const Box& box = selection.box;
-      if (!box.min.allFinite() || !box.max.allFinite() || (box.min.array() > box.max.array()).any()) {
+      if (!box.min.allFinite() || !box.max.allFinite() ||
+          (box.min.array() > box.max.array()).any()) {
         throw std::invalid_argument("box: min must not exceed max on any axis (and be finite)");
       }
       for (int i = 0; i < mesh.numNodes(); ++i) {

@@ -4,8 +4,8 @@
 #include <stdexcept>
 
 #include "deformable_sim/core/loads.h"
-#include "deformable_sim/core/wrench.h"
 #include "deformable_sim/core/selection.h"
+#include "deformable_sim/core/wrench.h"
 
 namespace deformable_sim::core {
 
@@ -41,7 +41,8 @@ void addWrench(FemBody& body, const std::vector<int>& nodes, const LoadSpec& loa
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(key + ": " + e.what());
   }
-  for (size_t k = 0; k < nodes.size(); ++k) body.externalForces().segment<3>(3 * nodes[k]) += forces[k];
+  for (size_t k = 0; k < nodes.size(); ++k)
+    body.externalForces().segment<3>(3 * nodes[k]) += forces[k];
 }
 
 }  // namespace
@@ -52,8 +53,8 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
     throw std::invalid_argument("dt: must be finite and > 0 s");
   }
   if (meshes.size() != spec.bodies.size()) {
-    throw std::invalid_argument("bodies: " + std::to_string(spec.bodies.size()) +
-                                " bodies but " + std::to_string(meshes.size()) + " meshes");
+    throw std::invalid_argument("bodies: " + std::to_string(spec.bodies.size()) + " bodies but " +
+                                std::to_string(meshes.size()) + " meshes");
   }
   bodies_.reserve(spec.bodies.size());
   wrench_radii_.reserve(spec.bodies.size());
@@ -79,8 +80,8 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
       body.addGroup(name, selectSome(body.mesh(), selection, key + ".groups." + name));
     }
     for (size_t k = 0; k < body_spec.fixed.size(); ++k) {
-      body.fixNodes(selectSome(body.mesh(), body_spec.fixed[k],
-                               key + ".fixed[" + std::to_string(k) + "]"));
+      body.fixNodes(
+          selectSome(body.mesh(), body_spec.fixed[k], key + ".fixed[" + std::to_string(k) + "]"));
     }
     const std::vector<Triangle> surface = extractSurface(body.mesh());
     for (size_t k = 0; k < body_spec.loads.size(); ++k) {
@@ -117,7 +118,8 @@ int Simulation::bodyIndex(const std::string& name) const {
 }
 
 void Simulation::setDt(double dt) {
-  if (!(dt > 0.0) || !std::isfinite(dt)) throw std::invalid_argument("dt: must be finite and > 0 s");
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    throw std::invalid_argument("dt: must be finite and > 0 s");
   dt_ = dt;
 }
 

@@ -14,8 +14,9 @@ void nodalStrain(const FemBody& body, std::vector<double>& strain) {
   const std::vector<Tetrahedron>& tetrahedra = body.mesh().tetrahedra;
   for (size_t e = 0; e < tetrahedra.size(); ++e) {
     const Tetrahedron& t = tetrahedra[e];
-    const Eigen::Matrix3d f = deformationGradient(rest[e], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
-                                                  x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
+    const Eigen::Matrix3d f =
+        deformationGradient(rest[e], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
+                            x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
     const Eigen::Matrix3d unrotated = extractRotation(f).transpose() * f;
     const double magnitude =
         (0.5 * (unrotated + unrotated.transpose()) - Eigen::Matrix3d::Identity()).norm();

@@ -319,8 +319,8 @@ class SceneParser {
     checkKeys(node, key, {"nodes", "box", "sphere", "traction", "total_force", "wrench"});
     core::LoadSpec load;
     load.where = parseSelection(node, key);
-    const int kinds = (node["traction"] ? 1 : 0) + (node["total_force"] ? 1 : 0) +
-                      (node["wrench"] ? 1 : 0);
+    const int kinds =
+        (node["traction"] ? 1 : 0) + (node["total_force"] ? 1 : 0) + (node["wrench"] ? 1 : 0);
     if (kinds > 1) fail(node, key, "give one of traction, total_force or wrench");
     if (const YAML::Node wrench = node["wrench"]) {
       expectMap(wrench, key + ".wrench");

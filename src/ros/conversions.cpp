@@ -21,8 +21,9 @@ geometry_msgs::Vector3 toVector3(const Eigen::Vector3d& v) {
 Eigen::Isometry3d toEigen(const geometry_msgs::Transform& t) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.translation() = toEigen(t.translation);
-  pose.linear() =
-      Eigen::Quaterniond(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z).normalized().toRotationMatrix();
+  pose.linear() = Eigen::Quaterniond(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z)
+                      .normalized()
+                      .toRotationMatrix();
   return pose;
 }
 
@@ -78,7 +79,8 @@ core::FixCommand toCommand(const FixedNodes& message, const Eigen::Isometry3d& f
       Eigen::AlignedBox3d box;
       const Eigen::Vector3d lo = toEigen(message.box_min), hi = toEigen(message.box_max);
       if (!lo.allFinite() || !hi.allFinite() || (lo.array() > hi.array()).any()) {
-        throw core::CommandError("box: box_min must not exceed box_max on any axis (and be finite)");
+        throw core::CommandError(
+            "box: box_min must not exceed box_max on any axis (and be finite)");
       }
       for (int corner = 0; corner < 8; ++corner) {
         const Eigen::Vector3d c((corner & 1) ? hi.x() : lo.x(), (corner & 2) ? hi.y() : lo.y(),

@@ -69,18 +69,18 @@ visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::FemBo
   for (size_t b = 0; b < bodies.size(); ++b) {
     const core::FemBody& body = bodies[b];
     const Eigen::VectorXd& x = body.positions();
-    visualization_msgs::Marker fixed = marker(header, body.name() + "/fixed", 0,
-                                              visualization_msgs::Marker::SPHERE_LIST, 0.015,
-                                              colour(0.9f, 0.1f, 0.1f));
+    visualization_msgs::Marker fixed =
+        marker(header, body.name() + "/fixed", 0, visualization_msgs::Marker::SPHERE_LIST, 0.015,
+               colour(0.9f, 0.1f, 0.1f));
     for (int i = 0; i < body.numNodes(); ++i) {
       if (body.isConstrained(i)) fixed.points.push_back(toPoint(x.segment<3>(3 * i)));
     }
     if (!fixed.points.empty()) array.markers.push_back(fixed);
     int id = 0;
     for (const auto& [name, nodes] : body.groups()) {
-      visualization_msgs::Marker group = marker(header, body.name() + "/groups", id++,
-                                                visualization_msgs::Marker::POINTS, 0.01,
-                                                colour(0.1f, 0.3f, 0.9f));
+      visualization_msgs::Marker group =
+          marker(header, body.name() + "/groups", id++, visualization_msgs::Marker::POINTS, 0.01,
+                 colour(0.1f, 0.3f, 0.9f));
       for (int i : nodes) group.points.push_back(toPoint(x.segment<3>(3 * i)));
       array.markers.push_back(group);
     }
@@ -88,8 +88,8 @@ visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::FemBo
   int id = 0;
   for (const auto& [source, wrench] : commands.activeWrenches()) {
     if (wrench.force.isZero(0.0)) continue;
-    visualization_msgs::Marker arrow =
-        marker(header, "wrenches", id++, visualization_msgs::Marker::ARROW, 0.0, colour(0.1f, 0.8f, 0.2f));
+    visualization_msgs::Marker arrow = marker(
+        header, "wrenches", id++, visualization_msgs::Marker::ARROW, 0.0, colour(0.1f, 0.8f, 0.2f));
     arrow.scale.x = 0.01;  // shaft diameter
     arrow.scale.y = 0.02;  // head diameter
     arrow.points.push_back(toPoint(wrench.point));

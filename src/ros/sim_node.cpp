@@ -59,8 +59,8 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
   applied_config_.solver_max_iterations = first.solverSettings().max_iterations;
   applied_config_.rate = rate_hz_;
   scene_config_ = applied_config_;
-  reconfigure_ = std::make_unique<dynamic_reconfigure::Server<SimConfig>>(reconfigure_mutex_,
-                                                                         private_node);
+  reconfigure_ =
+      std::make_unique<dynamic_reconfigure::Server<SimConfig>>(reconfigure_mutex_, private_node);
   SimConfig initial = applied_config_;
   reconfigure_->updateConfig(initial);
   reconfigure_->setCallback([this](SimConfig& config, uint32_t) { onReconfigure(config); });
@@ -127,7 +127,8 @@ void SimNode::buildSimulation() {
   for (const std::string& w : warnings) ROS_WARN("%s", w.c_str());
   commands_ = std::make_unique<core::CommandProcessor>(*sim_, limits_);
   surfaces_.clear();
-  for (const core::FemBody& body : sim_->bodies()) surfaces_.push_back(core::extractSurface(body.mesh()));
+  for (const core::FemBody& body : sim_->bodies())
+    surfaces_.push_back(core::extractSurface(body.mesh()));
   wrench_times_.clear();
   sim_time_samples_.clear();
   reports_.assign(sim_->bodies().size(), core::StepReport{});
@@ -156,7 +157,8 @@ void SimNode::onTimer(const ros::TimerEvent&) {
     sim_time_samples_.pop_front();
   }
   const double elapsed = (now - sim_time_samples_.front().first).toSec();
-  real_time_factor_ = elapsed > 0.0 ? (sim_->time() - sim_time_samples_.front().second) / elapsed : 0.0;
+  real_time_factor_ =
+      elapsed > 0.0 ? (sim_->time() - sim_time_samples_.front().second) / elapsed : 0.0;
 
   publishState();
   publishFrames();
@@ -165,7 +167,8 @@ void SimNode::onTimer(const ros::TimerEvent&) {
     publishMarkers();
     last_markers_ = now;
   }
-  if (last_stats_.isZero() || (now - last_stats_).toSec() >= 1.0 / stats_rate_hz_ || now < last_stats_) {
+  if (last_stats_.isZero() || (now - last_stats_).toSec() >= 1.0 / stats_rate_hz_ ||
+      now < last_stats_) {
     publishStats();
     last_stats_ = now;
   }
@@ -274,7 +277,8 @@ bool SimNode::resolveFrame(const std::string& frame_id, FrameTarget& target,
     own += (own.empty() ? "" : ", ") + name;
     if (frame == name) {
       target.body = static_cast<int>(b);
-      target.pose = toPose(core::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses()));
+      target.pose =
+          toPose(core::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses()));
       return true;
     }
     if (frame.rfind(name + "/", 0) == 0) {
@@ -317,8 +321,9 @@ void SimNode::onWrench(const geometry_msgs::WrenchStamped::ConstPtr& message) {
   const std::string topic = "~wrench";
   const std::string frame = withoutLeadingSlash(message->header.frame_id);
   if (frame.empty()) {
-    return refuse(topic, "header.frame_id is empty: name a body, a node group (<body>/<group>) "
-                         "or a tf frame");
+    return refuse(topic,
+                  "header.frame_id is empty: name a body, a node group (<body>/<group>) "
+                  "or a tf frame");
   }
   core::WrenchCommand command;
   command.source = frame;
@@ -412,14 +417,16 @@ bool SimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& 
 
 bool SimNode::onPause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   response.success = true;
-  response.message = paused_ ? "already paused" : "paused at step " + std::to_string(sim_->stepCount());
+  response.message =
+      paused_ ? "already paused" : "paused at step " + std::to_string(sim_->stepCount());
   paused_ = true;
   return true;
 }
 
 bool SimNode::onResume(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   response.success = true;
-  response.message = paused_ ? "resumed at step " + std::to_string(sim_->stepCount()) : "not paused";
+  response.message =
+      paused_ ? "resumed at step " + std::to_string(sim_->stepCount()) : "not paused";
   paused_ = false;
   return true;
 }
@@ -455,8 +462,10 @@ void SimNode::onReconfigure(SimConfig& config) {
         config.poisson_ratio != before.poisson_ratio || config.density != before.density) {
       for (core::FemBody* body : bodies) {
         core::LinearElasticMaterial material = body->material();
-        if (config.youngs_modulus != before.youngs_modulus) material.youngs_modulus = config.youngs_modulus;
-        if (config.poisson_ratio != before.poisson_ratio) material.poisson_ratio = config.poisson_ratio;
+        if (config.youngs_modulus != before.youngs_modulus)
+          material.youngs_modulus = config.youngs_modulus;
+        if (config.poisson_ratio != before.poisson_ratio)
+          material.poisson_ratio = config.poisson_ratio;
         if (config.density != before.density) material.density = config.density;
         body->setMaterial(material);
       }

@@ -4,11 +4,11 @@
 
 #include <Eigen/Geometry>
 
+#include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/commands.h"
 #include "deformable_sim/core/default_scene.h"
 #include "deformable_sim/core/rigid_frame.h"
 #include "deformable_sim/core/simulation.h"
-#include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/wrench.h"
 #include "deformable_sim/io/scene_file.h"
 
@@ -67,14 +67,17 @@ TEST(Wrench, CollinearNodesCarryBendingButNotTwist) {
 TEST(RigidFrame, RecoversARigidMotionAndIsIdentityAtRest) {
   dc::Simulation sim = makeDefault();
   const dc::FemBody& body = sim.bodies()[0];
-  const dc::RigidFrame rest = dc::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses());
+  const dc::RigidFrame rest =
+      dc::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses());
   EXPECT_TRUE(rest.rotation.isApprox(Eigen::Matrix3d::Identity(), 1e-12));
   EXPECT_TRUE(rest.origin.isApprox(Eigen::Vector3d(0.25, 0, 0), 1e-12));
-  const Eigen::Matrix3d q = Eigen::AngleAxisd(2.5, Eigen::Vector3d(1, 2, -1).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d q =
+      Eigen::AngleAxisd(2.5, Eigen::Vector3d(1, 2, -1).normalized()).toRotationMatrix();
   const Eigen::Vector3d t(0.3, -1, 2);
   Eigen::VectorXd moved = body.restPositions();
   for (int i = 0; i < body.numNodes(); ++i) {
-    moved.segment<3>(3 * i) = q * (body.restPositions().segment<3>(3 * i) - rest.origin) + rest.origin + t;
+    moved.segment<3>(3 * i) =
+        q * (body.restPositions().segment<3>(3 * i) - rest.origin) + rest.origin + t;
   }
   const dc::RigidFrame frame = dc::bestFitFrame(moved, body.restPositions(), body.nodalMasses());
   EXPECT_TRUE(frame.rotation.isApprox(q, 1e-12));

@@ -35,7 +35,8 @@ Eigen::Vector3d total(const Eigen::VectorXd& stacked) {
 
 Eigen::Vector3d momentum(const dc::FemBody& body) {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (int i = 0; i < body.numNodes(); ++i) p += body.nodalMasses()[i] * body.velocities().segment<3>(3 * i);
+  for (int i = 0; i < body.numNodes(); ++i)
+    p += body.nodalMasses()[i] * body.velocities().segment<3>(3 * i);
   return p;
 }
 
@@ -52,7 +53,8 @@ TEST(FemBody, FallsFreelyWithExactlyGravitysAcceleration) {
     // Implicit Euler with a uniform field: v_n = n h g, x_n = x0 + h^2 g n (n + 1) / 2.
     for (int i = 0; i < body.numNodes(); ++i) {
       EXPECT_NEAR((body.velocities().segment<3>(3 * i) - 50 * dt * g).norm(), 0.0, 1e-9);
-      const Eigen::Vector3d drop = body.positions().segment<3>(3 * i) - body.restPositions().segment<3>(3 * i);
+      const Eigen::Vector3d drop =
+          body.positions().segment<3>(3 * i) - body.restPositions().segment<3>(3 * i);
       EXPECT_NEAR((drop - dt * dt * g * 50 * 51 / 2).norm(), 0.0, 1e-9);
     }
   }
@@ -95,7 +97,8 @@ TEST(FemBody, ClampedBeamSettlesAndItsReactionsCarryItsWeight) {
     for (double m : body.nodalMasses()) weight += m * 9.81;
     EXPECT_LT(body.kineticEnergy(), 1e-8);
     // At rest the clamp carries the whole weight.
-    EXPECT_NEAR((total(body.reactionForces()) + weight * g.normalized()).norm(), 0.0, 1e-3 * weight);
+    EXPECT_NEAR((total(body.reactionForces()) + weight * g.normalized()).norm(), 0.0,
+                1e-3 * weight);
     for (int i : clamp) {
       EXPECT_EQ((body.positions() - body.restPositions()).segment<3>(3 * i).norm(), 0.0);
     }
@@ -140,7 +143,8 @@ TEST(FemBody, ConjugateGradientAndDirectSolversAgree) {
     EXPECT_GT(ra.solve.iterations, 0);
     EXPECT_LT(rb.solve.relative_residual, 1e-10);
   }
-  EXPECT_LT((a.positions() - b.positions()).norm(), 1e-8 * (b.positions() - b.restPositions()).norm());
+  EXPECT_LT((a.positions() - b.positions()).norm(),
+            1e-8 * (b.positions() - b.restPositions()).norm());
 }
 
 TEST(FemBody, FixingAndReleasingAtRunTimeKeepsThePattern) {
@@ -166,13 +170,15 @@ TEST(FemBody, TargetsDragTheNodesExactlyThere) {
   dc::FemBody body = makeBeam(true, std::nullopt);
   const std::vector<int> clamp = clampedEnd(body);
   std::vector<Eigen::Vector3d> targets;
-  for (int i : clamp) targets.push_back(body.positions().segment<3>(3 * i) + Eigen::Vector3d(0, 0, 0.1));
+  for (int i : clamp)
+    targets.push_back(body.positions().segment<3>(3 * i) + Eigen::Vector3d(0, 0, 0.1));
   body.setNodeTargets(clamp, targets);
   body.step(0.01);
   for (size_t k = 0; k < clamp.size(); ++k) {
     EXPECT_NEAR((body.positions().segment<3>(3 * clamp[k]) - targets[k]).norm(), 0.0, 1e-12);
   }
-  EXPECT_THROW(body.setNodeTargets({clamp[0]}, {Eigen::Vector3d(NAN, 0, 0)}), std::invalid_argument);
+  EXPECT_THROW(body.setNodeTargets({clamp[0]}, {Eigen::Vector3d(NAN, 0, 0)}),
+               std::invalid_argument);
   EXPECT_THROW(body.fixNodes({body.numNodes()}), std::invalid_argument);
 }
 
@@ -203,8 +209,9 @@ TEST(FemBody, RejectsBadMeshesAndSettings) {
   }
   dc::SolverSettings bad;
   bad.tolerance = 0.0;
-  EXPECT_THROW(dc::FemBody("cube", dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1}), kSoft, {}, bad),
-               std::invalid_argument);
+  EXPECT_THROW(
+      dc::FemBody("cube", dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1}), kSoft, {}, bad),
+      std::invalid_argument);
   EXPECT_THROW(dc::FemBody("cube", dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1}),
                            dc::LinearElasticMaterial{1e6, 0.5, 1000}, {}, {}),
                std::invalid_argument);

@@ -14,7 +14,8 @@ TEST(BoxMesh, CountsVolumesAndOrientation) {
   const dc::Mesh mesh = dc::makeBoxMesh({0, 0, 0}, {1.0, 0.5, 0.25}, {4, 2, 3});
   EXPECT_EQ(mesh.numNodes(), 5 * 3 * 4);
   EXPECT_EQ(mesh.numTetrahedra(), 6 * 4 * 2 * 3);
-  for (const dc::Tetrahedron& t : mesh.tetrahedra) EXPECT_GT(dc::signedVolume(mesh.positions, t), 0.0);
+  for (const dc::Tetrahedron& t : mesh.tetrahedra)
+    EXPECT_GT(dc::signedVolume(mesh.positions, t), 0.0);
   EXPECT_NEAR(dc::totalVolume(mesh), 0.125, 1e-15);
   EXPECT_THROW(dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {0, 1, 1}), std::invalid_argument);
 }
@@ -74,8 +75,8 @@ TEST(Loads, TractionGivesConsistentNodalForcesWithTheRightResultant) {
   tip.kind = dc::NodeSelection::Kind::kBox;
   tip.box = {{0.999, -1, -1}, {1.001, 1, 1}};
   Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh.numNodes());
-  const double area = dc::addTractionLoad(mesh, dc::extractSurface(mesh), dc::selectNodes(mesh, tip),
-                                          Eigen::Vector3d(0, 0, -2.5), f);
+  const double area = dc::addTractionLoad(
+      mesh, dc::extractSurface(mesh), dc::selectNodes(mesh, tip), Eigen::Vector3d(0, 0, -2.5), f);
   EXPECT_NEAR(area, 0.01, 1e-15);
   const Eigen::Vector3d resultant = f.reshaped(3, mesh.numNodes()).rowwise().sum();
   EXPECT_NEAR((resultant - Eigen::Vector3d(0, 0, -0.025)).norm(), 0.0, 1e-15);

@@ -1,6 +1,8 @@
 // The solver against an independent FEM code: the cantilever of ../shared/reference, solved by
-// CalculiX on the very same meshes (see its README), run through deformable_sim_run as a user would.
+// CalculiX on the very same meshes (see its README), run through deformable_sim_run as a user
+// would.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <Eigen/Core>
 #include <cmath>
@@ -11,7 +13,6 @@
 #include <map>
 #include <regex>
 #include <sstream>
-#include <sys/wait.h>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -66,18 +67,18 @@ RunResult runCantilever(const std::string& mesh, double traction_z, bool warping
   std::ofstream yaml(scene);
   yaml.precision(17);
   yaml << "effects: {warping: " << (warping ? "true" : "false") << "}\n"
-                       << "solver: {method: direct}\n" << extra_yaml
-                       << "bodies:\n"
-                       << "  - name: beam\n"
-                       << "    mesh: " << kReference << "/meshes/" << mesh << "/" << mesh << ".msh\n"
-                       << "    material: {youngs_modulus: 1.0e6, poisson_ratio: 0.3, density: 1000}\n"
-                       << "    fixed: [{box: {min: [-1.0e-9, -1, -1], max: [1.0e-9, 1, 1]}}]\n"
-                       << "    loads: [{box: {min: [0.999999999, -1, -1], max: [1.000000001, 1, 1]},"
-                       << " traction: [0, 0, " << traction_z << "]}]\n";
+       << "solver: {method: direct}\n"
+       << extra_yaml << "bodies:\n"
+       << "  - name: beam\n"
+       << "    mesh: " << kReference << "/meshes/" << mesh << "/" << mesh << ".msh\n"
+       << "    material: {youngs_modulus: 1.0e6, poisson_ratio: 0.3, density: 1000}\n"
+       << "    fixed: [{box: {min: [-1.0e-9, -1, -1], max: [1.0e-9, 1, 1]}}]\n"
+       << "    loads: [{box: {min: [0.999999999, -1, -1], max: [1.000000001, 1, 1]},"
+       << " traction: [0, 0, " << traction_z << "]}]\n";
   yaml.close();
   RunResult result;
-  const std::string command =
-      std::string(DEFORMABLE_SIM_RUN) + " " + scene.string() + " --static --out " + csv.string() + " 2>&1";
+  const std::string command = std::string(DEFORMABLE_SIM_RUN) + " " + scene.string() +
+                              " --static --out " + csv.string() + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   char buffer[512];
   while (fgets(buffer, sizeof buffer, pipe)) result.output += buffer;
@@ -151,17 +152,20 @@ TEST_P(LargeDeflection, WarpingFollowsTheNonlinearReference) {
   const std::map<long, double> weights = readTipWeights(mesh);
   for (const double alpha : {1.0, 2.0}) {
     const double load = alpha * 1.0e6 * (0.1 * 0.1 * 0.1 * 0.1 / 12.0);  // P = alpha EI / L^2
-    const RunResult run = runCantilever(mesh, -load / 0.01, true,
-                                        "static: {load_steps: 4, max_iterations: 500, tolerance: 1.0e-9}\n");
+    const RunResult run =
+        runCantilever(mesh, -load / 0.01, true,
+                      "static: {load_steps: 4, max_iterations: 500, tolerance: 1.0e-9}\n");
     ASSERT_EQ(run.exit_code, 0) << run.output;
     Eigen::Vector3d tip = Eigen::Vector3d::Zero();
     for (const auto& [node, w] : weights) tip += w * run.displacement.at(node);
     const std::string param = alpha == 1.0 ? "alpha=1" : "alpha=2";
     const double uz = referenceValue(mesh, param, "tip_uz_mean_area");
     const double ux = referenceValue(mesh, param, "tip_ux_mean_area");
-    EXPECT_NEAR(tip.z() / uz, 1.0, 0.03) << mesh << " " << param << ": uz " << tip.z() << " vs " << uz;
+    EXPECT_NEAR(tip.z() / uz, 1.0, 0.03)
+        << mesh << " " << param << ": uz " << tip.z() << " vs " << uz;
     // The tip also moves towards the clamp, which linear FEM cannot show.
-    EXPECT_NEAR(tip.x() / ux, 1.0, 0.10) << mesh << " " << param << ": ux " << tip.x() << " vs " << ux;
+    EXPECT_NEAR(tip.x() / ux, 1.0, 0.10)
+        << mesh << " " << param << ": ux " << tip.x() << " vs " << ux;
     EXPECT_NEAR(reactionSum(run.output).z(), load, 1e-6 * load);
   }
 }

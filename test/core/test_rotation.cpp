@@ -33,8 +33,9 @@ TEST(Rotation, RecoversTheRotationOfAStretchedRotatedElement) {
 }
 
 TEST(Rotation, IdentityAtRest) {
-  EXPECT_NEAR((dc::extractRotation(Eigen::Matrix3d::Identity()) - Eigen::Matrix3d::Identity()).norm(),
-              0.0, 1e-14);
+  EXPECT_NEAR(
+      (dc::extractRotation(Eigen::Matrix3d::Identity()) - Eigen::Matrix3d::Identity()).norm(), 0.0,
+      1e-14);
 }
 
 TEST(Rotation, FlatElementsGetAProperRotation) {

@@ -1,8 +1,8 @@
 // Property tests of the linear tetrahedron and of warped-stiffness assembly.
 #include <gtest/gtest.h>
 
-#include <Eigen/Geometry>
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 
 #include "deformable_sim/core/box_mesh.h"
@@ -23,9 +23,7 @@ dc::Mesh singleTetrahedron() {
   return mesh;
 }
 
-dc::Mesh smallBlock() {
-  return dc::makeBoxMesh({0.0, 0.0, 0.0}, {0.3, 0.2, 0.1}, {3, 2, 1});
-}
+dc::Mesh smallBlock() { return dc::makeBoxMesh({0.0, 0.0, 0.0}, {0.3, 0.2, 0.1}, {3, 2, 1}); }
 
 Eigen::VectorXd stacked(const dc::Mesh& mesh) {
   Eigen::VectorXd x(3 * mesh.numNodes());
@@ -132,8 +130,8 @@ TEST(Tetrahedron, RotatingADeformedBodyRotatesItsForcesOnlyWithWarping) {
   dc::CorotationalElasticity elasticity(mesh, kMaterial);
   const Eigen::VectorXd x0 = stacked(mesh);
   const Eigen::VectorXd x = x0 + deformation(x0, 0.2);
-  const Eigen::Matrix3d q = Eigen::AngleAxisd(1.2, Eigen::Vector3d(0.2, 1.0, -0.4).normalized())
-                                .toRotationMatrix();
+  const Eigen::Matrix3d q =
+      Eigen::AngleAxisd(1.2, Eigen::Vector3d(0.2, 1.0, -0.4).normalized()).toRotationMatrix();
   const Eigen::Vector3d shift(0.5, -1.0, 2.0);
   Eigen::VectorXd qx(x.size());
   for (int i = 0; i < mesh.numNodes(); ++i) qx.segment<3>(3 * i) = q * x.segment<3>(3 * i) + shift;
@@ -157,14 +155,15 @@ TEST(Tetrahedron, StiffnessIsMinusTheForceDerivative) {
   const dc::Mesh mesh = smallBlock();
   dc::CorotationalElasticity elasticity(mesh, kMaterial);
   const Eigen::VectorXd x0 = stacked(mesh);
-  const Eigen::VectorXd direction = deformation(x0, 1.0) + Eigen::VectorXd::LinSpaced(x0.size(), -0.1, 0.1);
+  const Eigen::VectorXd direction =
+      deformation(x0, 1.0) + Eigen::VectorXd::LinSpaced(x0.size(), -0.1, 0.1);
   const double eps = 1e-6;
   // Linear FEM: exact everywhere. Warped: at rest (where the rotation's derivative does not enter).
   for (bool warping : {false, true}) {
     const Eigen::VectorXd base = warping ? x0 : Eigen::VectorXd(x0 + deformation(x0, 0.3));
-    const Eigen::VectorXd df =
-        (force(elasticity, base + eps * direction, warping) -
-         force(elasticity, base - eps * direction, warping)) / (2.0 * eps);
+    const Eigen::VectorXd df = (force(elasticity, base + eps * direction, warping) -
+                                force(elasticity, base - eps * direction, warping)) /
+                               (2.0 * eps);
     elasticity.update(base, warping);
     Eigen::VectorXd k_direction(x0.size());
     elasticity.stiffness().multiply(direction, k_direction);

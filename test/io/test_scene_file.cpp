@@ -78,7 +78,8 @@ TEST(SceneFile, ReadsEveryKey) {
 
 TEST(SceneFile, EffectsNotNamedAreOff) {
   const dc::SceneSpec spec = dio::parseScene(
-      "bodies: [{name: b, mesh: {box: {min: [0,0,0], max: [1,1,1], cells: [1,1,1]}}, material: {}}]",
+      "bodies: [{name: b, mesh: {box: {min: [0,0,0], max: [1,1,1], cells: [1,1,1]}}, material: "
+      "{}}]",
       "minimal.yaml", ".");
   EXPECT_FALSE(spec.effects.gravity.has_value());
   EXPECT_FALSE(spec.effects.warping);
@@ -127,8 +128,9 @@ TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
 }
 
 TEST(SceneFile, EmptyOrUnknownSelectionsAreErrorsNamingTheKey) {
-  EXPECT_EQ(errorOf(replaced(kScene, "{nodes: [13]}", "{box: {min: [5, 5, 5], max: [6, 6, 6]}}"), true),
-            "bodies[0].fixed[1]: selects no node");
+  EXPECT_EQ(
+      errorOf(replaced(kScene, "{nodes: [13]}", "{box: {min: [5, 5, 5], max: [6, 6, 6]}}"), true),
+      "bodies[0].fixed[1]: selects no node");
   EXPECT_EQ(errorOf(replaced(kScene, "{nodes: [13]}", "{nodes: [13, 100000]}"), true),
             "bodies[0].fixed[1]: node 100000 is not a node of the mesh");
   // A traction needs whole boundary faces inside its selection.
@@ -170,6 +172,8 @@ TEST(SceneFile, GroupsAndWrenchLoads) {
   EXPECT_TRUE(net.isApprox(Eigen::Vector3d(0, 1, -0.025 - 0.01), 1e-12)) << net.transpose();
   EXPECT_EQ(errorOf(replaced(yaml, "torque: [0.3, 0, 0]", "torque: [0.3, 0]")),
             "test.yaml:15: bodies[0].loads[0].wrench.torque: expected a list of 3 numbers");
-  EXPECT_EQ(errorOf(replaced(yaml, "one: {nodes: [7]}", "one: {sphere: {center: [5, 5, 5], radius: 0.1}}"), true),
+  EXPECT_EQ(errorOf(replaced(yaml, "one: {nodes: [7]}",
+                             "one: {sphere: {center: [5, 5, 5], radius: 0.1}}"),
+                    true),
             "bodies[0].groups.one: selects no node");
 }

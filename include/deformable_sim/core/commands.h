@@ -1,7 +1,7 @@
 // What a user asks of a running simulation — push on nodes, fix or drag or release them — as plain
 // data, and the processor that checks each command and applies it between steps. The ROS layer
-// turns messages into these (resolving tf frames to world coordinates); the checks live here so they
-// are tested without a roscore.
+// turns messages into these (resolving tf frames to world coordinates); the checks live here so
+// they are tested without a roscore.
 #pragma once
 
 #include <Eigen/Core>
@@ -59,8 +59,8 @@ struct FixCommand {
 
 /// Bounds beyond which a command is refused as absurd rather than applied.
 struct CommandLimits {
-  double max_force = 1.0e4;        ///< N, magnitude of a wrench's force
-  double max_torque = 1.0e4;       ///< N m
+  double max_force = 1.0e4;           ///< N, magnitude of a wrench's force
+  double max_torque = 1.0e4;          ///< N m
   double max_target_distance = 10.0;  ///< m, how far a target may be from the node now
 };
 

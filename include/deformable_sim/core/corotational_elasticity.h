@@ -31,13 +31,14 @@ class CorotationalElasticity {
   /// elements (det F <= 0). Allocates nothing.
   int update(const Eigen::VectorXd& x, bool warping);
 
-  const BlockSparseMatrix& stiffness() const { return stiffness_; }  ///< K', N/m
+  const BlockSparseMatrix& stiffness() const { return stiffness_; }     ///< K', N/m
   const Eigen::VectorXd& forceOffset() const { return force_offset_; }  ///< f0', N
   const std::vector<Eigen::Matrix3d>& rotations() const { return rotations_; }
   const std::vector<TetrahedronRest>& restData() const { return rest_; }
 
   /// f += -(K' x + f0') with the K' and f0' of the last update. `scratch` has size 3n.
-  void addElasticForces(const Eigen::VectorXd& x, Eigen::VectorXd& f, Eigen::VectorXd& scratch) const;
+  void addElasticForces(const Eigen::VectorXd& x, Eigen::VectorXd& f,
+                        Eigen::VectorXd& scratch) const;
 
   /// Elastic energy with the rotations of the last update: sum_e 1/2 u_e^T Ke u_e with
   /// u_e,i = Re^T x_i - x0_i, J.

@@ -32,9 +32,9 @@ struct BodyEffects {
 
 /// Quasi-static solve: load ramp and, with warping, the corotational fixed-point iteration.
 struct StaticSettings {
-  int load_steps = 1;          ///< loads (and prescribed motion) ramped in this many equal steps
-  int max_iterations = 200;    ///< corotational iterations per load step
-  double tolerance = 1.0e-8;   ///< stop when |dx| <= tolerance * |x - x0|
+  int load_steps = 1;         ///< loads (and prescribed motion) ramped in this many equal steps
+  int max_iterations = 200;   ///< corotational iterations per load step
+  double tolerance = 1.0e-8;  ///< stop when |dx| <= tolerance * |x - x0|
 };
 
 struct StepReport {

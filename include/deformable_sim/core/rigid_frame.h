@@ -9,9 +9,9 @@ namespace deformable_sim::core {
 
 /// Maps rest coordinates to current ones: x ≈ origin + rotation (x0 − rest_origin).
 struct RigidFrame {
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();         ///< current mass centroid c, m
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();   ///< proper rotation
-  Eigen::Vector3d rest_origin = Eigen::Vector3d::Zero();    ///< rest mass centroid c0, m
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();        ///< current mass centroid c, m
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  ///< proper rotation
+  Eigen::Vector3d rest_origin = Eigen::Vector3d::Zero();   ///< rest mass centroid c0, m
 };
 
 /// Best-fit frame of the nodes `nodes` (all nodes when empty) of stacked 3n positions x, rest

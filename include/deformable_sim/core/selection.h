@@ -16,7 +16,7 @@ struct Box {
 
 struct Sphere {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  ///< m
-  double radius = 0.0;                                ///< m, >= 0
+  double radius = 0.0;                               ///< m, >= 0
 };
 
 struct NodeSelection {

@@ -1,4 +1,5 @@
-// A scene made runnable: its bodies, built from a SceneSpec and one mesh per body, stepped together.
+// A scene made runnable: its bodies, built from a SceneSpec and one mesh per body, stepped
+// together.
 #pragma once
 
 #include <string>

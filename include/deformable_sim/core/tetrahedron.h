@@ -15,10 +15,10 @@ using ElementBlocks = std::array<std::array<Eigen::Matrix3d, 4>, 4>;
 
 /// Rest-shape data of one linear tetrahedron.
 struct TetrahedronRest {
-  double volume = 0.0;                    ///< V, m^3 (positive for a valid element)
-  Eigen::Matrix3d rest_edges_inverse;     ///< Dm^-1, Dm = [X1-X0, X2-X0, X3-X0], 1/m
+  double volume = 0.0;                       ///< V, m^3 (positive for a valid element)
+  Eigen::Matrix3d rest_edges_inverse;        ///< Dm^-1, Dm = [X1-X0, X2-X0, X3-X0], 1/m
   std::array<Eigen::Vector3d, 4> gradients;  ///< grad N_i, constant over the element, 1/m
-  ElementBlocks stiffness;                ///< Ke = V B^T D B, N/m
+  ElementBlocks stiffness;                   ///< Ke = V B^T D B, N/m
 };
 
 /// Rest data of the tetrahedron with rest corners x[0..3]. The caller guarantees positive volume

@@ -1,11 +1,12 @@
 // Between ROS messages and the core's Eigen types and commands. No logging, no node handles.
 #pragma once
 
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 #include <geometry_msgs/Point.h>
 #include <geometry_msgs/Transform.h>
 #include <geometry_msgs/Vector3.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "deformable_sim/BodyState.h"
 #include "deformable_sim/FixedNodes.h"

@@ -1,12 +1,12 @@
 // rviz markers of a body: its surface as a triangle list, and what acts on it.
 #pragma once
 
-#include <string>
-#include <vector>
-
 #include <std_msgs/Header.h>
 #include <visualization_msgs/Marker.h>
 #include <visualization_msgs/MarkerArray.h>
+
+#include <string>
+#include <vector>
 
 #include "deformable_sim/core/commands.h"
 #include "deformable_sim/core/fem_body.h"

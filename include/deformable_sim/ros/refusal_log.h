@@ -2,11 +2,11 @@
 // topic (at most one a second each) and say how many were refused since the previous warning.
 #pragma once
 
+#include <ros/time.h>
+
 #include <cstdint>
 #include <map>
 #include <string>
-
-#include <ros/time.h>
 
 namespace deformable_sim::ros_layer {
 

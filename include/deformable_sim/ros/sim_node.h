@@ -3,13 +3,6 @@
 // this class turns messages into core commands and results into messages.
 #pragma once
 
-#include <deque>
-#include <map>
-#include <memory>
-#include <string>
-#include <vector>
-
-#include <Eigen/Geometry>
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <dynamic_reconfigure/server.h>
 #include <geometry_msgs/WrenchStamped.h>
@@ -19,6 +12,13 @@
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/Marker.h>
+
+#include <Eigen/Geometry>
+#include <deque>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "deformable_sim/BodyState.h"
 #include "deformable_sim/FixedNodes.h"
@@ -43,8 +43,8 @@ class SimNode {
   /// Where a frame named in a message is, and what of the simulation it names.
   struct FrameTarget {
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< in world_frame
-    int body = -1;       ///< a body's frame or one of its groups' frames; -1 for other frames
-    std::string group;   ///< the group, when the frame is a group's
+    int body = -1;      ///< a body's frame or one of its groups' frames; -1 for other frames
+    std::string group;  ///< the group, when the frame is a group's
   };
 
   void readParameters(ros::NodeHandle& private_node);
