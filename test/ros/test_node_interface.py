@@ -9,7 +9,7 @@ import rospy
 import rostest
 import tf2_ros
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
-from geometry_msgs.msg import Point, Vector3
+from geometry_msgs.msg import Point, TransformStamped, Vector3, WrenchStamped
 from visualization_msgs.msg import Marker
 
 from deformable_sim.msg import FixedNodes
@@ -136,6 +136,41 @@ class NodeInterface(unittest.TestCase):
         region.action = FixedNodes.RELEASE
         self.fixed_pub.publish(region)
         self.sim.wait('stats', lambda m: m.bodies[0].fixed_nodes == CLAMPED_NODES)
+        self.sim.reset()
+
+    def test_wrench_in_another_tf_frame_acts_on_the_nodes_near_its_origin(self):
+        # A "finger" frame 1 cm beyond the free end, turned 90 degrees about x.
+        broadcaster = tf2_ros.StaticTransformBroadcaster()
+        finger = TransformStamped()
+        finger.header.stamp = rospy.Time.now()
+        finger.header.frame_id = 'world'
+        finger.child_frame_id = 'finger'
+        finger.transform.translation.x = 0.51
+        finger.transform.rotation.x = math.sqrt(0.5)
+        finger.transform.rotation.w = math.sqrt(0.5)
+        broadcaster.sendTransform(finger)
+        publisher = rospy.Publisher('/deformable_sim/wrench', WrenchStamped, queue_size=10)
+        connected(publisher)
+        def tip_height_after_20_steps():
+            self.sim.step(20)
+            return max(p.z for p in self.sim.state_at(20).positions if p.x > 0.45)
+
+        self.sim.pause()
+        self.sim.reset()
+        sagging = tip_height_after_20_steps()
+        self.sim.reset()
+        rospy.sleep(0.5)  # the static transform reaches the node's tf buffer
+        push = WrenchStamped()
+        push.header.frame_id = 'finger'
+        push.wrench.force.y = 1.0  # the finger's y is the world's z
+        publisher.publish(push)
+        stats = self.sim.wait('stats', lambda m: m.bodies[0].applied_wrenches == 1)
+        self.assertEqual(stats.dropped_messages, 0, stats.last_refusal)
+        # Pushed up against gravity: the end sags less (by about 2.5 cm after 0.2 s).
+        self.assertGreater(tip_height_after_20_steps(), sagging + 0.01)
+        push.wrench.force.y = 0.0
+        publisher.publish(push)
+        self.sim.wait('stats', lambda m: m.bodies[0].applied_wrenches == 0)
         self.sim.reset()
 
     def test_diagnostics_report_the_simulation(self):

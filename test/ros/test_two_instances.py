@@ -6,6 +6,7 @@ import unittest
 import rospy
 import rostest
 import tf2_ros
+from visualization_msgs.msg import Marker
 
 from sim_client import SimClient
 
@@ -23,6 +24,12 @@ class TwoInstances(unittest.TestCase):
         self.assertAlmostEqual(beam.transform.translation.x, 0.25, delta=0.01)
         self.assertAlmostEqual(sponge.transform.translation.y, 0.6, delta=0.01)
         buffer.lookup_transform('world', 'right/sponge/top', rospy.Time(0), rospy.Duration(5.0))
+        # The sponge's scene asks for stress colouring: a colour per vertex.
+        mesh = rospy.wait_for_message('/right/deformable_sim/mesh', Marker, timeout=10.0)
+        self.assertEqual(len(mesh.colors), len(mesh.points))
+        self.assertEqual(mesh.ns, 'sponge')
+        plain = rospy.wait_for_message('/left/deformable_sim/mesh', Marker, timeout=10.0)
+        self.assertEqual(len(plain.colors), 0)
         # Pausing one leaves the other running.
         left.pause()
         paused = left.wait('stats', lambda m: m.paused).step
