@@ -151,6 +151,12 @@ int CommandProcessor::apply(const FixCommand& command) {
   const int b = findBody(command.body, command.nodes);
   FemBody& body = simulation_.bodies()[b];
   const std::vector<int> nodes = resolve(body, command.nodes);
+  for (int i : nodes) {
+    if (const std::string* grasp = graspOf(b, i)) {
+      throw CommandError("node " + std::to_string(body.mesh().node_numbers[i]) +
+                         " is held by grasp '" + *grasp + "': release the grasp instead");
+    }
+  }
   if (!command.fix) {
     if (!command.targets.empty() || command.translation) {
       throw CommandError("a release takes no targets or translation");

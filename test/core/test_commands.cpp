@@ -219,3 +219,135 @@ TEST(DefaultScene, TheShippedSceneFileIsTheBuiltInScene) {
   EXPECT_EQ(dc::selectNodes(mesh, a.fixed.at(0)), dc::selectNodes(mesh, b.fixed.at(0)));
   EXPECT_EQ(dc::selectNodes(mesh, a.groups.at("tip")), dc::selectNodes(mesh, b.groups.at("tip")));
 }
+
+namespace {
+
+// A soft block, 0.1 m on a side, hanging from nothing yet: no clamp, gravity on, heavy damping.
+dc::Simulation makeBlock() {
+  dc::SceneSpec spec;
+  spec.dt = 0.01;
+  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
+  spec.effects.warping = true;
+  spec.effects.damping = dc::RayleighDamping{20.0, 0.0};
+  spec.solver.tolerance = 1e-12;
+  dc::BodySpec block;
+  block.name = "block";
+  block.box_mesh = dc::BoxMeshSpec{{0, 0, 0}, {0.1, 0.1, 0.1}, {4, 4, 4}};
+  block.material = {5.0e4, 0.3, 200.0};
+  spec.bodies.push_back(block);
+  const dc::BoxMeshSpec& box = *block.box_mesh;
+  std::vector<dc::Mesh> meshes{dc::makeBoxMesh(box.min, box.max, box.cells)};
+  return dc::Simulation(spec, std::move(meshes));
+}
+
+dc::GraspCommand graspTopCorner(const Eigen::Isometry3d& frame) {
+  dc::GraspCommand grasp;
+  grasp.name = "hand";
+  grasp.nodes.box = dc::Box{{-0.001, -0.001, 0.074}, {0.026, 0.026, 0.101}};
+  grasp.frame = frame;
+  return grasp;
+}
+
+}  // namespace
+
+TEST(Grasps, NodesFollowTheFrameExactlyEvenWhenItMovesFast) {
+  dc::Simulation sim = makeBlock();
+  dc::CommandProcessor commands(sim);
+  Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
+  frame.translation() << 0.0, 0.0, 0.1;
+  EXPECT_EQ(commands.apply(graspTopCorner(frame)), 2 * 2 * 2);
+  const dc::ActiveGrasp& grasp = commands.grasps().at("hand");
+  std::vector<dc::StepReport> reports;
+  for (int s = 1; s <= 50; ++s) {
+    // 2 m/s and 10 rad/s: far more than an element per step.
+    frame.translation() << 0.02 * s, 0.0, 0.1;
+    frame.linear() = Eigen::AngleAxisd(0.1 * s, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    commands.moveGrasp("hand", frame);
+    sim.step(reports);
+    const dc::FemBody& body = sim.bodies()[0];
+    for (size_t k = 0; k < grasp.nodes.size(); ++k) {
+      ASSERT_LT((body.positions().segment<3>(3 * grasp.nodes[k]) - frame * grasp.local[k]).norm(),
+                1e-9);
+    }
+    ASSERT_TRUE(body.positions().allFinite());
+  }
+}
+
+TEST(Grasps, HangingBodyReactionIsItsWeightAboutItsCentreOfMass) {
+  dc::Simulation sim = makeBlock();
+  dc::CommandProcessor commands(sim);
+  Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
+  frame.translation() << 0.01, 0.01, 0.09;
+  commands.apply(graspTopCorner(frame));
+  std::vector<dc::StepReport> reports;
+  for (int s = 0; s < 1500; ++s) sim.step(reports);
+  const dc::FemBody& body = sim.bodies()[0];
+  double mass = 0.0;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (int i = 0; i < body.numNodes(); ++i) {
+    mass += body.nodalMasses()[i];
+    centre += body.nodalMasses()[i] * body.positions().segment<3>(3 * i);
+  }
+  centre /= mass;
+  EXPECT_NEAR(mass, 200.0 * 1e-3, 1e-12);
+  const Eigen::Vector3d weight(0, 0, -9.81 * mass);
+  EXPECT_LT(body.velocities().lpNorm<Eigen::Infinity>(), 1e-9);
+  const dc::Wrench reaction = commands.graspReaction("hand");
+  EXPECT_LT((reaction.force + weight).norm(), 1e-6 * weight.norm()) << reaction.force.transpose();
+  // At rest the grasp's torque cancels the weight's about the frame origin.
+  const Eigen::Vector3d expected = -(centre - frame.translation()).cross(weight);
+  EXPECT_LT((reaction.torque - expected).norm(), 1e-6 * weight.norm() * 0.1)
+      << reaction.torque.transpose() << " vs " << expected.transpose();
+  EXPECT_GT(expected.norm(), 0.01);  // the corner grasp holds the block off-centre
+  // Released, the body keeps its place and falls from there.
+  const Eigen::VectorXd before = body.positions();
+  EXPECT_TRUE(commands.releaseGrasp("hand"));
+  EXPECT_EQ(body.numConstrained(), 0);
+  EXPECT_EQ(body.positions(), before);
+  sim.step(reports);
+  // Internal forces cancel: from rest the centre of mass falls by h^2 g / (1 + h alpha) in one
+  // implicit step with mass damping alpha.
+  Eigen::Vector3d moved = Eigen::Vector3d::Zero();
+  for (int i = 0; i < body.numNodes(); ++i) {
+    moved += body.nodalMasses()[i] * (body.positions() - before).segment<3>(3 * i) / mass;
+  }
+  const double h = 0.01, alpha = 20.0;
+  EXPECT_NEAR(moved.z(), -h * h * 9.81 / (1 + h * alpha), 1e-9);
+  EXPECT_NEAR(moved.head<2>().norm(), 0.0, 1e-12);
+}
+
+TEST(Grasps, RefusesEmptyRegionsAndNodesHeldElsewhere) {
+  dc::Simulation sim = makeBlock();
+  dc::CommandProcessor commands(sim);
+  dc::GraspCommand grasp = graspTopCorner(Eigen::Isometry3d::Identity());
+  grasp.nodes.box = dc::Box{{1, 1, 1}, {2, 2, 2}};
+  EXPECT_THROW(
+      {
+        try {
+          commands.apply(grasp);
+        } catch (const dc::CommandError& e) {
+          EXPECT_STREQ(e.what(), "grasp 'hand': body 'block': the box contains no node");
+          throw;
+        }
+      },
+      dc::CommandError);
+  commands.apply(graspTopCorner(Eigen::Isometry3d::Identity()));
+  dc::GraspCommand other = graspTopCorner(Eigen::Isometry3d::Identity());
+  other.name = "other";
+  try {
+    commands.apply(other);
+    ADD_FAILURE() << "a second grasp took nodes the first holds";
+  } catch (const dc::CommandError& e) {
+    EXPECT_NE(std::string(e.what()).find("is already held by grasp 'hand'"), std::string::npos);
+  }
+  dc::FixCommand release;
+  release.fix = false;
+  release.nodes.box = dc::Box{{-1, -1, -1}, {2, 2, 2}};
+  try {
+    commands.apply(release);
+    ADD_FAILURE() << "released grasped nodes through fixed_nodes";
+  } catch (const dc::CommandError& e) {
+    EXPECT_NE(std::string(e.what()).find("release the grasp instead"), std::string::npos);
+  }
+  EXPECT_EQ(sim.bodies()[0].numConstrained(), 8);
+}

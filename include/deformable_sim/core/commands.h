@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -57,6 +58,29 @@ struct FixCommand {
   std::optional<Eigen::Vector3d> translation;
 };
 
+/// Attach the nodes in a region to a frame (a gripper): from then on they follow it rigidly.
+struct GraspCommand {
+  std::string name;  ///< a grasp of the same name is replaced
+  std::string body;  ///< empty: the scene's only body, or the body nearest a sphere region
+  NodeTarget nodes;  ///< usually a box or sphere (world); node ids and groups work too
+  Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();  ///< the frame's pose now, world
+};
+
+/// A grasp in effect.
+struct ActiveGrasp {
+  int body = -1;
+  std::vector<int> nodes;
+  std::vector<Eigen::Vector3d> local;  ///< each node's position in the frame when attached, m
+  Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();  ///< the frame's last pose, world
+};
+
+/// Force (N) and torque (N m, about `point`) in the world frame.
+struct Wrench {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+};
+
 /// Bounds beyond which a command is refused as absurd rather than applied.
 struct CommandLimits {
   double max_force = 1.0e4;           ///< N, magnitude of a wrench's force
@@ -84,6 +108,21 @@ class CommandProcessor {
   int apply(const WrenchCommand& command);
   int apply(const FixCommand& command);
 
+  /// Attaches a grasp; refuses (CommandError) empty regions, non-finite poses and nodes that are
+  /// already fixed or grasped. Returns the number of nodes attached.
+  int apply(const GraspCommand& command);
+  /// Returns the grasp's nodes to free motion where they are, with their velocity (no jump).
+  /// False if there is no grasp of that name.
+  bool releaseGrasp(const std::string& name);
+  /// Moves a grasp's frame: its nodes reach `frame * local` at the end of the next step.
+  void moveGrasp(const std::string& name, const Eigen::Isometry3d& frame);
+  const std::map<std::string, ActiveGrasp>& grasps() const { return grasps_; }
+  /// What the grasp exerts on the body in the last step: the sum of its nodes' constraint forces
+  /// and their torque about the frame's origin.
+  Wrench graspReaction(const std::string& name) const;
+  /// What all constrained nodes of a body that no grasp holds exert on it, torque about `point`.
+  Wrench fixedReaction(int body, const Eigen::Vector3d& point) const;
+
   /// Removes the wrench of `source`; false if there was none.
   bool clearWrench(const std::string& source);
   const std::map<std::string, ActiveWrench>& activeWrenches() const { return wrenches_; }
@@ -99,6 +138,9 @@ class CommandProcessor {
   CommandLimits limits_;
   std::vector<Eigen::VectorXd> base_forces_;  ///< per body: the scene's loads
   std::map<std::string, ActiveWrench> wrenches_;
+  std::map<std::string, ActiveGrasp> grasps_;
+  /// The grasp holding node `node` of body `body`, or nullptr.
+  const std::string* graspOf(int body, int node) const;
 };
 
 }  // namespace deformable_sim::core
