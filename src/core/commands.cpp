@@ -82,7 +82,18 @@ std::vector<int> CommandProcessor::resolve(const FemBody& body, const NodeTarget
     selection.sphere = *nodes.sphere;
   }
   try {
-    selected = selectNodesAt(body.mesh(), body.positions(), selection);
+    if (!nodes.region_pose.matrix().allFinite()) throw CommandError("the region's frame is not finite");
+    if (nodes.region_pose.matrix().isIdentity(0.0)) {
+      selected = selectNodesAt(body.mesh(), body.positions(), selection);
+    } else {
+      // Test the nodes in the region's own frame.
+      const Eigen::Isometry3d to_region = nodes.region_pose.inverse();
+      Eigen::VectorXd local(body.positions().size());
+      for (int i = 0; i < body.numNodes(); ++i) {
+        local.segment<3>(3 * i) = to_region * Eigen::Vector3d(body.positions().segment<3>(3 * i));
+      }
+      selected = selectNodesAt(body.mesh(), local, selection);
+    }
   } catch (const std::invalid_argument& e) {
     throw CommandError("body '" + body.name() + "': " + e.what());
   }

@@ -75,24 +75,13 @@ core::FixCommand toCommand(const FixedNodes& message, const Eigen::Isometry3d& f
   switch (message.region) {
     case FixedNodes::REGION_NONE:
       break;
-    case FixedNodes::REGION_BOX: {
-      Eigen::AlignedBox3d box;
-      const Eigen::Vector3d lo = toEigen(message.box_min), hi = toEigen(message.box_max);
-      if (!lo.allFinite() || !hi.allFinite() || (lo.array() > hi.array()).any()) {
-        throw core::CommandError(
-            "box: box_min must not exceed box_max on any axis (and be finite)");
-      }
-      for (int corner = 0; corner < 8; ++corner) {
-        const Eigen::Vector3d c((corner & 1) ? hi.x() : lo.x(), (corner & 2) ? hi.y() : lo.y(),
-                                (corner & 4) ? hi.z() : lo.z());
-        box.extend(frame_in_world * c);
-      }
-      command.nodes.box = core::Box{box.min(), box.max()};
+    case FixedNodes::REGION_BOX:
+      command.nodes.box = core::Box{toEigen(message.box_min), toEigen(message.box_max)};
+      command.nodes.region_pose = frame_in_world;
       break;
-    }
     case FixedNodes::REGION_SPHERE:
-      command.nodes.sphere =
-          core::Sphere{frame_in_world * toEigen(message.sphere_center), message.sphere_radius};
+      command.nodes.sphere = core::Sphere{toEigen(message.sphere_center), message.sphere_radius};
+      command.nodes.region_pose = frame_in_world;
       break;
     default:
       throw core::CommandError("region " + std::to_string(message.region) +

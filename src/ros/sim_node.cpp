@@ -27,7 +27,7 @@ void param(ros::NodeHandle& node, const std::string& name, T& value) {
 }  // namespace
 
 SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
-    : tf_listener_(tf_buffer_), diagnostics_(node, private_node) {
+    : private_node_(private_node), tf_listener_(tf_buffer_), diagnostics_(node, private_node) {
   readParameters(private_node);
   buildSimulation();
 
@@ -38,6 +38,12 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
   wrench_sub_ = private_node.subscribe("wrench", 100, &SimNode::onWrench, this);
   node_wrench_sub_ = private_node.subscribe("node_wrench", 100, &SimNode::onNodeWrench, this);
   fixed_nodes_sub_ = private_node.subscribe("fixed_nodes", 100, &SimNode::onFixedNodes, this);
+  grasp_sub_ = private_node.subscribe("grasp", 100, &SimNode::onGrasp, this);
+  grasp_srv_ = private_node.advertiseService("grasp", &SimNode::onSetGrasp, this);
+  for (const core::FemBody& body : sim_->bodies()) {
+    reaction_pubs_.push_back(
+        private_node.advertise<geometry_msgs::WrenchStamped>("reactions/" + body.name(), 10));
+  }
   reset_srv_ = private_node.advertiseService("reset", &SimNode::onReset, this);
   pause_srv_ = private_node.advertiseService("pause", &SimNode::onPause, this);
   resume_srv_ = private_node.advertiseService("resume", &SimNode::onResume, this);
@@ -130,6 +136,7 @@ void SimNode::buildSimulation() {
   for (const core::FemBody& body : sim_->bodies())
     surfaces_.push_back(core::extractSurface(body.mesh()));
   wrench_times_.clear();
+  grasp_frames_.clear();
   sim_time_samples_.clear();
   reports_.assign(sim_->bodies().size(), core::StepReport{});
 }
@@ -162,6 +169,7 @@ void SimNode::onTimer(const ros::TimerEvent&) {
 
   publishState();
   publishFrames();
+  publishGrasps();
   if (last_markers_.isZero() || (now - last_markers_).toSec() >= 1.0 / marker_rate_hz_ ||
       now < last_markers_) {
     publishMarkers();
@@ -176,9 +184,145 @@ void SimNode::onTimer(const ros::TimerEvent&) {
 }
 
 void SimNode::advance(int steps) {
+  // Grasp frames move from where they were to where tf has them now, evenly over the substeps.
+  std::vector<std::pair<std::string, std::pair<Eigen::Isometry3d, Eigen::Isometry3d>>> moves;
+  for (const auto& [name, frame] : grasp_frames_) {
+    moves.push_back({name, {commands_->grasps().at(name).frame, graspFramePose(name)}});
+  }
   const ros::WallTime start = ros::WallTime::now();
-  for (int s = 0; s < steps; ++s) sim_->step(reports_);
+  for (int s = 1; s <= steps; ++s) {
+    const double t = static_cast<double>(s) / steps;
+    for (const auto& [name, poses] : moves) {
+      const auto& [from, to] = poses;
+      Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+      pose.translation() = (1.0 - t) * from.translation() + t * to.translation();
+      pose.linear() = Eigen::Quaterniond(from.linear())
+                          .slerp(t, Eigen::Quaterniond(to.linear()))
+                          .toRotationMatrix();
+      commands_->moveGrasp(name, s == steps ? to : pose);
+    }
+    sim_->step(reports_);
+  }
   step_time_s_ = (ros::WallTime::now() - start).toSec();
+}
+
+Eigen::Isometry3d SimNode::graspFramePose(const std::string& name) {
+  const std::string& frame = grasp_frames_.at(name);
+  try {
+    const Eigen::Isometry3d pose =
+        toEigen(tf_buffer_.lookupTransform(world_frame_, frame, ros::Time(0)).transform);
+    if (pose.matrix().allFinite()) return pose;
+  } catch (const tf2::TransformException& e) {
+    ROS_WARN_THROTTLE(1.0, "grasp '%s': frame '%s' not in tf now (%s); holding its last pose",
+                      name.c_str(), frame.c_str(), e.what());
+  }
+  return commands_->grasps().at(name).frame;
+}
+
+void SimNode::publishGrasps() {
+  const ros::Time now = ros::Time::now();
+  std::vector<geometry_msgs::TransformStamped> frames;
+  for (const auto& [name, frame] : grasp_frames_) {
+    const core::ActiveGrasp& grasp = commands_->grasps().at(name);
+    const core::Wrench reaction = commands_->graspReaction(name);
+    const Eigen::Matrix3d to_frame = grasp.frame.linear().transpose();
+    geometry_msgs::WrenchStamped wrench;
+    wrench.header.stamp = now;
+    wrench.header.frame_id = frame;
+    wrench.wrench.force = toVector3(to_frame * reaction.force);
+    wrench.wrench.torque = toVector3(to_frame * reaction.torque);
+    grasp_wrench_pubs_.at(name).publish(wrench);
+    // The object seen from the gripper: how it slips or sags in the hand.
+    const core::FemBody& body = sim_->bodies()[grasp.body];
+    geometry_msgs::TransformStamped object;
+    object.header.stamp = now;
+    object.header.frame_id = frame;
+    object.child_frame_id = frame_prefix_ + name + "/object";
+    object.transform = toTransform(
+        grasp.frame.inverse() *
+        toPose(core::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses())));
+    frames.push_back(object);
+  }
+  if (!frames.empty()) tf_broadcaster_.sendTransform(frames);
+  for (size_t b = 0; b < sim_->bodies().size(); ++b) {
+    if (reaction_pubs_[b].getNumSubscribers() == 0) continue;
+    const core::Wrench reaction = commands_->fixedReaction(static_cast<int>(b), Eigen::Vector3d::Zero());
+    geometry_msgs::WrenchStamped wrench;
+    wrench.header.stamp = now;
+    wrench.header.frame_id = world_frame_;
+    wrench.wrench.force = toVector3(reaction.force);
+    wrench.wrench.torque = toVector3(reaction.torque);
+    reaction_pubs_[b].publish(wrench);
+  }
+}
+
+std::string SimNode::applyGrasp(const Grasp& message, uint32_t& nodes) {
+  nodes = 0;
+  if (message.action == Grasp::RELEASE) {
+    const auto found = commands_->grasps().find(message.name);
+    if (found == commands_->grasps().end()) return "no grasp named '" + message.name + "'";
+    nodes = static_cast<uint32_t>(found->second.nodes.size());
+    commands_->releaseGrasp(message.name);
+    grasp_frames_.erase(message.name);
+    return "";
+  }
+  if (message.action != Grasp::ATTACH) {
+    return "action " + std::to_string(message.action) + " is neither ATTACH (0) nor RELEASE (1)";
+  }
+  const std::string frame = withoutLeadingSlash(message.header.frame_id);
+  if (frame.empty()) return "grasp '" + message.name + "': header.frame_id is empty: name the frame to follow";
+  FrameTarget target;
+  std::string error;
+  if (!resolveFrame(frame, target, error)) return "grasp '" + message.name + "': " + error;
+  if (target.body >= 0 || frame == world_frame_) {
+    return "grasp '" + message.name + "': '" + frame +
+           "' is not a tf frame that can hold a body (it is the world or one of this node's frames)";
+  }
+  core::GraspCommand command;
+  command.name = message.name;
+  command.body = message.body;
+  command.frame = target.pose;
+  command.nodes.region_pose = target.pose;
+  switch (message.region) {
+    case Grasp::REGION_BOX:
+      command.nodes.box = core::Box{toEigen(message.box_min), toEigen(message.box_max)};
+      break;
+    case Grasp::REGION_SPHERE:
+      command.nodes.sphere = core::Sphere{toEigen(message.sphere_center), message.sphere_radius};
+      break;
+    case Grasp::REGION_LINK:
+      return "grasp '" + message.name + "': REGION_LINK needs a robot_description with that link";
+    default:
+      return "grasp '" + message.name + "': region " + std::to_string(message.region) +
+             " is not REGION_BOX, REGION_SPHERE or REGION_LINK";
+  }
+  try {
+    nodes = static_cast<uint32_t>(commands_->apply(command));
+  } catch (const core::CommandError& e) {
+    return e.what();
+  }
+  grasp_frames_[message.name] = frame;
+  if (grasp_wrench_pubs_.count(message.name) == 0) {
+    grasp_wrench_pubs_[message.name] =
+        private_node_.advertise<geometry_msgs::WrenchStamped>("grasps/" + message.name + "/wrench", 10);
+  }
+  return "";
+}
+
+void SimNode::onGrasp(const Grasp::ConstPtr& message) {
+  uint32_t nodes = 0;
+  const std::string error = applyGrasp(*message, nodes);
+  if (!error.empty()) refuse("~grasp", error);
+}
+
+bool SimNode::onSetGrasp(SetGrasp::Request& request, SetGrasp::Response& response) {
+  const std::string error = applyGrasp(request.grasp, response.nodes);
+  response.success = error.empty();
+  response.message = error.empty() ? (request.grasp.action == Grasp::ATTACH ? "attached " : "released ") +
+                                         std::to_string(response.nodes) + " nodes"
+                                   : error;
+  if (!error.empty()) refuse("~grasp (service)", error);
+  return true;
 }
 
 void SimNode::publishState() {
@@ -439,6 +583,7 @@ bool SimNode::onStep(Step::Request& request, Step::Response& response) {
     advance(static_cast<int>(request.steps));
     publishState();
     publishFrames();
+    publishGrasps();
     response.success = true;
     response.message = "took " + std::to_string(request.steps) + " steps";
   }

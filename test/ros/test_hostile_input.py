@@ -114,7 +114,7 @@ class HostileInput(unittest.TestCase):
                      ['radius'])
         self.refused(self.fixed, FixedNodes(body='beam', action=fix, region=FixedNodes.REGION_BOX,
                                             box_min=Point(1, 1, 1), box_max=Point(0, 0, 0)),
-                     ['box_min must not exceed box_max'])
+                     ['box: min must not exceed max'])
         self.refused(self.fixed, FixedNodes(body='beam', action=fix, nodes=[9],
                                             targets=[Point(0.5, NAN, 0)]), ['NaN or infinite'])
         self.refused(self.fixed, FixedNodes(body='beam', action=fix, nodes=[9],

@@ -24,12 +24,13 @@ class CommandError : public std::invalid_argument {
 };
 
 /// Which nodes of a body a command acts on: exactly one of the four. Regions are tested against
-/// the current positions, in the world frame.
+/// the current positions, in the frame `region_pose` (its pose in the world).
 struct NodeTarget {
   std::vector<long> node_numbers;  ///< the mesh file's node numbers
   std::string group;               ///< a node group of the body (scene key `groups`)
   std::optional<Box> box;
   std::optional<Sphere> sphere;
+  Eigen::Isometry3d region_pose = Eigen::Isometry3d::Identity();
   /// All nodes of the body (none of the above given and this set).
   bool whole_body = false;
 };

@@ -29,9 +29,8 @@ Eigen::Isometry3d toPose(const core::RigidFrame& frame);
 /// A NodeWrench whose frame is `frame_in_world` (the pose of header.frame_id in the world frame).
 core::WrenchCommand toCommand(const NodeWrench& message, const Eigen::Isometry3d& frame_in_world);
 
-/// A FixedNodes message whose frame is `frame_in_world`. Throws core::CommandError for an unknown
-/// action or region code. A sphere region is transformed exactly; a box is turned into the
-/// world-aligned box around its corners when the frame is rotated.
+/// A FixedNodes message whose frame is `frame_in_world` (the region is tested in that frame).
+/// Throws core::CommandError for an unknown action or region code.
 core::FixCommand toCommand(const FixedNodes& message, const Eigen::Isometry3d& frame_in_world);
 
 /// Fills `message` (kept between calls so its arrays are reused) with the body's state.

@@ -22,7 +22,9 @@
 
 #include "deformable_sim/BodyState.h"
 #include "deformable_sim/FixedNodes.h"
+#include "deformable_sim/Grasp.h"
 #include "deformable_sim/NodeWrench.h"
+#include "deformable_sim/SetGrasp.h"
 #include "deformable_sim/SimConfig.h"
 #include "deformable_sim/Stats.h"
 #include "deformable_sim/Step.h"
@@ -59,6 +61,13 @@ class SimNode {
   void onWrench(const geometry_msgs::WrenchStamped::ConstPtr& message);
   void onNodeWrench(const NodeWrench::ConstPtr& message);
   void onFixedNodes(const FixedNodes::ConstPtr& message);
+  void onGrasp(const Grasp::ConstPtr& message);
+  bool onSetGrasp(SetGrasp::Request& request, SetGrasp::Response& response);
+  /// Attaches or releases; returns "" on success, else why it was refused.
+  std::string applyGrasp(const Grasp& message, uint32_t& nodes);
+  /// The pose of a grasp's frame now (the last known one if tf has none).
+  Eigen::Isometry3d graspFramePose(const std::string& name);
+  void publishGrasps();
   bool onReset(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool onPause(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool onResume(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
@@ -99,8 +108,12 @@ class SimNode {
   // ROS plumbing.
   ros::Timer timer_;
   ros::Publisher state_pub_, stats_pub_, mesh_pub_, markers_pub_;
-  ros::Subscriber wrench_sub_, node_wrench_sub_, fixed_nodes_sub_;
-  ros::ServiceServer reset_srv_, pause_srv_, resume_srv_, step_srv_;
+  ros::Subscriber wrench_sub_, node_wrench_sub_, fixed_nodes_sub_, grasp_sub_;
+  ros::ServiceServer reset_srv_, pause_srv_, resume_srv_, step_srv_, grasp_srv_;
+  ros::NodeHandle private_node_;
+  std::map<std::string, std::string> grasp_frames_;  ///< grasp name -> tf frame it follows
+  std::map<std::string, ros::Publisher> grasp_wrench_pubs_;
+  std::vector<ros::Publisher> reaction_pubs_;  ///< per body: what its fixed nodes exert
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
