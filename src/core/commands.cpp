@@ -49,14 +49,14 @@ int CommandProcessor::findBody(const std::string& name, const NodeTarget& nodes)
 
 std::vector<int> CommandProcessor::resolve(const FemBody& body, const NodeTarget& nodes) const {
   const int kinds = (nodes.node_numbers.empty() ? 0 : 1) + (nodes.group.empty() ? 0 : 1) +
-                    (nodes.box ? 1 : 0) + (nodes.sphere ? 1 : 0);
+                    (nodes.box ? 1 : 0) + (nodes.sphere ? 1 : 0) + (nodes.shapes.empty() ? 0 : 1);
   if (kinds == 0 && nodes.whole_body) {
     std::vector<int> all(body.numNodes());
     for (int i = 0; i < body.numNodes(); ++i) all[i] = i;
     return all;
   }
   if (kinds != 1) {
-    throw CommandError("give exactly one of: node ids, a group, a box, a sphere (got " +
+    throw CommandError("give exactly one of: node ids, a group, a box, a sphere, shapes (got " +
                        std::to_string(kinds) + ")");
   }
   std::vector<int> selected;
@@ -70,6 +70,26 @@ std::vector<int> CommandProcessor::resolve(const FemBody& body, const NodeTarget
     }
     return group->second;
   }
+  if (!nodes.shapes.empty()) {
+    if (!(nodes.shape_margin >= 0.0) || !std::isfinite(nodes.shape_margin)) {
+      throw CommandError("the margin around the shapes must be finite and >= 0 m");
+    }
+    for (const PlacedShape& placed : nodes.shapes) {
+      const Eigen::Isometry3d to_shape = placed.pose.inverse();
+      for (int i = 0; i < body.numNodes(); ++i) {
+        const Eigen::Vector3d p = body.positions().segment<3>(3 * i);
+        if (signedDistance(placed.shape, to_shape * p) <= nodes.shape_margin) selected.push_back(i);
+      }
+    }
+    std::sort(selected.begin(), selected.end());
+    selected.erase(std::unique(selected.begin(), selected.end()), selected.end());
+    if (selected.empty()) {
+      throw CommandError("body '" + body.name() + "': no node within " +
+                         std::to_string(nodes.shape_margin) + " m of '" + nodes.shapes[0].name +
+                         "'");
+    }
+    return selected;
+  }
   NodeSelection selection;
   if (!nodes.node_numbers.empty()) {
     selection.kind = NodeSelection::Kind::kNodes;
@@ -82,7 +102,8 @@ std::vector<int> CommandProcessor::resolve(const FemBody& body, const NodeTarget
     selection.sphere = *nodes.sphere;
   }
   try {
-    if (!nodes.region_pose.matrix().allFinite()) throw CommandError("the region's frame is not finite");
+    if (!nodes.region_pose.matrix().allFinite())
+      throw CommandError("the region's frame is not finite");
     if (nodes.region_pose.matrix().isIdentity(0.0)) {
       selected = selectNodesAt(body.mesh(), body.positions(), selection);
     } else {

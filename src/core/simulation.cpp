@@ -48,7 +48,13 @@ void addWrench(FemBody& body, const std::vector<int>& nodes, const LoadSpec& loa
 }  // namespace
 
 Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
-    : dt_(spec.dt), statics_(spec.statics) {
+    : dt_(spec.dt), statics_(spec.statics), contact_(spec.contact), obstacles_(spec.obstacles) {
+  if (contact_ && !(contact_->friction >= 0.0 && std::isfinite(contact_->friction))) {
+    throw std::invalid_argument("effects.contact.friction: must be finite and >= 0");
+  }
+  for (size_t k = 0; k < obstacles_.size(); ++k) {
+    validate(obstacles_[k].shape, "obstacles[" + std::to_string(k) + "]");
+  }
   if (!(spec.dt > 0.0) || !std::isfinite(spec.dt)) {
     throw std::invalid_argument("dt: must be finite and > 0 s");
   }
@@ -125,7 +131,12 @@ void Simulation::setDt(double dt) {
 
 void Simulation::step(std::vector<StepReport>& reports) {
   reports.resize(bodies_.size());
-  for (size_t b = 0; b < bodies_.size(); ++b) reports[b] = bodies_[b].step(dt_);
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    reports[b] = bodies_[b].step(dt_);
+    if (contact_ && !obstacles_.empty()) {
+      reports[b].contacts = resolveContacts(bodies_[b], obstacles_, *contact_);
+    }
+  }
   ++step_count_;
   time_ += dt_;
 }

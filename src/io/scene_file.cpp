@@ -23,9 +23,47 @@ class SceneParser {
   core::SceneSpec parse(const YAML::Node& root) {
     core::SceneSpec scene;
     expectMap(root, "scene");
-    checkKeys(root, "", {"dt", "effects", "solver", "static", "bodies"});
+    checkKeys(root, "", {"dt", "effects", "solver", "static", "bodies", "obstacles", "urdf"});
     if (root["dt"]) scene.dt = positive(root["dt"], "dt");
     parseEffects(root["effects"], scene.effects);
+    if (const YAML::Node effects = root["effects"]) {
+      if (const YAML::Node contact = effects["contact"]) {
+        expectMap(contact, "effects.contact");
+        checkKeys(contact, "effects.contact", {"friction"});
+        core::ContactSettings settings;
+        if (contact["friction"]) {
+          settings.friction = nonNegative(contact["friction"], "effects.contact.friction");
+        }
+        scene.contact = settings;
+      }
+    }
+    if (const YAML::Node obstacles = root["obstacles"]) {
+      if (!obstacles.IsSequence()) fail(obstacles, "obstacles", "expected a list of obstacles");
+      for (size_t k = 0; k < obstacles.size(); ++k) {
+        scene.obstacles.push_back(
+            parseObstacle(obstacles[k], "obstacles[" + std::to_string(k) + "]"));
+      }
+    }
+    if (const YAML::Node urdf = root["urdf"]) {
+      expectMap(urdf, "urdf");
+      checkKeys(urdf, "urdf", {"links", "file"});
+      if (urdf["file"]) {
+        std::filesystem::path path = text(urdf["file"], "urdf.file");
+        if (path.is_relative()) path = std::filesystem::path(base_directory_) / path;
+        scene.urdf_file = path.lexically_normal().string();
+      }
+      const YAML::Node links = urdf["links"];
+      if (!links || !links.IsSequence() || links.size() == 0) {
+        fail(links ? links : urdf, "urdf.links", "expected a non-empty list of link names");
+      }
+      for (size_t k = 0; k < links.size(); ++k) {
+        scene.urdf_links.push_back(text(links[k], "urdf.links[" + std::to_string(k) + "]"));
+      }
+    }
+    if ((!scene.obstacles.empty() || !scene.urdf_links.empty()) && !scene.contact) {
+      fail(root, "effects.contact",
+           "obstacles are given but the contact effect is off: add effects: {contact: {}}");
+    }
     parseSolver(root["solver"], scene.solver);
     parseStatic(root["static"], scene.statics);
     const YAML::Node bodies = root["bodies"];
@@ -125,7 +163,7 @@ class SceneParser {
   void parseEffects(const YAML::Node& node, core::BodyEffects& effects) const {
     if (!node) return;
     expectMap(node, "effects");
-    checkKeys(node, "effects", {"gravity", "warping", "damping", "stress_colouring"});
+    checkKeys(node, "effects", {"gravity", "warping", "damping", "stress_colouring", "contact"});
     if (node["stress_colouring"]) {
       effects.stress_colouring = boolean(node["stress_colouring"], "effects.stress_colouring");
     }
@@ -312,6 +350,54 @@ class SceneParser {
       selection.sphere.radius = nonNegative(sphere["radius"], key + ".sphere.radius");
     }
     return selection;
+  }
+
+  core::PlacedShape parseObstacle(const YAML::Node& node, const std::string& key) const {
+    expectMap(node, key);
+    checkKeys(node, key, {"name", "box", "sphere", "cylinder", "position", "rpy"});
+    core::PlacedShape obstacle;
+    obstacle.name = node["name"] ? text(node["name"], key + ".name") : key;
+    const int kinds = (node["box"] ? 1 : 0) + (node["sphere"] ? 1 : 0) + (node["cylinder"] ? 1 : 0);
+    if (kinds != 1) fail(node, key, "expected exactly one of: box, sphere, cylinder");
+    core::Shape& shape = obstacle.shape;
+    if (const YAML::Node box = node["box"]) {
+      expectMap(box, key + ".box");
+      checkKeys(box, key + ".box", {"size"});
+      if (!box["size"]) fail(box, key + ".box.size", "missing");
+      shape.kind = core::Shape::Kind::kBox;
+      shape.size = vector3(box["size"], key + ".box.size");
+    } else if (const YAML::Node sphere = node["sphere"]) {
+      expectMap(sphere, key + ".sphere");
+      checkKeys(sphere, key + ".sphere", {"radius"});
+      if (!sphere["radius"]) fail(sphere, key + ".sphere.radius", "missing");
+      shape.kind = core::Shape::Kind::kSphere;
+      shape.radius = positive(sphere["radius"], key + ".sphere.radius");
+    } else {
+      const YAML::Node cylinder = node["cylinder"];
+      expectMap(cylinder, key + ".cylinder");
+      checkKeys(cylinder, key + ".cylinder", {"radius", "length"});
+      if (!cylinder["radius"] || !cylinder["length"]) {
+        fail(cylinder, key + ".cylinder", "needs radius and length");
+      }
+      shape.kind = core::Shape::Kind::kCylinder;
+      shape.radius = positive(cylinder["radius"], key + ".cylinder.radius");
+      shape.length = positive(cylinder["length"], key + ".cylinder.length");
+    }
+    try {
+      core::validate(shape, key);
+    } catch (const std::invalid_argument& e) {
+      fail(node, key, e.what());
+    }
+    if (node["position"])
+      obstacle.pose.translation() = vector3(node["position"], key + ".position");
+    if (node["rpy"]) {
+      const Eigen::Vector3d rpy = vector3(node["rpy"], key + ".rpy");
+      obstacle.pose.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
+                                Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+                                Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
+                                   .toRotationMatrix();
+    }
+    return obstacle;
   }
 
   core::LoadSpec parseLoad(const YAML::Node& node, const std::string& key) const {

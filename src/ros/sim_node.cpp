@@ -1,12 +1,15 @@
 #include "deformable_sim/ros/sim_node.h"
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "deformable_sim/core/default_scene.h"
 #include "deformable_sim/core/rigid_frame.h"
 #include "deformable_sim/core/strain.h"
 #include "deformable_sim/io/scene_file.h"
+#include "deformable_sim/io/urdf_shapes.h"
 #include "deformable_sim/ros/conversions.h"
 #include "deformable_sim/ros/markers.h"
 
@@ -30,6 +33,20 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
     : private_node_(private_node), tf_listener_(tf_buffer_), diagnostics_(node, private_node) {
   readParameters(private_node);
   buildSimulation();
+
+  if (!scene_.urdf_links.empty()) {
+    std::string error;
+    if (!loadUrdf(error)) throw std::runtime_error("urdf.links: " + error);
+    for (const std::string& link : scene_.urdf_links) {
+      try {
+        for (const core::PlacedShape& shape : io::linkShapes(urdf_shapes_, link)) {
+          link_obstacles_.push_back({link, shape, std::nullopt});
+        }
+      } catch (const io::UrdfError& e) {
+        throw std::runtime_error(std::string("urdf.links: ") + e.what());
+      }
+    }
+  }
 
   state_pub_ = private_node.advertise<BodyState>("state", 10);
   stats_pub_ = private_node.advertise<Stats>("stats", 10);
@@ -157,6 +174,7 @@ void SimNode::onTimer(const ros::TimerEvent&) {
       }
     }
   }
+  updateObstacles();
   if (!paused_) advance(substeps_);
   // Real-time factor over the last second of ROS time (the simulated clock with /use_sim_time).
   sim_time_samples_.emplace_back(now, sim_->time());
@@ -246,13 +264,62 @@ void SimNode::publishGrasps() {
   if (!frames.empty()) tf_broadcaster_.sendTransform(frames);
   for (size_t b = 0; b < sim_->bodies().size(); ++b) {
     if (reaction_pubs_[b].getNumSubscribers() == 0) continue;
-    const core::Wrench reaction = commands_->fixedReaction(static_cast<int>(b), Eigen::Vector3d::Zero());
+    const core::Wrench reaction =
+        commands_->fixedReaction(static_cast<int>(b), Eigen::Vector3d::Zero());
     geometry_msgs::WrenchStamped wrench;
     wrench.header.stamp = now;
     wrench.header.frame_id = world_frame_;
     wrench.wrench.force = toVector3(reaction.force);
     wrench.wrench.torque = toVector3(reaction.torque);
     reaction_pubs_[b].publish(wrench);
+  }
+}
+
+bool SimNode::loadUrdf(std::string& error) {
+  if (urdf_loaded_) return true;
+  std::string xml;
+  if (!scene_.urdf_file.empty()) {
+    std::ifstream file(scene_.urdf_file);
+    if (!file) {
+      error = scene_.urdf_file + ": cannot open the URDF file";
+      return false;
+    }
+    std::stringstream text;
+    text << file.rdbuf();
+    xml = text.str();
+  } else if (!ros::NodeHandle().getParam("robot_description", xml) || xml.empty()) {
+    error = "no robot description: set the robot_description parameter or the scene's urdf.file";
+    return false;
+  }
+  std::vector<std::string> warnings;
+  try {
+    urdf_shapes_ = io::readCollisionShapes(xml, &warnings);
+  } catch (const io::UrdfError& e) {
+    error = e.what();
+    return false;
+  }
+  for (const std::string& w : warnings) ROS_WARN("%s", w.c_str());
+  urdf_loaded_ = true;
+  return true;
+}
+
+void SimNode::updateObstacles() {
+  if (!sim_->contact()) return;
+  std::vector<core::PlacedShape>& obstacles = sim_->obstacles();
+  obstacles.resize(scene_.obstacles.size());  // the scene's own come first and never move
+  for (LinkObstacle& obstacle : link_obstacles_) {
+    try {
+      const Eigen::Isometry3d link =
+          toEigen(tf_buffer_.lookupTransform(world_frame_, obstacle.link, ros::Time(0)).transform);
+      if (link.matrix().allFinite()) {
+        obstacle.placed = obstacle.local;
+        obstacle.placed->pose = link * obstacle.local.pose;
+      }
+    } catch (const tf2::TransformException& e) {
+      ROS_WARN_THROTTLE(5.0, "obstacle link '%s' is not in tf yet (%s)", obstacle.link.c_str(),
+                        e.what());
+    }
+    if (obstacle.placed) obstacles.push_back(*obstacle.placed);
   }
 }
 
@@ -270,13 +337,15 @@ std::string SimNode::applyGrasp(const Grasp& message, uint32_t& nodes) {
     return "action " + std::to_string(message.action) + " is neither ATTACH (0) nor RELEASE (1)";
   }
   const std::string frame = withoutLeadingSlash(message.header.frame_id);
-  if (frame.empty()) return "grasp '" + message.name + "': header.frame_id is empty: name the frame to follow";
+  if (frame.empty())
+    return "grasp '" + message.name + "': header.frame_id is empty: name the frame to follow";
   FrameTarget target;
   std::string error;
   if (!resolveFrame(frame, target, error)) return "grasp '" + message.name + "': " + error;
   if (target.body >= 0 || frame == world_frame_) {
     return "grasp '" + message.name + "': '" + frame +
-           "' is not a tf frame that can hold a body (it is the world or one of this node's frames)";
+           "' is not a tf frame that can hold a body (it is the world or one of this node's "
+           "frames)";
   }
   core::GraspCommand command;
   command.name = message.name;
@@ -290,8 +359,23 @@ std::string SimNode::applyGrasp(const Grasp& message, uint32_t& nodes) {
     case Grasp::REGION_SPHERE:
       command.nodes.sphere = core::Sphere{toEigen(message.sphere_center), message.sphere_radius};
       break;
-    case Grasp::REGION_LINK:
-      return "grasp '" + message.name + "': REGION_LINK needs a robot_description with that link";
+    case Grasp::REGION_LINK: {
+      const std::string link = message.link.empty() ? frame : message.link;
+      FrameTarget link_frame;
+      if (!loadUrdf(error) || !resolveFrame(link, link_frame, error)) {
+        return "grasp '" + message.name + "': link '" + link + "': " + error;
+      }
+      try {
+        for (core::PlacedShape shape : io::linkShapes(urdf_shapes_, link)) {
+          shape.pose = link_frame.pose * shape.pose;
+          command.nodes.shapes.push_back(shape);
+        }
+      } catch (const io::UrdfError& e) {
+        return "grasp '" + message.name + "': " + e.what();
+      }
+      command.nodes.shape_margin = message.margin;
+      break;
+    }
     default:
       return "grasp '" + message.name + "': region " + std::to_string(message.region) +
              " is not REGION_BOX, REGION_SPHERE or REGION_LINK";
@@ -303,8 +387,8 @@ std::string SimNode::applyGrasp(const Grasp& message, uint32_t& nodes) {
   }
   grasp_frames_[message.name] = frame;
   if (grasp_wrench_pubs_.count(message.name) == 0) {
-    grasp_wrench_pubs_[message.name] =
-        private_node_.advertise<geometry_msgs::WrenchStamped>("grasps/" + message.name + "/wrench", 10);
+    grasp_wrench_pubs_[message.name] = private_node_.advertise<geometry_msgs::WrenchStamped>(
+        "grasps/" + message.name + "/wrench", 10);
   }
   return "";
 }
@@ -318,9 +402,10 @@ void SimNode::onGrasp(const Grasp::ConstPtr& message) {
 bool SimNode::onSetGrasp(SetGrasp::Request& request, SetGrasp::Response& response) {
   const std::string error = applyGrasp(request.grasp, response.nodes);
   response.success = error.empty();
-  response.message = error.empty() ? (request.grasp.action == Grasp::ATTACH ? "attached " : "released ") +
-                                         std::to_string(response.nodes) + " nodes"
-                                   : error;
+  response.message = error.empty()
+                         ? (request.grasp.action == Grasp::ATTACH ? "attached " : "released ") +
+                               std::to_string(response.nodes) + " nodes"
+                         : error;
   if (!error.empty()) refuse("~grasp (service)", error);
   return true;
 }
@@ -580,6 +665,7 @@ bool SimNode::onStep(Step::Request& request, Step::Response& response) {
     response.success = false;
     response.message = "not paused: call ~pause first";
   } else {
+    updateObstacles();
     advance(static_cast<int>(request.steps));
     publishState();
     publishFrames();

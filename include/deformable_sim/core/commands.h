@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "deformable_sim/core/selection.h"
+#include "deformable_sim/core/shape.h"
 #include "deformable_sim/core/simulation.h"
 
 namespace deformable_sim::core {
@@ -23,14 +24,17 @@ class CommandError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-/// Which nodes of a body a command acts on: exactly one of the four. Regions are tested against
-/// the current positions, in the frame `region_pose` (its pose in the world).
+/// Which nodes of a body a command acts on: exactly one of the five. Regions are tested against
+/// the current positions, boxes and spheres in the frame `region_pose` (its pose in the world).
 struct NodeTarget {
   std::vector<long> node_numbers;  ///< the mesh file's node numbers
   std::string group;               ///< a node group of the body (scene key `groups`)
   std::optional<Box> box;
   std::optional<Sphere> sphere;
   Eigen::Isometry3d region_pose = Eigen::Isometry3d::Identity();
+  /// Solids (world poses): the nodes inside any of them or within `shape_margin` (m) of it.
+  std::vector<PlacedShape> shapes;
+  double shape_margin = 0.0;
   /// All nodes of the body (none of the above given and this set).
   bool whole_body = false;
 };

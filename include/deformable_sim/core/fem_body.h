@@ -40,6 +40,7 @@ struct StaticSettings {
 struct StepReport {
   SolveReport solve;
   int inverted_elements = 0;  ///< elements with det F <= 0 at the start of the step
+  int contacts = 0;           ///< nodes put back on an obstacle's surface after the step
 };
 
 struct StaticReport {
@@ -81,6 +82,9 @@ class FemBody {
   const Eigen::VectorXd& velocities() const { return v_; }
   const Eigen::VectorXd& restPositions() const { return x0_; }
   const std::vector<double>& nodalMasses() const { return mass_; }  ///< kg
+  /// Direct access for effects applied after a step (contact projection); keep sizes.
+  Eigen::VectorXd& mutablePositions() { return x_; }
+  Eigen::VectorXd& mutableVelocities() { return v_; }
   /// Replaces the state (sizes must match); e.g. to start from a given deformation.
   void setState(const Eigen::VectorXd& positions, const Eigen::VectorXd& velocities);
 

@@ -9,10 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "deformable_sim/core/contact.h"
 #include "deformable_sim/core/fem_body.h"
 #include "deformable_sim/core/linear_solver.h"
 #include "deformable_sim/core/material.h"
 #include "deformable_sim/core/selection.h"
+#include "deformable_sim/core/shape.h"
 
 namespace deformable_sim::core {
 
@@ -52,6 +54,12 @@ struct BodySpec {
 struct SceneSpec {
   double dt = 0.01;  ///< s
   BodyEffects effects;
+  std::optional<ContactSettings> contact;  ///< the contact effect: bodies stay out of obstacles
+  std::vector<PlacedShape> obstacles;      ///< static obstacles (key `obstacles`)
+  /// Links of the robot description whose collision shapes become obstacles posed by tf (the ROS
+  /// layer resolves them), and the URDF file to read instead of the robot_description parameter.
+  std::vector<std::string> urdf_links;
+  std::string urdf_file;
   SolverSettings solver;
   StaticSettings statics;
   std::vector<BodySpec> bodies;

@@ -35,6 +35,11 @@ class Simulation {
   /// One step of every body; reports[i] belongs to bodies()[i]. `reports` is resized once.
   void step(std::vector<StepReport>& reports);
 
+  /// Obstacles of the contact effect; their poses may be changed between steps.
+  std::vector<PlacedShape>& obstacles() { return obstacles_; }
+  const std::vector<PlacedShape>& obstacles() const { return obstacles_; }
+  const std::optional<ContactSettings>& contact() const { return contact_; }
+
   /// Quasi-static equilibrium of every body.
   std::vector<StaticReport> solveStatic();
 
@@ -45,6 +50,8 @@ class Simulation {
   double time_ = 0.0;
   std::vector<FemBody> bodies_;
   std::vector<double> wrench_radii_;
+  std::optional<ContactSettings> contact_;
+  std::vector<PlacedShape> obstacles_;
 };
 
 }  // namespace deformable_sim::core

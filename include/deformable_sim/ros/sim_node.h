@@ -17,6 +17,7 @@
 #include <deque>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,11 @@ class SimNode {
   /// The pose of a grasp's frame now (the last known one if tf has none).
   Eigen::Isometry3d graspFramePose(const std::string& name);
   void publishGrasps();
+  /// Reads the robot description once (scene key urdf.file, else the robot_description
+  /// parameter); false with `error` set when there is none or it is not valid.
+  bool loadUrdf(std::string& error);
+  /// Poses the URDF links' obstacles from tf and hands every obstacle to the simulation.
+  void updateObstacles();
   bool onReset(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool onPause(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool onResume(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
@@ -114,6 +120,14 @@ class SimNode {
   std::map<std::string, std::string> grasp_frames_;  ///< grasp name -> tf frame it follows
   std::map<std::string, ros::Publisher> grasp_wrench_pubs_;
   std::vector<ros::Publisher> reaction_pubs_;  ///< per body: what its fixed nodes exert
+  bool urdf_loaded_ = false;
+  std::map<std::string, std::vector<core::PlacedShape>> urdf_shapes_;  ///< link -> shapes
+  struct LinkObstacle {
+    std::string link;
+    core::PlacedShape local;                  ///< pose in the link's frame
+    std::optional<core::PlacedShape> placed;  ///< in the world, once tf had the link
+  };
+  std::vector<LinkObstacle> link_obstacles_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;

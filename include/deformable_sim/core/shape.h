@@ -1,0 +1,36 @@
+// Primitive solids for obstacles and grasp regions (boxes, spheres, cylinders as URDF has them),
+// with the distance queries that contact and grasping need.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+
+namespace deformable_sim::core {
+
+/// A solid in its own frame: a box centred on the origin, a sphere around it, or a cylinder along
+/// z centred on it (the URDF conventions).
+struct Shape {
+  enum class Kind { kBox, kSphere, kCylinder };
+  Kind kind = Kind::kBox;
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< kBox: edge lengths, m
+  double radius = 0.0;                             ///< kSphere, kCylinder: m
+  double length = 0.0;                             ///< kCylinder: along z, m
+};
+
+/// Throws std::invalid_argument naming `what` unless every dimension is finite and > 0.
+void validate(const Shape& shape, const std::string& what);
+
+/// Signed distance from `point` (in the shape's frame) to the shape's surface: negative inside.
+/// Also the nearest surface point and the outward normal there (either may be null).
+double signedDistance(const Shape& shape, const Eigen::Vector3d& point,
+                      Eigen::Vector3d* surface = nullptr, Eigen::Vector3d* normal = nullptr);
+
+/// A shape placed in the world.
+struct PlacedShape {
+  std::string name;  ///< e.g. the URDF link it belongs to
+  Shape shape;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< shape frame in the world
+};
+
+}  // namespace deformable_sim::core

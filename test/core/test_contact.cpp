@@ -1,0 +1,87 @@
+// Shapes and the contact effect: distances to boxes, spheres and cylinders; a block dropped on a
+// table comes to rest on top of it.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "deformable_sim/core/box_mesh.h"
+#include "deformable_sim/core/contact.h"
+#include "deformable_sim/core/shape.h"
+#include "deformable_sim/core/simulation.h"
+
+namespace dc = deformable_sim::core;
+
+TEST(Shape, SignedDistancesToTheThreePrimitives) {
+  dc::Shape box;
+  box.kind = dc::Shape::Kind::kBox;
+  box.size = {2.0, 4.0, 6.0};
+  Eigen::Vector3d surface, normal;
+  EXPECT_DOUBLE_EQ(dc::signedDistance(box, {0.0, 0.0, 2.5}, &surface, &normal), -0.5);
+  EXPECT_EQ(surface, Eigen::Vector3d(0.0, 0.0, 3.0));
+  EXPECT_EQ(normal, Eigen::Vector3d::UnitZ());
+  EXPECT_DOUBLE_EQ(dc::signedDistance(box, {2.0, 3.0, 0.0}, &surface, &normal), std::sqrt(2.0));
+  EXPECT_EQ(surface, Eigen::Vector3d(1.0, 2.0, 0.0));
+  dc::Shape sphere;
+  sphere.kind = dc::Shape::Kind::kSphere;
+  sphere.radius = 2.0;
+  EXPECT_DOUBLE_EQ(dc::signedDistance(sphere, {0.0, 1.0, 0.0}, &surface, &normal), -1.0);
+  EXPECT_EQ(surface, Eigen::Vector3d(0.0, 2.0, 0.0));
+  dc::Shape cylinder;
+  cylinder.kind = dc::Shape::Kind::kCylinder;
+  cylinder.radius = 1.0;
+  cylinder.length = 4.0;
+  EXPECT_NEAR(dc::signedDistance(cylinder, {0.0, 0.9, 0.0}, &surface, &normal), -0.1, 1e-15);
+  EXPECT_TRUE(normal.isApprox(Eigen::Vector3d::UnitY()));
+  EXPECT_NEAR(dc::signedDistance(cylinder, {0.0, 0.0, -1.9}, &surface, &normal), -0.1, 1e-15);
+  EXPECT_EQ(normal, -Eigen::Vector3d::UnitZ());
+  EXPECT_DOUBLE_EQ(dc::signedDistance(cylinder, {0.0, 4.0, 6.0}), 5.0);  // past the rim: 3-4-5
+  dc::Shape bad = box;
+  bad.size.y() = -1.0;
+  EXPECT_THROW(dc::validate(bad, "obstacles[0]"), std::invalid_argument);
+}
+
+TEST(Contact, ABlockDroppedOnATableComesToRestOnTop) {
+  dc::SceneSpec spec;
+  spec.dt = 0.01;
+  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
+  spec.effects.warping = true;
+  spec.effects.damping = dc::RayleighDamping{2.0, 0.002};
+  spec.contact = dc::ContactSettings{0.5};
+  dc::PlacedShape table;
+  table.name = "table";
+  table.shape.kind = dc::Shape::Kind::kBox;
+  table.shape.size = {1.0, 1.0, 0.1};
+  table.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.05);  // top face at z = 0
+  spec.obstacles.push_back(table);
+  dc::BodySpec block;
+  block.name = "block";
+  block.box_mesh = dc::BoxMeshSpec{{-0.05, -0.05, 0.1}, {0.05, 0.05, 0.2}, {4, 4, 4}};
+  block.material = {3.0e4, 0.3, 150.0};
+  spec.bodies.push_back(block);
+  const dc::BoxMeshSpec& box = *block.box_mesh;
+  dc::Simulation sim(spec, {dc::makeBoxMesh(box.min, box.max, box.cells)});
+  std::vector<dc::StepReport> reports;
+  for (int s = 0; s < 600; ++s) {
+    sim.step(reports);
+    const Eigen::VectorXd& x = sim.bodies()[0].positions();
+    for (int i = 0; i < sim.bodies()[0].numNodes(); ++i) ASSERT_GE(x[3 * i + 2], -1e-12) << s;
+  }
+  EXPECT_EQ(reports[0].contacts, 25);  // resting on the bottom face's 5 x 5 nodes
+  const dc::FemBody& body = sim.bodies()[0];
+  EXPECT_LT(body.velocities().lpNorm<Eigen::Infinity>(), 1e-3);
+  double bottom = 1.0;
+  for (int i = 0; i < body.numNodes(); ++i) bottom = std::min(bottom, body.positions()[3 * i + 2]);
+  EXPECT_NEAR(bottom, 0.0, 1e-12);
+  // Without the contact effect the same block falls through.
+  spec.contact.reset();
+  spec.obstacles.clear();
+  dc::Simulation free_fall(spec, {dc::makeBoxMesh(box.min, box.max, box.cells)});
+  for (int s = 0; s < 60; ++s) free_fall.step(reports);
+  EXPECT_EQ(reports[0].contacts, 0);
+  EXPECT_LT(free_fall.bodies()[0].positions().maxCoeff(), 1.0);
+  double lowest = 1.0;
+  for (int i = 0; i < free_fall.bodies()[0].numNodes(); ++i) {
+    lowest = std::min(lowest, free_fall.bodies()[0].positions()[3 * i + 2]);
+  }
+  EXPECT_LT(lowest, -0.5);
+}
