@@ -2,11 +2,31 @@
 
 namespace deformable_sim::core {
 
-int resolveContacts(FemBody& body, const std::vector<PlacedShape>& obstacles,
-                    const ContactSettings& settings) {
+void ContactState::hold(FemBody& body) {
+  for (int i = 0; i < body.numNodes(); ++i) {
+    held_[i] = !normal_[i].isZero(0.0) && !body.isConstrained(i);
+    if (held_[i]) body.holdNode(i);
+  }
+}
+
+void ContactState::release(FemBody& body, const ContactSettings& settings) {
+  for (int i = 0; i < body.numNodes(); ++i) {
+    if (!held_[i]) continue;
+    const Eigen::Vector3d r = body.reactionForces().segment<3>(3 * i);
+    const double pushing = r.dot(normal_[i]);
+    const double sliding = (r - pushing * normal_[i]).norm();
+    if (!(pushing > 0.0 && sliding <= settings.friction * pushing + 1e-12 * r.norm())) {
+      normal_[i].setZero();  // it lifts off or slides: free in the next step
+    }
+    body.releaseNode(i);
+    held_[i] = 0;
+  }
+}
+
+int ContactState::project(FemBody& body, const std::vector<PlacedShape>& obstacles,
+                          const ContactSettings& settings) {
   Eigen::VectorXd& x = body.mutablePositions();
   Eigen::VectorXd& v = body.mutableVelocities();
-  int contacts = 0;
   for (const PlacedShape& obstacle : obstacles) {
     const Eigen::Isometry3d to_shape = obstacle.pose.inverse();
     for (int i = 0; i < body.numNodes(); ++i) {
@@ -14,9 +34,9 @@ int resolveContacts(FemBody& body, const std::vector<PlacedShape>& obstacles,
       Eigen::Vector3d surface, normal;
       const Eigen::Vector3d p = x.segment<3>(3 * i);
       if (!(signedDistance(obstacle.shape, to_shape * p, &surface, &normal) < 0.0)) continue;
-      ++contacts;
       x.segment<3>(3 * i) = obstacle.pose * surface;
       const Eigen::Vector3d n = obstacle.pose.linear() * normal;
+      normal_[i] = n;
       Eigen::Vector3d velocity = v.segment<3>(3 * i);
       const double into = -velocity.dot(n);
       if (into <= 0.0) continue;  // already leaving
@@ -30,7 +50,9 @@ int resolveContacts(FemBody& body, const std::vector<PlacedShape>& obstacles,
       v.segment<3>(3 * i) = velocity;
     }
   }
-  return contacts;
+  int touching = 0;
+  for (const Eigen::Vector3d& n : normal_) touching += n.isZero(0.0) ? 0 : 1;
+  return touching;
 }
 
 }  // namespace deformable_sim::core

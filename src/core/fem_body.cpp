@@ -168,6 +168,18 @@ void FemBody::releaseNodes(const std::vector<int>& nodes) {
   }
 }
 
+void FemBody::holdNode(int node) {
+  if (!constrained_[node]) matrix_changed_ = true;
+  constrained_[node] = 1;
+  targets_.segment<3>(3 * node) = x_.segment<3>(3 * node);
+}
+
+void FemBody::releaseNode(int node) {
+  if (constrained_[node]) matrix_changed_ = true;
+  constrained_[node] = 0;
+  reaction_.segment<3>(3 * node).setZero();
+}
+
 int FemBody::numConstrained() const {
   int count = 0;
   for (std::uint8_t c : constrained_) count += c;

@@ -63,6 +63,7 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
                                 std::to_string(meshes.size()) + " meshes");
   }
   bodies_.reserve(spec.bodies.size());
+  if (contact_) contact_states_.reserve(spec.bodies.size());
   wrench_radii_.reserve(spec.bodies.size());
   for (size_t b = 0; b < spec.bodies.size(); ++b) {
     const BodySpec& body_spec = spec.bodies[b];
@@ -78,6 +79,7 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
       throw std::invalid_argument(key + ".wrench_radius: must be finite and >= 0 m");
     }
     wrench_radii_.push_back(body_spec.wrench_radius);
+    if (contact_) contact_states_.emplace_back(body.numNodes());
     for (const auto& [name, selection] : body_spec.groups) {
       if (name.empty() || name.find('/') != std::string::npos) {
         throw std::invalid_argument(key + ".groups: '" + name +
@@ -132,10 +134,15 @@ void Simulation::setDt(double dt) {
 void Simulation::step(std::vector<StepReport>& reports) {
   reports.resize(bodies_.size());
   for (size_t b = 0; b < bodies_.size(); ++b) {
-    reports[b] = bodies_[b].step(dt_);
-    if (contact_ && !obstacles_.empty()) {
-      reports[b].contacts = resolveContacts(bodies_[b], obstacles_, *contact_);
+    if (!contact_) {
+      reports[b] = bodies_[b].step(dt_);
+      continue;
     }
+    ContactState& contacts = contact_states_[b];
+    contacts.hold(bodies_[b]);
+    reports[b] = bodies_[b].step(dt_);
+    contacts.release(bodies_[b], *contact_);
+    reports[b].contacts = contacts.project(bodies_[b], obstacles_, *contact_);
   }
   ++step_count_;
   time_ += dt_;

@@ -174,8 +174,12 @@ void SimNode::onTimer(const ros::TimerEvent&) {
       }
     }
   }
-  updateObstacles();
-  if (!paused_) advance(substeps_);
+  // A body must not fall through an obstacle that tf has not delivered yet: wait for them all.
+  if (!updateObstacles()) {
+    ROS_INFO_THROTTLE(2.0, "waiting for tf to place the obstacle links before stepping");
+  } else if (!paused_) {
+    advance(substeps_);
+  }
   // Real-time factor over the last second of ROS time (the simulated clock with /use_sim_time).
   sim_time_samples_.emplace_back(now, sim_->time());
   while (sim_time_samples_.size() > 2 && (now - sim_time_samples_.front().first).toSec() > 1.0) {
@@ -303,8 +307,8 @@ bool SimNode::loadUrdf(std::string& error) {
   return true;
 }
 
-void SimNode::updateObstacles() {
-  if (!sim_->contact()) return;
+bool SimNode::updateObstacles() {
+  if (!sim_->contact()) return true;
   std::vector<core::PlacedShape>& obstacles = sim_->obstacles();
   obstacles.resize(scene_.obstacles.size());  // the scene's own come first and never move
   for (LinkObstacle& obstacle : link_obstacles_) {
@@ -321,6 +325,7 @@ void SimNode::updateObstacles() {
     }
     if (obstacle.placed) obstacles.push_back(*obstacle.placed);
   }
+  return obstacles.size() == scene_.obstacles.size() + link_obstacles_.size();
 }
 
 std::string SimNode::applyGrasp(const Grasp& message, uint32_t& nodes) {
@@ -664,8 +669,10 @@ bool SimNode::onStep(Step::Request& request, Step::Response& response) {
   if (!paused_) {
     response.success = false;
     response.message = "not paused: call ~pause first";
+  } else if (!updateObstacles()) {
+    response.success = false;
+    response.message = "waiting for tf to place the obstacle links";
   } else {
-    updateObstacles();
     advance(static_cast<int>(request.steps));
     publishState();
     publishFrames();

@@ -1,9 +1,13 @@
-// Contact with rigid obstacles (the `contact` effect): after each step, nodes that ended up inside
-// an obstacle are put back on its surface, their velocity into it removed and, with friction,
-// their sliding slowed (Coulomb's law at the velocity level). A projection, so it is stable at any
-// stiffness and step, and costs nothing when the scene does not enable it.
+// Contact with rigid obstacles (the `contact` effect). After each step, nodes that ended up inside
+// an obstacle are put back on its surface and their velocity into it removed. A node that touches
+// an obstacle is then held in the next step's implicit solve, so the obstacle supports the body
+// through the solve (a resting body is not over-compressed), and let go when the constraint would
+// pull it into the obstacle or, by Coulomb's law, when the tangential force exceeds μ times the
+// normal force (it slides). Stable at any stiffness and step; costs nothing when the scene does not
+// enable it.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "deformable_sim/core/fem_body.h"
@@ -12,12 +16,27 @@
 namespace deformable_sim::core {
 
 struct ContactSettings {
-  double friction = 0.0;  ///< Coulomb coefficient μ >= 0 (0: frictionless)
+  double friction = 0.5;  ///< Coulomb coefficient μ >= 0; with 0 a node never sticks
 };
 
-/// Projects the free nodes of `body` out of every obstacle. Returns the number of nodes that were
-/// in contact. Allocates nothing.
-int resolveContacts(FemBody& body, const std::vector<PlacedShape>& obstacles,
-                    const ContactSettings& settings);
+/// Which nodes touch an obstacle, from step to step. Sized once per body; allocates nothing after.
+class ContactState {
+ public:
+  explicit ContactState(int num_nodes) : normal_(num_nodes, Eigen::Vector3d::Zero()), held_(num_nodes, 0) {}
+
+  /// Before a step: holds the free nodes that touch an obstacle.
+  void hold(FemBody& body);
+  /// After the step: lets the held nodes go, keeping as touching those whose constraint force
+  /// pushes them out of the obstacle within the friction cone.
+  void release(FemBody& body, const ContactSettings& settings);
+  /// Projects the free nodes out of every obstacle and records them as touching. Returns the
+  /// number of nodes touching an obstacle.
+  int project(FemBody& body, const std::vector<PlacedShape>& obstacles,
+              const ContactSettings& settings);
+
+ private:
+  std::vector<Eigen::Vector3d> normal_;  ///< outward normal of the obstacle touched, zero: none
+  std::vector<std::uint8_t> held_;
+};
 
 }  // namespace deformable_sim::core

@@ -95,6 +95,10 @@ class FemBody {
   void setNodeTargets(const std::vector<int>& nodes, const std::vector<Eigen::Vector3d>& targets);
   /// Returns the nodes to free motion.
   void releaseNodes(const std::vector<int>& nodes);
+  /// Holds one valid node where it is for the next step, or lets it go; for effects inside the
+  /// step loop (contact), so they allocate nothing and do not check the index.
+  void holdNode(int node);
+  void releaseNode(int node);
   bool isConstrained(int node) const { return constrained_[node] != 0; }
   int numConstrained() const;
 

@@ -51,6 +51,7 @@ class Simulation {
   std::vector<FemBody> bodies_;
   std::vector<double> wrench_radii_;
   std::optional<ContactSettings> contact_;
+  std::vector<ContactState> contact_states_;  ///< per body, with the contact effect
   std::vector<PlacedShape> obstacles_;
 };
 

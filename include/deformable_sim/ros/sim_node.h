@@ -72,8 +72,9 @@ class SimNode {
   /// Reads the robot description once (scene key urdf.file, else the robot_description
   /// parameter); false with `error` set when there is none or it is not valid.
   bool loadUrdf(std::string& error);
-  /// Poses the URDF links' obstacles from tf and hands every obstacle to the simulation.
-  void updateObstacles();
+  /// Poses the URDF links' obstacles from tf and hands every obstacle to the simulation; false
+  /// while tf has not yet placed them all.
+  bool updateObstacles();
   bool onReset(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool onPause(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool onResume(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
