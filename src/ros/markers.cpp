@@ -69,11 +69,25 @@ visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::FemBo
   for (size_t b = 0; b < bodies.size(); ++b) {
     const core::FemBody& body = bodies[b];
     const Eigen::VectorXd& x = body.positions();
+    // Grasped nodes are constrained too; they are drawn once, in the grasps' colour.
+    std::vector<bool> grasped(body.numNodes(), false);
+    visualization_msgs::Marker held =
+        marker(header, body.name() + "/grasped", 0, visualization_msgs::Marker::SPHERE_LIST, 0.012,
+               colour(0.95f, 0.85f, 0.1f));
+    for (const auto& [name, grasp] : commands.grasps()) {
+      if (grasp.body != static_cast<int>(b)) continue;
+      for (int i : grasp.nodes) {
+        grasped[i] = true;
+        held.points.push_back(toPoint(x.segment<3>(3 * i)));
+      }
+    }
+    if (!held.points.empty()) array.markers.push_back(held);
     visualization_msgs::Marker fixed =
         marker(header, body.name() + "/fixed", 0, visualization_msgs::Marker::SPHERE_LIST, 0.015,
                colour(0.9f, 0.1f, 0.1f));
     for (int i = 0; i < body.numNodes(); ++i) {
-      if (body.isConstrained(i)) fixed.points.push_back(toPoint(x.segment<3>(3 * i)));
+      if (body.isConstrained(i) && !grasped[i])
+        fixed.points.push_back(toPoint(x.segment<3>(3 * i)));
     }
     if (!fixed.points.empty()) array.markers.push_back(fixed);
     int id = 0;

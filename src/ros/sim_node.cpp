@@ -491,6 +491,10 @@ void SimNode::publishStats() {
     s.elastic_energy = body.elasticEnergy();
     s.inverted_elements = static_cast<uint32_t>(reports_[b].inverted_elements);
     s.fixed_nodes = static_cast<uint32_t>(body.numConstrained());
+    s.contacts = static_cast<uint32_t>(reports_[b].contacts);
+    for (const auto& [name, grasp] : commands_->grasps()) {
+      if (grasp.body == static_cast<int>(b)) s.grasped_nodes += grasp.nodes.size();
+    }
     for (const auto& [source, wrench] : commands_->activeWrenches()) {
       s.applied_wrenches += wrench.body == static_cast<int>(b) ? 1 : 0;
     }

@@ -21,9 +21,9 @@ void fillSurfaceMarker(const core::FemBody& body, const std::vector<core::Triang
                        const std::vector<double>* strain, double strain_scale,
                        visualization_msgs::Marker& marker);
 
-/// Markers of what acts on the bodies: constrained nodes (red spheres), node groups (blue points)
-/// and applied wrenches (green arrows from the application point, 0.1 m per N). Starts with a
-/// DELETEALL so that markers of things that are gone disappear.
+/// Markers of what acts on the bodies: fixed nodes (red spheres), grasped nodes (yellow spheres),
+/// node groups (blue points) and applied wrenches (green arrows from the application point, 0.1 m
+/// per N). Starts with a DELETEALL so that markers of things that are gone disappear.
 visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::FemBody>& bodies,
                                                    const core::CommandProcessor& commands,
                                                    const std_msgs::Header& header);

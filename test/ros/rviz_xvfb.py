@@ -1,0 +1,56 @@
+"""rviz in a virtual X display for the rostests: start it with a config, take screenshots, count
+pixels of a colour."""
+import os
+import shutil
+import subprocess
+import tempfile
+
+
+class RvizUnderXvfb:
+    TOOLS = ('Xvfb', 'rviz', '/usr/bin/import', '/usr/bin/convert')
+
+    def __init__(self, config):
+        missing = [t for t in self.TOOLS if shutil.which(t) is None]
+        if missing:
+            raise AssertionError('%s not installed (.ci/run installs them)' % ', '.join(missing))
+        self.folder = tempfile.mkdtemp()
+        read_end, write_end = os.pipe()
+        self.xvfb = subprocess.Popen(['Xvfb', '-displayfd', str(write_end), '-screen', '0',
+                                      '1024x768x24', '+extension', 'GLX', '+render', '-noreset'],
+                                     pass_fds=[write_end], stderr=subprocess.DEVNULL)
+        os.close(write_end)
+        with os.fdopen(read_end) as display:
+            self.display = ':' + display.readline().strip()
+        environment = dict(os.environ, DISPLAY=self.display)
+        self.rviz = subprocess.Popen(['rviz', '-d', config], env=environment,
+                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+    def screenshot(self):
+        """A PNG of the whole screen now (its path), or None if none could be taken."""
+        shot = os.path.join(self.folder, 'rviz.png')
+        if os.path.exists(shot):
+            os.remove(shot)
+        subprocess.run(['/usr/bin/import', '-display', self.display, '-window', 'root', shot],
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        return shot if os.path.exists(shot) else None
+
+    def close(self):
+        for process in (self.rviz, self.xvfb):  # rviz first: it aborts if the display goes
+            process.terminate()
+            try:
+                process.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                process.kill()
+
+
+# The 3D view of a 1024 x 768 rviz window with the displays panel docked left (the panel's blue
+# text and icons must not count).
+RENDER_AREA = '640x670+366+64'
+
+
+def count_pixels(png, is_wanted, area=RENDER_AREA):
+    """How many pixels of the PNG's `area` (ImageMagick geometry) satisfy is_wanted(r, g, b), each
+    0..255."""
+    raw = subprocess.run(['/usr/bin/convert', png, '-crop', area, '+repage', '-depth', '8', 'rgb:-'],
+                         capture_output=True, check=True).stdout
+    return sum(1 for k in range(0, len(raw), 3) if is_wanted(raw[k], raw[k + 1], raw[k + 2]))

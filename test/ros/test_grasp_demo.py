@@ -1,0 +1,116 @@
+#!/usr/bin/python3
+"""launch/grasp_demo.launch runs its whole script headless: the block stays finite, is lifted by the
+two finger grasps, swung and put back on the table, never sinking into it; the fingers feed back
+what they push with. rviz under Xvfb shows gripper, block and reaction wrench while it is held (the
+screenshot, kept by ~screenshot, is the README's)."""
+import os
+import shutil
+import threading
+import time
+import unittest
+
+import numpy as np
+import rospkg
+import rospy
+import rostest
+from geometry_msgs.msg import WrenchStamped
+
+from deformable_sim.msg import BodyState
+from rviz_xvfb import RvizUnderXvfb, count_pixels
+
+CONFIG = os.path.join(rospkg.RosPack().get_path('deformable_sim'), 'config', 'grasp_demo.rviz')
+MASS = 150.0 * 0.06 ** 3  # kg: the block of config/scenes/grasp_demo.yaml
+TABLE_TOP = 0.0           # m: config/urdf/gripper_demo.urdf
+
+
+def is_strain_coloured(r, g, b):
+    """The block's surface: strain colours (s, 0.2, 1 - s), lit or in shade."""
+    return max(r, b) > 70 and g < 0.45 * max(r, b)
+
+
+def is_reaction_cyan(r, g, b):
+    return g > 90 and b > 90 and r < 0.45 * min(g, b)
+
+
+def is_gripper_grey(r, g, b):
+    return min(r, g, b) > 120 and max(r, g, b) - min(r, g, b) < 20
+
+
+class GraspDemo(unittest.TestCase):
+    def setUp(self):
+        self.lock = threading.Lock()
+        self.states = []
+        self.forces = {'left': [], 'right': []}
+        rospy.Subscriber('/deformable_sim/state', BodyState, self.on_state, queue_size=100)
+        for side in self.forces:
+            rospy.Subscriber('/deformable_sim/grasps/%s/wrench' % side, WrenchStamped,
+                             lambda m, side=side: self.on_wrench(side, m), queue_size=100)
+        self.rviz = RvizUnderXvfb(CONFIG)
+
+    def tearDown(self):
+        self.rviz.close()
+
+    def on_state(self, message):
+        points = np.array([(p.x, p.y, p.z) for p in message.positions])
+        with self.lock:
+            self.states.append((message.header.stamp.to_sec(), points))
+
+    def on_wrench(self, side, message):
+        f = message.wrench.force
+        with self.lock:
+            self.forces[side].append((message.header.stamp.to_sec(), np.array([f.x, f.y, f.z])))
+
+    def cycles(self):
+        return rospy.get_param('/grasp_demo_motion/cycles', 0)
+
+    def test_the_demo_picks_up_swings_and_puts_down_the_block(self):
+        # The script loops; watch it until it has run once from start to end after we subscribed,
+        # and take the screenshot the first time the block is held high.
+        deadline = time.time() + 100.0
+        while not rospy.has_param('/grasp_demo_motion/cycles') and time.time() < deadline:
+            time.sleep(0.1)
+        start_cycles = self.cycles()
+        shot, shot_pixels = None, (0, 0, 0)
+        while self.cycles() < start_cycles + 2 and time.time() < deadline:
+            time.sleep(0.5)
+            with self.lock:
+                latest = self.states[-1][1] if self.states else None
+            if shot is None and latest is not None and latest[:, 2].mean() > 0.2:
+                candidate = self.rviz.screenshot()
+                if candidate:
+                    pixels = tuple(count_pixels(candidate, f) for f in
+                                   (is_strain_coloured, is_reaction_cyan, is_gripper_grey))
+                    if min(pixels) > 50:
+                        shot, shot_pixels = candidate, pixels
+                        keep = rospy.get_param('~screenshot', '')
+                        if keep:
+                            shutil.copy(shot, keep)
+            if shot is not None and self.cycles() >= start_cycles + 1:
+                break
+        self.assertGreaterEqual(self.cycles(), start_cycles + 1, 'the script did not finish')
+        with self.lock:
+            states = list(self.states)
+            forces = {side: list(f) for side, f in self.forces.items()}
+
+        self.assertGreater(len(states), 1000)
+        for _, points in states:
+            self.assertTrue(np.all(np.isfinite(points)))
+            self.assertGreater(points[:, 2].min(), TABLE_TOP - 1e-9, 'a node sank into the table')
+        heights = [points[:, 2].mean() for _, points in states]
+        self.assertGreater(max(heights), 0.2, 'the block was never lifted')
+        # Put down and let go: it rests on the table again, about where it started.
+        self.assertLess(abs(heights[-1] - 0.03), 0.005)
+        self.assertLess(heights[0], 0.04, 'the block was already lifted when the test started')
+        # While held, the fingers carry the block's weight (and its swing).
+        for side in forces:
+            self.assertTrue(forces[side], 'no reaction wrench from the %s finger' % side)
+            self.assertTrue(all(np.all(np.isfinite(f)) for _, f in forces[side]))
+        lifted = [f for side in forces for _, f in forces[side]]
+        self.assertGreater(max(f[2] for f in lifted), 0.25 * MASS * 9.81)
+        self.assertIsNotNone(shot, 'rviz never showed block, reaction wrench and gripper together')
+        rospy.loginfo('screenshot pixels (block, wrench, gripper): %s', shot_pixels)
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_grasp_demo')
+    rostest.rosrun('deformable_sim', 'grasp_demo', GraspDemo)
