@@ -454,7 +454,8 @@ core::SceneSpec readSceneFile(const std::string& path) {
   return parseScene(text.str(), path, directory.empty() ? "." : directory);
 }
 
-core::Simulation buildSimulation(const core::SceneSpec& spec, std::vector<std::string>* warnings) {
+std::vector<core::Mesh> readMeshes(const core::SceneSpec& spec,
+                                   std::vector<std::string>* warnings) {
   std::vector<core::Mesh> meshes;
   for (const core::BodySpec& body : spec.bodies) {
     if (body.box_mesh) {
@@ -466,6 +467,11 @@ core::Simulation buildSimulation(const core::SceneSpec& spec, std::vector<std::s
     if (warnings) warnings->insert(warnings->end(), read.warnings.begin(), read.warnings.end());
     meshes.push_back(std::move(read.mesh));
   }
+  return meshes;
+}
+
+core::Simulation buildSimulation(const core::SceneSpec& spec, std::vector<std::string>* warnings) {
+  std::vector<core::Mesh> meshes = readMeshes(spec, warnings);
   try {
     return core::Simulation(spec, std::move(meshes));
   } catch (const std::invalid_argument& e) {

@@ -1,5 +1,6 @@
 #include "deformable_sim/ros/sim_node.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -10,8 +11,10 @@
 #include "deformable_sim/core/strain.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/io/urdf_shapes.h"
+#include "deformable_sim/ros/body_frames.h"
 #include "deformable_sim/ros/conversions.h"
 #include "deformable_sim/ros/markers.h"
+#include "deformable_sim/ros/session_messages.h"
 
 namespace deformable_sim::ros_layer {
 
@@ -48,6 +51,9 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
     }
   }
 
+  applied_pub_ = private_node.advertise<Applied>("applied", 1000);
+  scene_pub_ = private_node.advertise<Scene>("scene", 1, true);  // latched: a bag holds it
+  publishScene();
   state_pub_ = private_node.advertise<BodyState>("state", 10);
   stats_pub_ = private_node.advertise<Stats>("stats", 10);
   mesh_pub_ = private_node.advertise<visualization_msgs::Marker>("mesh", 2);
@@ -57,7 +63,7 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
   fixed_nodes_sub_ = private_node.subscribe("fixed_nodes", 100, &SimNode::onFixedNodes, this);
   grasp_sub_ = private_node.subscribe("grasp", 100, &SimNode::onGrasp, this);
   grasp_srv_ = private_node.advertiseService("grasp", &SimNode::onSetGrasp, this);
-  for (const core::FemBody& body : sim_->bodies()) {
+  for (const core::FemBody& body : sim().bodies()) {
     reaction_pubs_.push_back(
         private_node.advertise<geometry_msgs::WrenchStamped>("reactions/" + body.name(), 10));
   }
@@ -70,7 +76,7 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
   diagnostics_.add("simulation", this, &SimNode::diagnose);
 
   // Live tuning: start from the scene's values so that the first callback changes nothing.
-  const core::FemBody& first = sim_->bodies().front();
+  const core::FemBody& first = sim().bodies().front();
   applied_config_.body = "";
   applied_config_.youngs_modulus = first.material().youngs_modulus;
   applied_config_.poisson_ratio = first.material().poisson_ratio;
@@ -89,18 +95,24 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
   reconfigure_->setCallback([this](SimConfig& config, uint32_t) { onReconfigure(config); });
 
   timer_ = node.createTimer(ros::Duration(1.0 / rate_hz_), &SimNode::onTimer, this);
-  for (const core::FemBody& body : sim_->bodies()) {
+  for (const core::FemBody& body : sim().bodies()) {
     ROS_INFO("body '%s': %d nodes, %d tetrahedra, %d fixed; frame '%s'", body.name().c_str(),
              body.numNodes(), body.mesh().numTetrahedra(), body.numConstrained(),
              (frame_prefix_ + body.name()).c_str());
   }
   ROS_INFO("stepping %s at %.4g Hz x %d substeps (dt %.4g s) in frame '%s'",
            scene_path_.empty() ? "the built-in default scene" : scene_path_.c_str(), rate_hz_,
-           substeps_, sim_->dt(), world_frame_.c_str());
+           substeps_, sim().dt(), world_frame_.c_str());
 }
 
 void SimNode::readParameters(ros::NodeHandle& private_node) {
   param(private_node, "scene", scene_path_);
+  if (!scene_path_.empty()) {
+    std::ifstream file(scene_path_);
+    std::stringstream text;
+    text << file.rdbuf();
+    scene_text_ = text.str();
+  }
   try {
     scene_ = scene_path_.empty() ? core::defaultScene() : io::readSceneFile(scene_path_);
   } catch (const io::SceneError& e) {
@@ -142,24 +154,57 @@ void SimNode::readParameters(ros::NodeHandle& private_node) {
 
 void SimNode::buildSimulation() {
   std::vector<std::string> warnings;
+  std::vector<core::Mesh> meshes;
   try {
-    sim_ = std::make_unique<core::Simulation>(io::buildSimulation(scene_, &warnings));
+    meshes = io::readMeshes(scene_, &warnings);
+    session_ = std::make_unique<core::Session>(scene_, meshes, limits_);
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("~scene: ") + e.what());
   }
   for (const std::string& w : warnings) ROS_WARN("%s", w.c_str());
-  commands_ = std::make_unique<core::CommandProcessor>(*sim_, limits_);
-  surfaces_.clear();
-  for (const core::FemBody& body : sim_->bodies())
+  session_->setListener([this](const core::AppliedCommand& applied) { publishApplied(applied); });
+  for (const core::FemBody& body : sim().bodies())
     surfaces_.push_back(core::extractSurface(body.mesh()));
+  clearTickState();
+}
+
+void SimNode::clearTickState() {
   wrench_times_.clear();
   grasp_frames_.clear();
   sim_time_samples_.clear();
-  reports_.assign(sim_->bodies().size(), core::StepReport{});
+  reports_.assign(sim().bodies().size(), core::StepReport{});
+}
+
+int SimNode::apply(const core::SessionCommand& command) {
+  // Applied as recorded: the command read back from the very message published on ~applied, so
+  // that a replay of it acts exactly as it did here (a pose's quaternion does not round-trip).
+  recording_ = toMessage(command);
+  return session_->apply(fromMessage(recording_));
+}
+
+void SimNode::publishApplied(const core::AppliedCommand& applied) {
+  Applied& message = recording_;
+  message.header.stamp = ros::Time::now();
+  message.header.frame_id = world_frame_;
+  message.episode = static_cast<uint64_t>(applied.episode);
+  message.step = static_cast<uint64_t>(applied.step);
+  applied_pub_.publish(message);
+}
+
+void SimNode::publishScene() {
+  std::vector<std::string> names;
+  for (const core::BodySpec& body : scene_.bodies) names.push_back(body.name);
+  Scene message =
+      toSceneMessage(scene_path_, scene_text_, sim().dt(), substeps_, session_->meshes(), names);
+  message.header.stamp = ros::Time::now();
+  message.header.frame_id = world_frame_;
+  message.world_frame = world_frame_;
+  message.frame_prefix = frame_prefix_;
+  scene_pub_.publish(message);
 }
 
 std::string SimNode::bodyFrame(int body) const {
-  return frame_prefix_ + sim_->bodies()[body].name();
+  return frame_prefix_ + sim().bodies()[body].name();
 }
 
 void SimNode::onTimer(const ros::TimerEvent&) {
@@ -167,7 +212,7 @@ void SimNode::onTimer(const ros::TimerEvent&) {
   if (wrench_timeout_s_ > 0.0) {
     for (auto it = wrench_times_.begin(); it != wrench_times_.end();) {
       if ((now - it->second).toSec() > wrench_timeout_s_) {
-        commands_->clearWrench(it->first);
+        apply(core::ClearWrenchCommand{it->first});
         it = wrench_times_.erase(it);
       } else {
         ++it;
@@ -181,13 +226,13 @@ void SimNode::onTimer(const ros::TimerEvent&) {
     advance(substeps_);
   }
   // Real-time factor over the last second of ROS time (the simulated clock with /use_sim_time).
-  sim_time_samples_.emplace_back(now, sim_->time());
+  sim_time_samples_.emplace_back(now, sim().time());
   while (sim_time_samples_.size() > 2 && (now - sim_time_samples_.front().first).toSec() > 1.0) {
     sim_time_samples_.pop_front();
   }
   const double elapsed = (now - sim_time_samples_.front().first).toSec();
   real_time_factor_ =
-      elapsed > 0.0 ? (sim_->time() - sim_time_samples_.front().second) / elapsed : 0.0;
+      elapsed > 0.0 ? (sim().time() - sim_time_samples_.front().second) / elapsed : 0.0;
 
   publishState();
   publishFrames();
@@ -209,7 +254,7 @@ void SimNode::advance(int steps) {
   // Grasp frames move from where they were to where tf has them now, evenly over the substeps.
   std::vector<std::pair<std::string, std::pair<Eigen::Isometry3d, Eigen::Isometry3d>>> moves;
   for (const auto& [name, frame] : grasp_frames_) {
-    moves.push_back({name, {commands_->grasps().at(name).frame, graspFramePose(name)}});
+    moves.push_back({name, {session_->commands().grasps().at(name).frame, graspFramePose(name)}});
   }
   const ros::WallTime start = ros::WallTime::now();
   for (int s = 1; s <= steps; ++s) {
@@ -221,9 +266,9 @@ void SimNode::advance(int steps) {
       pose.linear() = Eigen::Quaterniond(from.linear())
                           .slerp(t, Eigen::Quaterniond(to.linear()))
                           .toRotationMatrix();
-      commands_->moveGrasp(name, s == steps ? to : pose);
+      apply(core::MoveGraspCommand{name, s == steps ? to : pose});
     }
-    sim_->step(reports_);
+    session_->step(reports_);
   }
   step_time_s_ = (ros::WallTime::now() - start).toSec();
 }
@@ -238,15 +283,15 @@ Eigen::Isometry3d SimNode::graspFramePose(const std::string& name) {
     ROS_WARN_THROTTLE(1.0, "grasp '%s': frame '%s' not in tf now (%s); holding its last pose",
                       name.c_str(), frame.c_str(), e.what());
   }
-  return commands_->grasps().at(name).frame;
+  return session_->commands().grasps().at(name).frame;
 }
 
 void SimNode::publishGrasps() {
   const ros::Time now = ros::Time::now();
   std::vector<geometry_msgs::TransformStamped> frames;
   for (const auto& [name, frame] : grasp_frames_) {
-    const core::ActiveGrasp& grasp = commands_->grasps().at(name);
-    const core::Wrench reaction = commands_->graspReaction(name);
+    const core::ActiveGrasp& grasp = session_->commands().grasps().at(name);
+    const core::Wrench reaction = session_->commands().graspReaction(name);
     const Eigen::Matrix3d to_frame = grasp.frame.linear().transpose();
     geometry_msgs::WrenchStamped wrench;
     wrench.header.stamp = now;
@@ -255,7 +300,7 @@ void SimNode::publishGrasps() {
     wrench.wrench.torque = toVector3(to_frame * reaction.torque);
     grasp_wrench_pubs_.at(name).publish(wrench);
     // The object seen from the gripper: how it slips or sags in the hand.
-    const core::FemBody& body = sim_->bodies()[grasp.body];
+    const core::FemBody& body = sim().bodies()[grasp.body];
     geometry_msgs::TransformStamped object;
     object.header.stamp = now;
     object.header.frame_id = frame;
@@ -266,10 +311,10 @@ void SimNode::publishGrasps() {
     frames.push_back(object);
   }
   if (!frames.empty()) tf_broadcaster_.sendTransform(frames);
-  for (size_t b = 0; b < sim_->bodies().size(); ++b) {
+  for (size_t b = 0; b < sim().bodies().size(); ++b) {
     if (reaction_pubs_[b].getNumSubscribers() == 0) continue;
     const core::Wrench reaction =
-        commands_->fixedReaction(static_cast<int>(b), Eigen::Vector3d::Zero());
+        session_->commands().fixedReaction(static_cast<int>(b), Eigen::Vector3d::Zero());
     geometry_msgs::WrenchStamped wrench;
     wrench.header.stamp = now;
     wrench.header.frame_id = world_frame_;
@@ -308,9 +353,8 @@ bool SimNode::loadUrdf(std::string& error) {
 }
 
 bool SimNode::updateObstacles() {
-  if (!sim_->contact()) return true;
-  std::vector<core::PlacedShape>& obstacles = sim_->obstacles();
-  obstacles.resize(scene_.obstacles.size());  // the scene's own come first and never move
+  if (!sim().contact()) return true;
+  std::vector<core::PlacedShape> obstacles = scene_.obstacles;  // these never move
   for (LinkObstacle& obstacle : link_obstacles_) {
     try {
       const Eigen::Isometry3d link =
@@ -325,16 +369,33 @@ bool SimNode::updateObstacles() {
     }
     if (obstacle.placed) obstacles.push_back(*obstacle.placed);
   }
-  return obstacles.size() == scene_.obstacles.size() + link_obstacles_.size();
+  if (obstacles.size() != scene_.obstacles.size() + link_obstacles_.size()) return false;
+  // Recorded (and applied) only when tf moved one.
+  const auto same = [](const core::PlacedShape& a, const core::PlacedShape& b) {
+    return a.name == b.name && a.shape.kind == b.shape.kind && a.shape.size == b.shape.size &&
+           a.shape.radius == b.shape.radius && a.shape.length == b.shape.length &&
+           a.pose.matrix() == b.pose.matrix();
+  };
+  if (!std::equal(obstacles.begin(), obstacles.end(), requested_obstacles_.begin(),
+                  requested_obstacles_.end(), same)) {
+    try {
+      apply(core::SetObstaclesCommand{obstacles});
+      requested_obstacles_ = std::move(obstacles);
+    } catch (const core::CommandError& e) {
+      ROS_WARN_THROTTLE(1.0, "obstacles not moved: %s", e.what());
+    }
+  }
+  return true;
 }
 
 std::string SimNode::applyGrasp(const Grasp& message, uint32_t& nodes) {
   nodes = 0;
   if (message.action == Grasp::RELEASE) {
-    const auto found = commands_->grasps().find(message.name);
-    if (found == commands_->grasps().end()) return "no grasp named '" + message.name + "'";
+    const auto found = session_->commands().grasps().find(message.name);
+    if (found == session_->commands().grasps().end())
+      return "no grasp named '" + message.name + "'";
     nodes = static_cast<uint32_t>(found->second.nodes.size());
-    commands_->releaseGrasp(message.name);
+    apply(core::ReleaseGraspCommand{message.name});
     grasp_frames_.erase(message.name);
     return "";
   }
@@ -386,7 +447,7 @@ std::string SimNode::applyGrasp(const Grasp& message, uint32_t& nodes) {
              " is not REGION_BOX, REGION_SPHERE or REGION_LINK";
   }
   try {
-    nodes = static_cast<uint32_t>(commands_->apply(command));
+    nodes = static_cast<uint32_t>(apply(command));
   } catch (const core::CommandError& e) {
     return e.what();
   }
@@ -417,36 +478,19 @@ bool SimNode::onSetGrasp(SetGrasp::Request& request, SetGrasp::Response& respons
 
 void SimNode::publishState() {
   const ros::Time now = ros::Time::now();
-  for (const core::FemBody& body : sim_->bodies()) {
+  for (const core::FemBody& body : sim().bodies()) {
     fillState(body, state_message_);
     state_message_.header.stamp = now;
     state_message_.header.frame_id = world_frame_;
-    state_message_.step = static_cast<uint64_t>(sim_->stepCount());
+    state_message_.episode = static_cast<uint64_t>(session_->episode());
+    state_message_.step = static_cast<uint64_t>(sim().stepCount());
     state_pub_.publish(state_message_);
   }
 }
 
 void SimNode::publishFrames() {
-  std::vector<geometry_msgs::TransformStamped> frames;
-  const ros::Time now = ros::Time::now();
-  auto add = [&](const std::string& child, const core::RigidFrame& frame) {
-    geometry_msgs::TransformStamped t;
-    t.header.stamp = now;
-    t.header.frame_id = world_frame_;
-    t.child_frame_id = child;
-    t.transform = toTransform(toPose(frame));
-    frames.push_back(t);
-  };
-  for (size_t b = 0; b < sim_->bodies().size(); ++b) {
-    const core::FemBody& body = sim_->bodies()[b];
-    add(bodyFrame(static_cast<int>(b)),
-        core::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses()));
-    for (const auto& [name, nodes] : body.groups()) {
-      add(bodyFrame(static_cast<int>(b)) + "/" + name,
-          core::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses(), nodes));
-    }
-  }
-  tf_broadcaster_.sendTransform(frames);
+  tf_broadcaster_.sendTransform(
+      bodyFrames(sim().bodies(), world_frame_, frame_prefix_, ros::Time::now()));
 }
 
 void SimNode::publishMarkers() {
@@ -454,10 +498,10 @@ void SimNode::publishMarkers() {
   header.stamp = ros::Time::now();
   header.frame_id = world_frame_;
   if (mesh_pub_.getNumSubscribers() > 0) {
-    for (const core::FemBody& body : sim_->bodies()) {
+    for (const core::FemBody& body : sim().bodies()) {
       const bool colour = body.effects().stress_colouring;
       if (colour) core::nodalStrain(body, strain_);
-      const size_t b = &body - sim_->bodies().data();
+      const size_t b = &body - sim().bodies().data();
       fillSurfaceMarker(body, surfaces_[b], colour ? &strain_ : nullptr, strain_colour_scale_,
                         mesh_message_);
       mesh_message_.header = header;
@@ -465,7 +509,7 @@ void SimNode::publishMarkers() {
     }
   }
   if (markers_pub_.getNumSubscribers() > 0) {
-    markers_pub_.publish(interactionMarkers(sim_->bodies(), *commands_, header));
+    markers_pub_.publish(interactionMarkers(sim().bodies(), session_->commands(), header));
   }
 }
 
@@ -473,15 +517,15 @@ void SimNode::publishStats() {
   Stats stats;
   stats.header.stamp = ros::Time::now();
   stats.header.frame_id = world_frame_;
-  stats.step = static_cast<uint64_t>(sim_->stepCount());
-  stats.sim_time = sim_->time();
+  stats.step = static_cast<uint64_t>(sim().stepCount());
+  stats.sim_time = sim().time();
   stats.paused = paused_;
   stats.step_time = step_time_s_;
   stats.real_time_factor = real_time_factor_;
   stats.dropped_messages = refusals_.count();
   stats.last_refusal = refusals_.last();
-  for (size_t b = 0; b < sim_->bodies().size(); ++b) {
-    const core::FemBody& body = sim_->bodies()[b];
+  for (size_t b = 0; b < sim().bodies().size(); ++b) {
+    const core::FemBody& body = sim().bodies()[b];
     BodyStats s;
     s.body = body.name();
     s.solver_iterations = static_cast<uint32_t>(reports_[b].solve.iterations);
@@ -492,10 +536,10 @@ void SimNode::publishStats() {
     s.inverted_elements = static_cast<uint32_t>(reports_[b].inverted_elements);
     s.fixed_nodes = static_cast<uint32_t>(body.numConstrained());
     s.contacts = static_cast<uint32_t>(reports_[b].contacts);
-    for (const auto& [name, grasp] : commands_->grasps()) {
+    for (const auto& [name, grasp] : session_->commands().grasps()) {
       if (grasp.body == static_cast<int>(b)) s.grasped_nodes += grasp.nodes.size();
     }
-    for (const auto& [source, wrench] : commands_->activeWrenches()) {
+    for (const auto& [source, wrench] : session_->commands().activeWrenches()) {
       s.applied_wrenches += wrench.body == static_cast<int>(b) ? 1 : 0;
     }
     stats.bodies.push_back(s);
@@ -509,8 +553,8 @@ bool SimNode::resolveFrame(const std::string& frame_id, FrameTarget& target,
   target = FrameTarget{};
   if (frame.empty() || frame == world_frame_) return true;
   std::string own;
-  for (size_t b = 0; b < sim_->bodies().size(); ++b) {
-    const core::FemBody& body = sim_->bodies()[b];
+  for (size_t b = 0; b < sim().bodies().size(); ++b) {
+    const core::FemBody& body = sim().bodies()[b];
     const std::string name = bodyFrame(static_cast<int>(b));
     own += (own.empty() ? "" : ", ") + name;
     if (frame == name) {
@@ -575,29 +619,29 @@ void SimNode::onWrench(const geometry_msgs::WrenchStamped::ConstPtr& message) {
     command.torque = target.pose.linear() * torque;
     command.point = target.pose.translation();
     if (target.body >= 0) {
-      command.body = sim_->bodies()[target.body].name();
+      command.body = sim().bodies()[target.body].name();
       command.nodes.group = target.group;
       command.nodes.whole_body = target.group.empty();
     } else {
       // Another tf frame: the nodes of the nearest body within its wrench_radius of the origin.
       int nearest = 0;
       double best = std::numeric_limits<double>::infinity();
-      for (size_t b = 0; b < sim_->bodies().size(); ++b) {
-        const Eigen::VectorXd& x = sim_->bodies()[b].positions();
-        for (int i = 0; i < sim_->bodies()[b].numNodes(); ++i) {
+      for (size_t b = 0; b < sim().bodies().size(); ++b) {
+        const Eigen::VectorXd& x = sim().bodies()[b].positions();
+        for (int i = 0; i < sim().bodies()[b].numNodes(); ++i) {
           const double d = (x.segment<3>(3 * i) - *command.point).norm();
           if (d < best) best = d, nearest = static_cast<int>(b);
         }
       }
-      command.body = sim_->bodies()[nearest].name();
-      command.nodes.sphere = core::Sphere{*command.point, sim_->wrenchRadius(nearest)};
+      command.body = sim().bodies()[nearest].name();
+      command.nodes.sphere = core::Sphere{*command.point, sim().wrenchRadius(nearest)};
     }
   } else {
     command.force = force;  // zero (or -0): clears the wrench of this frame
     command.torque = torque;
   }
   try {
-    commands_->apply(command);
+    apply(command);
   } catch (const core::CommandError& e) {
     return refuse(topic, "frame '" + frame + "': " + e.what());
   }
@@ -615,7 +659,7 @@ void SimNode::onNodeWrench(const NodeWrench::ConstPtr& message) {
   if (!resolveFrame(message->header.frame_id, frame, error)) return refuse(topic, error);
   try {
     const core::WrenchCommand command = toCommand(*message, frame.pose);
-    commands_->apply(command);
+    apply(command);
     if (command.force.isZero(0.0) && command.torque.isZero(0.0)) {
       wrench_times_.erase(command.source);
     } else {
@@ -632,15 +676,16 @@ void SimNode::onFixedNodes(const FixedNodes::ConstPtr& message) {
   std::string error;
   if (!resolveFrame(message->header.frame_id, frame, error)) return refuse(topic, error);
   try {
-    commands_->apply(toCommand(*message, frame.pose));
+    apply(toCommand(*message, frame.pose));
   } catch (const core::CommandError& e) {
     refuse(topic, e.what());
   }
 }
 
 bool SimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
-  buildSimulation();
-  // Keep what was tuned live.
+  apply(core::ResetCommand{});
+  clearTickState();
+  requested_obstacles_.clear();
   // Keep what was tuned live: re-apply what differs from the scene's own values.
   SimConfig tuned = applied_config_;
   applied_config_ = scene_config_;
@@ -656,7 +701,7 @@ bool SimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& 
 bool SimNode::onPause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   response.success = true;
   response.message =
-      paused_ ? "already paused" : "paused at step " + std::to_string(sim_->stepCount());
+      paused_ ? "already paused" : "paused at step " + std::to_string(sim().stepCount());
   paused_ = true;
   return true;
 }
@@ -664,7 +709,7 @@ bool SimNode::onPause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& 
 bool SimNode::onResume(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   response.success = true;
   response.message =
-      paused_ ? "resumed at step " + std::to_string(sim_->stepCount()) : "not paused";
+      paused_ ? "resumed at step " + std::to_string(sim().stepCount()) : "not paused";
   paused_ = false;
   return true;
 }
@@ -684,55 +729,61 @@ bool SimNode::onStep(Step::Request& request, Step::Response& response) {
     response.success = true;
     response.message = "took " + std::to_string(request.steps) + " steps";
   }
-  response.step = static_cast<uint64_t>(sim_->stepCount());
+  response.step = static_cast<uint64_t>(sim().stepCount());
   return true;
 }
 
 void SimNode::onReconfigure(SimConfig& config) {
   const SimConfig before = applied_config_;
-  std::vector<core::FemBody*> bodies;
-  for (core::FemBody& body : sim_->bodies()) {
-    if (config.body.empty() || body.name() == config.body) bodies.push_back(&body);
+  std::vector<core::TuneCommand> tunes;
+  for (const core::FemBody& body : sim().bodies()) {
+    if (!config.body.empty() && body.name() != config.body) continue;
+    core::TuneCommand tune;
+    tune.body = body.name();
+    if (config.youngs_modulus != before.youngs_modulus ||
+        config.poisson_ratio != before.poisson_ratio || config.density != before.density) {
+      core::LinearElasticMaterial material = body.material();
+      if (config.youngs_modulus != before.youngs_modulus)
+        material.youngs_modulus = config.youngs_modulus;
+      if (config.poisson_ratio != before.poisson_ratio)
+        material.poisson_ratio = config.poisson_ratio;
+      if (config.density != before.density) material.density = config.density;
+      tune.material = material;
+    }
+    if (config.damping_mass != before.damping_mass ||
+        config.damping_stiffness != before.damping_stiffness) {
+      tune.damping = core::RayleighDamping{config.damping_mass, config.damping_stiffness};
+    }
+    if (config.solver_tolerance != before.solver_tolerance) {
+      tune.solver_tolerance = config.solver_tolerance;
+    }
+    if (config.solver_max_iterations != before.solver_max_iterations) {
+      tune.solver_max_iterations = config.solver_max_iterations;
+    }
+    if (tune.material || tune.damping || tune.solver_tolerance || tune.solver_max_iterations) {
+      tunes.push_back(tune);
+    }
   }
-  if (bodies.empty()) {
+  if (tunes.empty() && !config.body.empty() && sim().bodyIndex(config.body) < 0) {
     ROS_WARN("reconfigure: no body named '%s'; nothing changed", config.body.c_str());
     config = before;
     return;
   }
+  if (config.rate != before.rate) {
+    core::TuneCommand tune;
+    tune.dt = 1.0 / (config.rate * substeps_);
+    tunes.push_back(tune);
+  }
   try {
-    if (config.youngs_modulus != before.youngs_modulus ||
-        config.poisson_ratio != before.poisson_ratio || config.density != before.density) {
-      for (core::FemBody* body : bodies) {
-        core::LinearElasticMaterial material = body->material();
-        if (config.youngs_modulus != before.youngs_modulus)
-          material.youngs_modulus = config.youngs_modulus;
-        if (config.poisson_ratio != before.poisson_ratio)
-          material.poisson_ratio = config.poisson_ratio;
-        if (config.density != before.density) material.density = config.density;
-        body->setMaterial(material);
-      }
-    }
-    if (config.damping_mass != before.damping_mass ||
-        config.damping_stiffness != before.damping_stiffness) {
-      for (core::FemBody* body : bodies) {
-        body->setDamping(core::RayleighDamping{config.damping_mass, config.damping_stiffness});
-      }
-    }
-    if (config.solver_tolerance != before.solver_tolerance ||
-        config.solver_max_iterations != before.solver_max_iterations) {
-      for (core::FemBody* body : bodies) {
-        body->setSolverLimits(config.solver_tolerance, config.solver_max_iterations);
-      }
-    }
-    if (config.rate != before.rate) {
-      sim_->setDt(1.0 / (config.rate * substeps_));
-      rate_hz_ = config.rate;
-      if (timer_.isValid()) timer_.setPeriod(ros::Duration(1.0 / rate_hz_));
-    }
-  } catch (const std::invalid_argument& e) {
+    for (const core::TuneCommand& tune : tunes) apply(tune);
+  } catch (const core::CommandError& e) {
     ROS_WARN("reconfigure refused: %s", e.what());
     config = before;
     return;
+  }
+  if (config.rate != before.rate) {
+    rate_hz_ = config.rate;
+    if (timer_.isValid()) timer_.setPeriod(ros::Duration(1.0 / rate_hz_));
   }
   applied_config_ = config;
 }
@@ -746,13 +797,13 @@ void SimNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   }
   if (!converged) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "a solve did not reach its tolerance");
-  } else if (!paused_ && real_time_factor_ < 0.9 && sim_->stepCount() > 10 * substeps_) {
+  } else if (!paused_ && real_time_factor_ < 0.9 && sim().stepCount() > 10 * substeps_) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "cannot keep real time");
   } else {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, paused_ ? "paused" : "running");
   }
-  status.add("step", sim_->stepCount());
-  status.add("simulated time (s)", sim_->time());
+  status.add("step", sim().stepCount());
+  status.add("simulated time (s)", sim().time());
   status.add("real-time factor", real_time_factor_);
   status.add("step time (ms)", 1e3 * step_time_s_);
   status.add("inverted elements", inverted);

@@ -38,6 +38,10 @@ core::SceneSpec parseScene(const std::string& yaml_text, const std::string& sour
 /// Reads and parses a scene file.
 core::SceneSpec readSceneFile(const std::string& path);
 
+/// Reads (or generates) every body's mesh, in the order of spec.bodies. Mesh repairs are appended
+/// to `warnings`. Throws MeshError for bad mesh files.
+std::vector<core::Mesh> readMeshes(const core::SceneSpec& spec, std::vector<std::string>* warnings);
+
 /// Reads every body's mesh and builds the simulation. Mesh repairs are appended to `warnings`.
 /// Throws SceneError (bad selections, loads) or MeshError (bad mesh files).
 core::Simulation buildSimulation(const core::SceneSpec& spec, std::vector<std::string>* warnings);

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "deformable_sim/Applied.h"
 #include "deformable_sim/BodyState.h"
 #include "deformable_sim/FixedNodes.h"
 #include "deformable_sim/Grasp.h"
@@ -31,6 +32,7 @@
 #include "deformable_sim/Step.h"
 #include "deformable_sim/core/commands.h"
 #include "deformable_sim/core/scene.h"
+#include "deformable_sim/core/session.h"
 #include "deformable_sim/core/simulation.h"
 #include "deformable_sim/ros/refusal_log.h"
 
@@ -51,7 +53,16 @@ class SimNode {
   };
 
   void readParameters(ros::NodeHandle& private_node);
+  /// Reads the meshes and starts the session (throws std::runtime_error naming the scene key).
   void buildSimulation();
+  /// Forgets what belongs to the running episode: wrench times, grasp frames, reports.
+  void clearTickState();
+  /// Applies a command as ~applied records it; throws core::CommandError when refused.
+  int apply(const core::SessionCommand& command);
+  void publishApplied(const core::AppliedCommand& applied);
+  void publishScene();
+  core::Simulation& sim() { return session_->simulation(); }
+  const core::Simulation& sim() const { return session_->simulation(); }
   void onTimer(const ros::TimerEvent& event);
   void advance(int steps);
   void publishState();
@@ -101,8 +112,10 @@ class SimNode {
 
   // Simulation.
   core::SceneSpec scene_;
-  std::unique_ptr<core::Simulation> sim_;
-  std::unique_ptr<core::CommandProcessor> commands_;
+  std::string scene_text_;  ///< the scene file's text, for ~scene
+  std::unique_ptr<core::Session> session_;
+  std::vector<core::PlacedShape> requested_obstacles_;  ///< as last applied, before recording
+  Applied recording_;  ///< the message of the command being applied, published once it took effect
   std::vector<std::vector<core::Triangle>> surfaces_;
   std::vector<core::StepReport> reports_;
   std::map<std::string, ros::Time> wrench_times_;  ///< for ~wrench_timeout
@@ -114,7 +127,7 @@ class SimNode {
 
   // ROS plumbing.
   ros::Timer timer_;
-  ros::Publisher state_pub_, stats_pub_, mesh_pub_, markers_pub_;
+  ros::Publisher state_pub_, stats_pub_, mesh_pub_, markers_pub_, applied_pub_, scene_pub_;
   ros::Subscriber wrench_sub_, node_wrench_sub_, fixed_nodes_sub_, grasp_sub_;
   ros::ServiceServer reset_srv_, pause_srv_, resume_srv_, step_srv_, grasp_srv_;
   ros::NodeHandle private_node_;

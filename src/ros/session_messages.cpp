@@ -1,0 +1,275 @@
+#include "deformable_sim/ros/session_messages.h"
+
+#include <stdexcept>
+#include <type_traits>
+
+#include "deformable_sim/ros/conversions.h"
+
+namespace deformable_sim::ros_layer {
+
+namespace {
+
+Obstacle toMessage(const core::PlacedShape& placed) {
+  Obstacle m;
+  m.name = placed.name;
+  switch (placed.shape.kind) {
+    case core::Shape::Kind::kBox:
+      m.shape = Obstacle::BOX;
+      break;
+    case core::Shape::Kind::kSphere:
+      m.shape = Obstacle::SPHERE;
+      break;
+    case core::Shape::Kind::kCylinder:
+      m.shape = Obstacle::CYLINDER;
+      break;
+  }
+  m.size = toVector3(placed.shape.size);
+  m.radius = placed.shape.radius;
+  m.length = placed.shape.length;
+  m.pose = toTransform(placed.pose);
+  return m;
+}
+
+core::PlacedShape fromMessage(const Obstacle& m) {
+  core::PlacedShape placed;
+  placed.name = m.name;
+  switch (m.shape) {
+    case Obstacle::BOX:
+      placed.shape.kind = core::Shape::Kind::kBox;
+      break;
+    case Obstacle::SPHERE:
+      placed.shape.kind = core::Shape::Kind::kSphere;
+      break;
+    case Obstacle::CYLINDER:
+      placed.shape.kind = core::Shape::Kind::kCylinder;
+      break;
+    default:
+      throw core::CommandError("obstacle '" + m.name + "': unknown shape " +
+                               std::to_string(m.shape));
+  }
+  placed.shape.size = toEigen(m.size);
+  placed.shape.radius = m.radius;
+  placed.shape.length = m.length;
+  placed.pose = toEigen(m.pose);
+  return placed;
+}
+
+AppliedNodes toMessage(const core::NodeTarget& t) {
+  AppliedNodes m;
+  m.node_ids.assign(t.node_numbers.begin(), t.node_numbers.end());
+  m.group = t.group;
+  m.has_box = t.box.has_value();
+  if (t.box) {
+    m.box_min = toPoint(t.box->min);
+    m.box_max = toPoint(t.box->max);
+  }
+  m.has_sphere = t.sphere.has_value();
+  if (t.sphere) {
+    m.sphere_center = toPoint(t.sphere->center);
+    m.sphere_radius = t.sphere->radius;
+  }
+  m.region_pose = toTransform(t.region_pose);
+  for (const core::PlacedShape& s : t.shapes) m.shapes.push_back(toMessage(s));
+  m.shape_margin = t.shape_margin;
+  m.whole_body = t.whole_body;
+  return m;
+}
+
+core::NodeTarget fromMessage(const AppliedNodes& m) {
+  core::NodeTarget t;
+  t.node_numbers.assign(m.node_ids.begin(), m.node_ids.end());
+  t.group = m.group;
+  if (m.has_box) t.box = core::Box{toEigen(m.box_min), toEigen(m.box_max)};
+  if (m.has_sphere) t.sphere = core::Sphere{toEigen(m.sphere_center), m.sphere_radius};
+  t.region_pose = toEigen(m.region_pose);
+  for (const Obstacle& s : m.shapes) t.shapes.push_back(fromMessage(s));
+  t.shape_margin = m.shape_margin;
+  t.whole_body = m.whole_body;
+  return t;
+}
+
+}  // namespace
+
+Applied toMessage(const core::SessionCommand& command) {
+  Applied m;
+  m.frame.rotation.w = 1.0;
+  std::visit(
+      [&m](const auto& c) {
+        using T = std::decay_t<decltype(c)>;
+        if constexpr (std::is_same_v<T, core::WrenchCommand>) {
+          m.kind = Applied::WRENCH;
+          m.name = c.source;
+          m.body = c.body;
+          m.nodes = toMessage(c.nodes);
+          m.force = toVector3(c.force);
+          m.torque = toVector3(c.torque);
+          m.has_point = c.point.has_value();
+          if (c.point) m.point = toPoint(*c.point);
+        } else if constexpr (std::is_same_v<T, core::ClearWrenchCommand>) {
+          m.kind = Applied::CLEAR_WRENCH;
+          m.name = c.source;
+        } else if constexpr (std::is_same_v<T, core::FixCommand>) {
+          m.kind = c.fix ? Applied::FIX : Applied::RELEASE;
+          m.body = c.body;
+          m.nodes = toMessage(c.nodes);
+          for (const Eigen::Vector3d& p : c.targets) m.targets.push_back(toPoint(p));
+          m.has_translation = c.translation.has_value();
+          if (c.translation) m.translation = toVector3(*c.translation);
+        } else if constexpr (std::is_same_v<T, core::GraspCommand>) {
+          m.kind = Applied::GRASP;
+          m.name = c.name;
+          m.body = c.body;
+          m.nodes = toMessage(c.nodes);
+          m.frame = toTransform(c.frame);
+        } else if constexpr (std::is_same_v<T, core::ReleaseGraspCommand>) {
+          m.kind = Applied::RELEASE_GRASP;
+          m.name = c.name;
+        } else if constexpr (std::is_same_v<T, core::MoveGraspCommand>) {
+          m.kind = Applied::MOVE_GRASP;
+          m.name = c.name;
+          m.frame = toTransform(c.frame);
+        } else if constexpr (std::is_same_v<T, core::SetObstaclesCommand>) {
+          m.kind = Applied::OBSTACLES;
+          for (const core::PlacedShape& s : c.obstacles) m.obstacles.push_back(toMessage(s));
+        } else if constexpr (std::is_same_v<T, core::TuneCommand>) {
+          m.kind = Applied::TUNE;
+          m.body = c.body;
+          m.has_material = c.material.has_value();
+          if (c.material) {
+            m.youngs_modulus = c.material->youngs_modulus;
+            m.poisson_ratio = c.material->poisson_ratio;
+            m.density = c.material->density;
+          }
+          m.has_damping = c.damping.has_value();
+          if (c.damping) {
+            m.damping_mass = c.damping->mass;
+            m.damping_stiffness = c.damping->stiffness;
+          }
+          m.has_solver_tolerance = c.solver_tolerance.has_value();
+          m.solver_tolerance = c.solver_tolerance.value_or(0.0);
+          m.has_solver_max_iterations = c.solver_max_iterations.has_value();
+          m.solver_max_iterations = c.solver_max_iterations.value_or(0);
+          m.has_dt = c.dt.has_value();
+          m.dt = c.dt.value_or(0.0);
+        } else {
+          static_assert(std::is_same_v<T, core::ResetCommand>);
+          m.kind = Applied::RESET;
+        }
+      },
+      command);
+  return m;
+}
+
+core::SessionCommand fromMessage(const Applied& m) {
+  switch (m.kind) {
+    case Applied::WRENCH: {
+      core::WrenchCommand c;
+      c.source = m.name;
+      c.body = m.body;
+      c.nodes = fromMessage(m.nodes);
+      c.force = toEigen(m.force);
+      c.torque = toEigen(m.torque);
+      if (m.has_point) c.point = toEigen(m.point);
+      return c;
+    }
+    case Applied::CLEAR_WRENCH:
+      return core::ClearWrenchCommand{m.name};
+    case Applied::FIX:
+    case Applied::RELEASE: {
+      core::FixCommand c;
+      c.fix = m.kind == Applied::FIX;
+      c.body = m.body;
+      c.nodes = fromMessage(m.nodes);
+      for (const geometry_msgs::Point& p : m.targets) c.targets.push_back(toEigen(p));
+      if (m.has_translation) c.translation = toEigen(m.translation);
+      return c;
+    }
+    case Applied::GRASP: {
+      core::GraspCommand c;
+      c.name = m.name;
+      c.body = m.body;
+      c.nodes = fromMessage(m.nodes);
+      c.frame = toEigen(m.frame);
+      return c;
+    }
+    case Applied::RELEASE_GRASP:
+      return core::ReleaseGraspCommand{m.name};
+    case Applied::MOVE_GRASP:
+      return core::MoveGraspCommand{m.name, toEigen(m.frame)};
+    case Applied::OBSTACLES: {
+      core::SetObstaclesCommand c;
+      for (const Obstacle& o : m.obstacles) c.obstacles.push_back(fromMessage(o));
+      return c;
+    }
+    case Applied::TUNE: {
+      core::TuneCommand c;
+      c.body = m.body;
+      if (m.has_material) c.material = {m.youngs_modulus, m.poisson_ratio, m.density};
+      if (m.has_damping) c.damping = core::RayleighDamping{m.damping_mass, m.damping_stiffness};
+      if (m.has_solver_tolerance) c.solver_tolerance = m.solver_tolerance;
+      if (m.has_solver_max_iterations) c.solver_max_iterations = m.solver_max_iterations;
+      if (m.has_dt) c.dt = m.dt;
+      return c;
+    }
+    case Applied::RESET:
+      return core::ResetCommand{};
+    default:
+      throw core::CommandError("applied command of unknown kind " + std::to_string(m.kind));
+  }
+}
+
+Scene toSceneMessage(const std::string& path, const std::string& yaml, double dt, int substeps,
+                     const std::vector<core::Mesh>& meshes,
+                     const std::vector<std::string>& body_names) {
+  Scene m;
+  m.path = path;
+  m.yaml = yaml;
+  m.dt = dt;
+  m.substeps = static_cast<uint32_t>(substeps);
+  for (size_t b = 0; b < meshes.size(); ++b) {
+    const core::Mesh& mesh = meshes[b];
+    MeshData data;
+    data.body = body_names[b];
+    data.node_ids.assign(mesh.node_numbers.begin(), mesh.node_numbers.end());
+    for (const Eigen::Vector3d& p : mesh.positions) {
+      data.rest_positions.insert(data.rest_positions.end(), {p.x(), p.y(), p.z()});
+    }
+    for (const core::Tetrahedron& t : mesh.tetrahedra) {
+      for (int i : t) data.tetrahedra.push_back(static_cast<uint32_t>(i));
+    }
+    m.meshes.push_back(std::move(data));
+  }
+  return m;
+}
+
+std::vector<core::Mesh> meshesFromMessage(const Scene& message) {
+  std::vector<core::Mesh> meshes;
+  for (const MeshData& data : message.meshes) {
+    const size_t n = data.node_ids.size();
+    if (data.rest_positions.size() != 3 * n || data.tetrahedra.size() % 4 != 0) {
+      throw std::invalid_argument("scene message: the mesh of body '" + data.body +
+                                  "' has arrays of inconsistent sizes");
+    }
+    core::Mesh mesh;
+    mesh.node_numbers.assign(data.node_ids.begin(), data.node_ids.end());
+    for (size_t i = 0; i < n; ++i) {
+      mesh.positions.emplace_back(data.rest_positions[3 * i], data.rest_positions[3 * i + 1],
+                                  data.rest_positions[3 * i + 2]);
+    }
+    for (size_t e = 0; e < data.tetrahedra.size(); e += 4) {
+      core::Tetrahedron t;
+      for (int k = 0; k < 4; ++k) {
+        if (data.tetrahedra[e + k] >= n) {
+          throw std::invalid_argument("scene message: the mesh of body '" + data.body +
+                                      "' refers to a node out of range");
+        }
+        t[k] = static_cast<int>(data.tetrahedra[e + k]);
+      }
+      mesh.tetrahedra.push_back(t);
+    }
+    meshes.push_back(std::move(mesh));
+  }
+  return meshes;
+}
+
+}  // namespace deformable_sim::ros_layer
