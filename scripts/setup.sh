@@ -30,7 +30,7 @@ packages=(
   python3-tf2-ros python3-diagnostic-msgs
 )
 # rviz for the demo when asked; rviz under Xvfb with imagemagick for the screenshot test.
-if [ "$mode" = test ]; then packages+=(rviz xvfb imagemagick x11-utils python3-numpy); fi
+if [ "$mode" = test ]; then packages+=(rviz xvfb imagemagick x11-utils python3-numpy python3-matplotlib); fi
 if [ "$rviz" = true ]; then packages+=(rviz); fi
 missing=()
 for p in "${packages[@]}"; do
