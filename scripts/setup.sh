@@ -31,7 +31,7 @@ packages=(
   librosbag-dev libtf2-msgs-dev python3-rosbag
 )
 # rviz for the demo when asked; rviz under Xvfb with imagemagick for the screenshot test.
-if [ "$mode" = test ]; then packages+=(rviz xvfb imagemagick x11-utils python3-numpy); fi
+if [ "$mode" = test ]; then packages+=(rviz xvfb imagemagick x11-utils python3-numpy python3-matplotlib); fi
 if [ "$rviz" = true ]; then packages+=(rviz); fi
 missing=()
 for p in "${packages[@]}"; do

@@ -275,16 +275,22 @@ StaticReport FemBody::solveStatic(const StaticSettings& settings) {
     double relaxation = 1.0, previous_change = std::numeric_limits<double>::infinity();
     for (int iteration = 0; iteration < settings.max_iterations; ++iteration) {
       updateStiffness();
-      rhs_ = fraction * load - elasticity_.forceOffset();
-      next_ = x_;
+      // Solve K' dx = f - f0' - K' x for the change dx, so that CG's relative tolerance is
+      // measured against the out-of-balance force, not against K' x (for a stiff body far larger
+      // than the load: CG then stopped at once with no displacement at all).
+      elasticity_.stiffness().multiply(x_, scratch_);
+      rhs_ = fraction * load - elasticity_.forceOffset() - scratch_;
+      next_.setZero();
       for (int i = 0; i < numNodes(); ++i) {
         if (constrained_[i]) {
           next_.segment<3>(3 * i) =
               start.segment<3>(3 * i) +
-              fraction * (targets_.segment<3>(3 * i) - start.segment<3>(3 * i));
+              fraction * (targets_.segment<3>(3 * i) - start.segment<3>(3 * i)) -
+              x_.segment<3>(3 * i);
         }
       }
       report.last_solve = solve(a, rhs_, next_);
+      next_ += x_;
       report.linear_iterations += report.last_solve.iterations;
       ++report.iterations;
       const double change = (next_ - x_).norm();

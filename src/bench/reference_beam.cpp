@@ -1,0 +1,106 @@
+#include "deformable_sim/bench/reference_beam.h"
+
+#include <fstream>
+#include <stdexcept>
+
+#include "deformable_sim/io/mesh_reader.h"
+
+namespace deformable_sim::bench {
+
+namespace {
+
+constexpr double kLength = 1.0;     // L, m
+constexpr double kSection = 0.1;    // b = h, m
+constexpr double kWeightSum = 1.0;  // tip_load_unit.csv shares a unit load
+
+// Node numbers, one per line, after '#' comments (fix_nodes.txt).
+std::vector<long> readNodeList(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot read");
+  std::vector<long> nodes;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    nodes.push_back(std::stol(line));
+  }
+  if (nodes.empty()) throw std::runtime_error(path + ": no node");
+  return nodes;
+}
+
+// "node,weight" lines after '#' comments (tip_load_unit.csv).
+void readTipShares(const std::string& path, std::vector<long>& nodes,
+                   std::vector<double>& weights) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot read");
+  std::string line;
+  double sum = 0.0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const size_t comma = line.find(',');
+    if (comma == std::string::npos) throw std::runtime_error(path + ": not node,weight: " + line);
+    nodes.push_back(std::stol(line.substr(0, comma)));
+    weights.push_back(std::stod(line.substr(comma + 1)));
+    sum += weights.back();
+  }
+  if (nodes.empty() || std::abs(sum - kWeightSum) > 1e-9) {
+    throw std::runtime_error(path + ": the tip shares must sum to 1");
+  }
+}
+
+}  // namespace
+
+core::LinearElasticMaterial referenceMaterial() { return {1.0e6, 0.3, 1000.0}; }
+
+double referenceBendingStiffness() {
+  const double second_moment = kSection * kSection * kSection * kSection / 12.0;
+  return referenceMaterial().youngs_modulus * second_moment;
+}
+
+double largeDeflectionLoad(double alpha) {
+  return alpha * referenceBendingStiffness() / (kLength * kLength);
+}
+
+ReferenceBeam::ReferenceBeam(const std::string& reference_dir, const std::string& mesh_id)
+    : id_(mesh_id) {
+  const std::string dir = reference_dir + "/meshes/" + mesh_id + "/";
+  io::MeshReadResult read = io::readGmsh(dir + mesh_id + ".msh");
+  if (!read.warnings.empty()) {
+    // The shipped meshes are clean; a repair would mean node numbers no longer match CalculiX's.
+    throw std::runtime_error(dir + mesh_id + ".msh: " + read.warnings.front());
+  }
+  mesh_ = std::move(read.mesh);
+  try {
+    clamp_ = core::nodeIndices(mesh_, readNodeList(dir + "fix_nodes.txt"));
+    std::vector<long> tip_numbers;
+    readTipShares(dir + "tip_load_unit.csv", tip_numbers, tip_weights_);
+    tip_ = core::nodeIndices(mesh_, tip_numbers);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(dir + ": " + e.what());
+  }
+}
+
+core::FemBody ReferenceBeam::makeBody(const core::BodyEffects& effects,
+                                      const core::SolverSettings& solver) const {
+  core::FemBody body(id_, mesh_, referenceMaterial(), effects, solver);
+  body.fixNodes(clamp_);
+  return body;
+}
+
+void ReferenceBeam::applyTipLoad(core::FemBody& body, double load_n) const {
+  body.externalForces().setZero();
+  for (size_t k = 0; k < tip_.size(); ++k) {
+    body.externalForces()[3 * tip_[k] + 2] = -load_n * tip_weights_[k];
+  }
+}
+
+Eigen::Vector3d ReferenceBeam::tipDisplacement(const core::FemBody& body) const {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (size_t k = 0; k < tip_.size(); ++k) {
+    const int i = tip_[k];
+    mean += tip_weights_[k] *
+            (body.positions().segment<3>(3 * i) - body.restPositions().segment<3>(3 * i));
+  }
+  return mean;
+}
+
+}  // namespace deformable_sim::bench
