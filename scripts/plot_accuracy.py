@@ -176,7 +176,7 @@ def plot_dt(rows, out_dir, machine):
                         color=colour, linewidth=0.8)
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("implicit Euler step h = dt / substeps, s  (hollow diamonds: substeps of 1/30 s)")
+        ax.set_xlabel("implicit Euler step h = dt / substeps, s\n(hollow diamonds: substeps of 1/30 s)")
         ax.set_title(title, fontsize=9)
         ax.grid(True, which="both", alpha=0.25)
         ax.legend(fontsize=7)
