@@ -19,56 +19,86 @@ CorotationalElasticity::CorotationalElasticity(const Mesh& mesh,
   block_index_.reserve(tetrahedra_.size());
   for (const Tetrahedron& t : tetrahedra_) {
     rest_.push_back(computeTetrahedronRest(
-        {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]], mesh.positions[t[3]]},
-        material));
+        {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]], mesh.positions[t[3]]}));
     std::array<int, 16> slots;
     for (int i = 0; i < 4; ++i) {
       for (int j = 0; j < 4; ++j) slots[4 * i + j] = stiffness_.blockIndex(t[i], t[j]);
     }
     block_index_.push_back(slots);
   }
+  lambda_ = lameLambda(material);
+  mu_ = lameMu(material);
+  setRestForces();
 }
 
-void CorotationalElasticity::setMaterial(const Mesh& mesh, const LinearElasticMaterial& material) {
+void CorotationalElasticity::setMaterial(const LinearElasticMaterial& material) {
   validate(material);
+  lambda_ = lameLambda(material);
+  mu_ = lameMu(material);
+  setRestForces();
+}
+
+void CorotationalElasticity::setRestForces() {
+  rest_forces_.resize(tetrahedra_.size());
   for (size_t e = 0; e < tetrahedra_.size(); ++e) {
     const Tetrahedron& t = tetrahedra_[e];
-    rest_[e] = computeTetrahedronRest(
-        {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]], mesh.positions[t[3]]},
-        material);
+    const TetrahedronRest& rest = rest_[e];
+    for (int i = 0; i < 4; ++i) {
+      Eigen::Vector3d force = Eigen::Vector3d::Zero();
+      for (int j = 0; j < 4; ++j) {
+        force += stiffnessBlock(lambda_ * rest.volume, mu_ * rest.volume, rest.gradients[i],
+                                rest.gradients[j]) *
+                 rest_positions_.segment<3>(3 * t[j]);
+      }
+      rest_forces_[e][i] = force;
+    }
   }
 }
 
 int CorotationalElasticity::update(const Eigen::VectorXd& x, bool warping) {
-  stiffness_.setZero();
-  force_offset_.setZero();
-  std::vector<Eigen::Matrix3d>& blocks = stiffness_.blocks();
+  const int inverted = warping ? updateRotations(x) : 0;
+  if (!warping) {
+    for (Eigen::Matrix3d& r : rotations_) r.setIdentity();
+  }
+  assemble();
+  return inverted;
+}
+
+int CorotationalElasticity::updateRotations(const Eigen::VectorXd& x) {
   int inverted = 0;
   for (size_t e = 0; e < tetrahedra_.size(); ++e) {
     const Tetrahedron& t = tetrahedra_[e];
-    const TetrahedronRest& rest = rest_[e];
-    if (warping) {
-      const Eigen::Matrix3d f =
-          deformationGradient(rest, x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
-                              x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
-      if (!(f.determinant() > 0.0)) ++inverted;
-      rotations_[e] = extractRotation(f);
-    }
-    const Eigen::Matrix3d& r = rotations_[e];
-    for (int i = 0; i < 4; ++i) {
-      Eigen::Vector3d rest_force = Eigen::Vector3d::Zero();
-      for (int j = 0; j < 4; ++j) {
-        const Eigen::Matrix3d& k_ij = rest.stiffness[i][j];
-        rest_force.noalias() += k_ij * rest_positions_.segment<3>(3 * t[j]);
-        if (j < i) continue;  // K'_ji = K'_ij^T: compute each pair once
-        const Eigen::Matrix3d warped = r * k_ij * r.transpose();
-        blocks[block_index_[e][4 * i + j]] += warped;
-        if (j > i) blocks[block_index_[e][4 * j + i]] += warped.transpose();
-      }
-      force_offset_.segment<3>(3 * t[i]).noalias() -= r * rest_force;
-    }
+    const Eigen::Matrix3d f =
+        deformationGradient(rest_[e], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
+                            x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
+    if (!(f.determinant() > 0.0)) ++inverted;
+    rotations_[e] = extractRotation(f);
   }
   return inverted;
+}
+
+void CorotationalElasticity::assemble() {
+  stiffness_.setZero();
+  force_offset_.setZero();
+  std::vector<Eigen::Matrix3d>& blocks = stiffness_.blocks();
+  for (size_t e = 0; e < tetrahedra_.size(); ++e) {
+    const Tetrahedron& t = tetrahedra_[e];
+    const TetrahedronRest& rest = rest_[e];
+    const Eigen::Matrix3d& r = rotations_[e];
+    const double lambda_volume = lambda_ * rest.volume, mu_volume = mu_ * rest.volume;
+    std::array<Eigen::Vector3d, 4> g;  // R grad N_i: R Ke_ij R^T is Ke_ij of these
+    for (int i = 0; i < 4; ++i) g[i].noalias() = r * rest.gradients[i];
+    const std::array<int, 16>& slot = block_index_[e];
+    for (int i = 0; i < 4; ++i) {
+      blocks[slot[5 * i]] += stiffnessBlock(lambda_volume, mu_volume, g[i], g[i]);
+      for (int j = i + 1; j < 4; ++j) {  // K'_ji = K'_ij^T: compute each pair once
+        const Eigen::Matrix3d warped = stiffnessBlock(lambda_volume, mu_volume, g[i], g[j]);
+        blocks[slot[4 * i + j]] += warped;
+        blocks[slot[4 * j + i]] += warped.transpose();
+      }
+      force_offset_.segment<3>(3 * t[i]).noalias() -= r * rest_forces_[e][i];
+    }
+  }
 }
 
 void CorotationalElasticity::addElasticForces(const Eigen::VectorXd& x, Eigen::VectorXd& f,
@@ -86,9 +116,12 @@ double CorotationalElasticity::elasticEnergy(const Eigen::VectorXd& x) const {
       u.segment<3>(3 * i) =
           rotations_[e].transpose() * x.segment<3>(3 * t[i]) - rest_positions_.segment<3>(3 * t[i]);
     }
+    const TetrahedronRest& rest = rest_[e];
     for (int i = 0; i < 4; ++i) {
       for (int j = 0; j < 4; ++j) {
-        energy += 0.5 * u.segment<3>(3 * i).dot(rest_.at(e).stiffness[i][j] * u.segment<3>(3 * j));
+        const Eigen::Matrix3d k_ij = stiffnessBlock(lambda_ * rest.volume, mu_ * rest.volume,
+                                                    rest.gradients[i], rest.gradients[j]);
+        energy += 0.5 * u.segment<3>(3 * i).dot(k_ij * u.segment<3>(3 * j));
       }
     }
   }

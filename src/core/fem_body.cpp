@@ -85,7 +85,7 @@ void FemBody::setMaterial(const LinearElasticMaterial& material) {
     throw std::invalid_argument("body '" + name_ + "': " + e.what());
   }
   material_ = material;
-  elasticity_.setMaterial(mesh_, material);
+  elasticity_.setMaterial(material);
   mass_ = lumpedMasses(mesh_, material.density);
   stiffness_assembled_ = false;
   matrix_changed_ = true;

@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <cmath>
+#include <cstdlib>
 
 #include "deformable_sim/core/rotation.h"
 
@@ -60,4 +62,24 @@ TEST(Rotation, InvertedElementsGetAProperRotation) {
   // A mirror image (det F = -1) and a fully inverted element (F = -I) too.
   expectProperRotation(dc::extractRotation(Eigen::Vector3d(1.0, -1.0, 1.0).asDiagonal()));
   expectProperRotation(dc::extractRotation(-Eigen::Matrix3d::Identity()));
+}
+
+TEST(Rotation, NewtonIterationAgreesWithTheSvdOverStretchesRotationsAndShears) {
+  // Random rotations times random stretches, from nearly rigid to strongly distorted, with
+  // det F on both sides of where the SVD takes over.
+  std::srand(7);
+  int checked = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const double spread = (k % 4 == 0) ? 1e-4 : (k % 4 == 1) ? 0.1 : (k % 4 == 2) ? 0.6 : 0.95;
+    Eigen::Matrix3d f = someRotation(3.0 * Eigen::Vector3d::Random()(0), Eigen::Vector3d::Random());
+    f *= Eigen::Matrix3d::Identity() + spread * Eigen::Matrix3d::Random();
+    if (std::abs(f.determinant()) < 1e-6) continue;
+    const Eigen::Matrix3d r = dc::extractRotation(f);
+    expectProperRotation(r);
+    EXPECT_NEAR((r - dc::extractRotationBySvd(f)).norm(), 0.0, 1e-11)
+        << "F =\n"
+        << f << "\ndet F = " << f.determinant();
+    ++checked;
+  }
+  EXPECT_GT(checked, 1900);
 }

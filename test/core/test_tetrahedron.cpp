@@ -58,7 +58,7 @@ TEST(Tetrahedron, GradientsReproduceLinearFieldsAndVolumeIsRight) {
   const dc::Mesh mesh = singleTetrahedron();
   const std::array<Eigen::Vector3d, 4> x{mesh.positions[0], mesh.positions[1], mesh.positions[2],
                                          mesh.positions[3]};
-  const dc::TetrahedronRest rest = dc::computeTetrahedronRest(x, kMaterial);
+  const dc::TetrahedronRest rest = dc::computeTetrahedronRest(x);
   EXPECT_NEAR(rest.volume, dc::signedVolume(x[0], x[1], x[2], x[3]), 1e-15);
   // For any linear field phi(p) = a.p + c, sum_i phi(x_i) grad N_i = a.
   const Eigen::Vector3d a(0.7, -1.3, 2.1);
@@ -67,20 +67,23 @@ TEST(Tetrahedron, GradientsReproduceLinearFieldsAndVolumeIsRight) {
   EXPECT_NEAR((gradient - a).norm(), 0.0, 1e-12);
 }
 
-TEST(Tetrahedron, StiffnessMatchesTheLameClosedForm) {
-  // Independent of the B^T D B product: K_ij = V (lambda g_i g_j^T + mu g_j g_i^T + mu g_i.g_j I).
+TEST(Tetrahedron, StiffnessClosedFormMatchesTheVoigtProduct) {
+  // The closed form the assembly uses against V B^T D B with the 6x6 Voigt elasticity matrix.
   const dc::Mesh mesh = singleTetrahedron();
   const dc::TetrahedronRest rest = dc::computeTetrahedronRest(
-      {mesh.positions[0], mesh.positions[1], mesh.positions[2], mesh.positions[3]}, kMaterial);
-  const double lambda = dc::lameLambda(kMaterial), mu = dc::lameMu(kMaterial);
+      {mesh.positions[0], mesh.positions[1], mesh.positions[2], mesh.positions[3]});
+  const dc::ElementBlocks k = dc::elementStiffness(rest, kMaterial);
+  const Eigen::Matrix<double, 6, 6> d = dc::elasticityMatrix(kMaterial);
+  std::array<Eigen::Matrix<double, 6, 3>, 4> b;  // Voigt xx yy zz xy xz yz, engineering shear
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector3d& g = rest.gradients[i];
+    b[i] << g.x(), 0, 0, 0, g.y(), 0, 0, 0, g.z(), g.y(), g.x(), 0, g.z(), 0, g.x(), 0, g.z(),
+        g.y();
+  }
   for (int i = 0; i < 4; ++i) {
     for (int j = 0; j < 4; ++j) {
-      const Eigen::Vector3d& gi = rest.gradients[i];
-      const Eigen::Vector3d& gj = rest.gradients[j];
-      const Eigen::Matrix3d expected =
-          rest.volume * (lambda * gi * gj.transpose() + mu * gj * gi.transpose() +
-                         mu * gi.dot(gj) * Eigen::Matrix3d::Identity());
-      EXPECT_NEAR((rest.stiffness[i][j] - expected).norm(), 0.0, 1e-9 * expected.norm() + 1e-9);
+      const Eigen::Matrix3d expected = rest.volume * b[i].transpose() * d * b[j];
+      EXPECT_NEAR((k[i][j] - expected).norm(), 0.0, 1e-9 * expected.norm() + 1e-9);
     }
   }
 }

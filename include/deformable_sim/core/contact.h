@@ -22,7 +22,8 @@ struct ContactSettings {
 /// Which nodes touch an obstacle, from step to step. Sized once per body; allocates nothing after.
 class ContactState {
  public:
-  explicit ContactState(int num_nodes) : normal_(num_nodes, Eigen::Vector3d::Zero()), held_(num_nodes, 0) {}
+  explicit ContactState(int num_nodes)
+      : normal_(num_nodes, Eigen::Vector3d::Zero()), held_(num_nodes, 0) {}
 
   /// Before a step: holds the free nodes that touch an obstacle.
   void hold(FemBody& body);

@@ -22,14 +22,19 @@ class CorotationalElasticity {
   /// its block indices in the global pattern.
   CorotationalElasticity(const Mesh& mesh, const LinearElasticMaterial& material);
 
-  /// Recomputes every element's rest stiffness for a new material (validated first); the pattern
-  /// and the block indices stay. `mesh` must be the one given to the constructor.
-  void setMaterial(const Mesh& mesh, const LinearElasticMaterial& material);
+  /// A new material (validated first) for the next update; the rest shape, the pattern and the
+  /// block indices stay.
+  void setMaterial(const LinearElasticMaterial& material);
 
   /// Sets the element rotations from positions x (3n): polar rotations of F when warping, the
   /// identity otherwise; then fills K' and f0' in place. Returns the number of inverted or flat
   /// elements (det F <= 0). Allocates nothing.
   int update(const Eigen::VectorXd& x, bool warping);
+
+  /// The two halves of update(), for benchmarks: the rotations from x (returns the number of
+  /// inverted or flat elements), then K' and f0' from the rotations.
+  int updateRotations(const Eigen::VectorXd& x);
+  void assemble();
 
   const BlockSparseMatrix& stiffness() const { return stiffness_; }     ///< K', N/m
   const Eigen::VectorXd& forceOffset() const { return force_offset_; }  ///< f0', N
@@ -45,9 +50,14 @@ class CorotationalElasticity {
   double elasticEnergy(const Eigen::VectorXd& x) const;
 
  private:
+  void setRestForces();
+
   std::vector<Tetrahedron> tetrahedra_;
   Eigen::VectorXd rest_positions_;
   std::vector<TetrahedronRest> rest_;
+  double lambda_ = 0.0, mu_ = 0.0;  ///< Lame parameters, Pa
+  /// Per element, (Ke x0)_i: the rest-frame force offset that a rotation turns into f0'.
+  std::vector<std::array<Eigen::Vector3d, 4>> rest_forces_;
   std::vector<std::array<int, 16>> block_index_;  ///< per element, slot of block (i, j) at 4i + j
   std::vector<Eigen::Matrix3d> rotations_;
   BlockSparseMatrix stiffness_;
