@@ -199,6 +199,7 @@ SystemMatrix FemBody::systemMatrix(double mass_coefficient, double stiffness_coe
   a.nodal_mass = &mass_;
   a.mass_coefficient = mass_coefficient;
   a.stiffness_coefficient = stiffness_coefficient;
+  a.positions = &x_;
   return a;
 }
 

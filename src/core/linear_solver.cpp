@@ -35,6 +35,45 @@ void SystemMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const 
   }
 }
 
+void ConjugateGradientSolver::refreshPreconditioner(const SystemMatrix& a,
+                                                    const ConstraintMask& constrained,
+                                                    const SolverSettings& settings) {
+  const int num_nodes = a.stiffness->numBlockRows();
+  const std::vector<Eigen::Matrix3d>& blocks = a.stiffness->blocks();
+  for (int i = 0; i < num_nodes; ++i) {
+    if (constrained[i]) {
+      inverse_diagonal_[i].setZero();  // keeps every search direction zero on constrained nodes
+      continue;
+    }
+    Eigen::Matrix3d d = a.stiffness_coefficient * blocks[a.stiffness->diagonalIndex(i)];
+    if (a.mass_coefficient != 0.0) d.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
+    inverse_diagonal_[i] = d.inverse();
+  }
+  // Without positions (no rigid modes to build) block-Jacobi works alone.
+  if (settings.preconditioner != SolverSettings::Preconditioner::kTwoLevel || !a.positions) return;
+  const bool fresh = !coarse_;
+  if (fresh) coarse_ = std::make_unique<RigidModeCoarseSpace>(*a.stiffness);
+  if (fresh || ++solves_since_coarse_refresh_ >= settings.coarse_refresh_interval ||
+      a.mass_coefficient != coarse_mass_coefficient_ ||
+      a.stiffness_coefficient != coarse_stiffness_coefficient_) {
+    coarse_->refresh(a, constrained, *a.positions);
+    solves_since_coarse_refresh_ = 0;
+    coarse_mass_coefficient_ = a.mass_coefficient;
+    coarse_stiffness_coefficient_ = a.stiffness_coefficient;
+  }
+}
+
+// z = B r: block-Jacobi, plus the coarse correction (additive: the two parts see the same r, so
+// B stays symmetric positive definite and costs no extra product with A).
+void ConjugateGradientSolver::precondition(const ConstraintMask& constrained,
+                                           const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+  const int num_nodes = static_cast<int>(inverse_diagonal_.size());
+  for (int i = 0; i < num_nodes; ++i) {
+    z.segment<3>(3 * i).noalias() = inverse_diagonal_[i] * r.segment<3>(3 * i);
+  }
+  if (coarse_) coarse_->addCorrection(constrained, r, z);
+}
+
 SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const ConstraintMask& constrained,
                                            const Eigen::VectorXd& b, const SolverSettings& settings,
                                            Eigen::VectorXd& x) {
@@ -46,21 +85,8 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
     q_.resize(b.size());
     inverse_diagonal_.resize(num_nodes);
   }
-  const std::vector<Eigen::Matrix3d>& blocks = a.stiffness->blocks();
-  for (int i = 0; i < num_nodes; ++i) {
-    if (constrained[i]) {
-      inverse_diagonal_[i].setZero();  // keeps every search direction zero on constrained nodes
-      continue;
-    }
-    Eigen::Matrix3d d = a.stiffness_coefficient * blocks[a.stiffness->diagonalIndex(i)];
-    if (a.mass_coefficient != 0.0) d.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
-    inverse_diagonal_[i] = d.inverse();
-  }
-  auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
-    for (int i = 0; i < num_nodes; ++i) {
-      z.segment<3>(3 * i).noalias() = inverse_diagonal_[i] * r.segment<3>(3 * i);
-    }
-  };
+  if (settings.preconditioner != SolverSettings::Preconditioner::kTwoLevel) coarse_.reset();
+  refreshPreconditioner(a, constrained, settings);
 
   // Reference norm: the right-hand side of the free rows once the prescribed values are moved
   // over, i.e. the residual of x = 0 on the free nodes.
@@ -79,7 +105,7 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
   a.multiply(x, q_);
   r_ = b - q_;
   zeroConstrained(constrained, r_);
-  precondition(r_, z_);
+  precondition(constrained, r_, z_);
   p_ = z_;
   double rz = r_.dot(z_);
   double residual = r_.norm() / reference;
@@ -91,7 +117,7 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
     const double alpha = rz / pq;
     x += alpha * p_;
     r_ -= alpha * q_;
-    precondition(r_, z_);
+    precondition(constrained, r_, z_);
     const double rz_next = r_.dot(z_);
     p_ = z_ + (rz_next / rz) * p_;
     rz = rz_next;

@@ -184,7 +184,9 @@ class SceneParser {
   void parseSolver(const YAML::Node& node, core::SolverSettings& solver) const {
     if (!node) return;
     expectMap(node, "solver");
-    checkKeys(node, "solver", {"method", "tolerance", "max_iterations"});
+    checkKeys(
+        node, "solver",
+        {"method", "preconditioner", "tolerance", "max_iterations", "coarse_refresh_interval"});
     if (node["method"]) {
       const std::string method = text(node["method"], "solver.method");
       if (method == "cg") {
@@ -194,6 +196,23 @@ class SceneParser {
       } else {
         fail(node["method"], "solver.method", "'" + method + "' is not one of: cg, direct");
       }
+    }
+    if (node["preconditioner"]) {
+      const std::string name = text(node["preconditioner"], "solver.preconditioner");
+      if (name == "two_level") {
+        solver.preconditioner = core::SolverSettings::Preconditioner::kTwoLevel;
+      } else if (name == "block_jacobi") {
+        solver.preconditioner = core::SolverSettings::Preconditioner::kBlockJacobi;
+      } else {
+        fail(node["preconditioner"], "solver.preconditioner",
+             "'" + name + "' is not one of: two_level, block_jacobi");
+      }
+    }
+    if (node["coarse_refresh_interval"]) {
+      solver.coarse_refresh_interval = static_cast<int>(
+          integer(node["coarse_refresh_interval"], "solver.coarse_refresh_interval"));
+      if (solver.coarse_refresh_interval < 1)
+        fail(node["coarse_refresh_interval"], "solver.coarse_refresh_interval", "must be >= 1");
     }
     if (node["tolerance"]) solver.tolerance = positive(node["tolerance"], "solver.tolerance");
     if (node["max_iterations"]) {

@@ -58,6 +58,7 @@ TEST(SceneFile, ReadsEveryKey) {
   EXPECT_EQ(spec.solver.method, dc::SolverSettings::Method::kDirect);
   EXPECT_EQ(spec.solver.tolerance, 1e-8);
   EXPECT_EQ(spec.solver.max_iterations, 50);
+  EXPECT_EQ(spec.solver.preconditioner, dc::SolverSettings::Preconditioner::kTwoLevel);  // default
   EXPECT_EQ(spec.statics.load_steps, 3);
   ASSERT_EQ(spec.bodies.size(), 1u);
   const dc::BodySpec& body = spec.bodies[0];
@@ -103,6 +104,15 @@ TEST(SceneFile, ResolvesMeshPathsAgainstTheSceneFile) {
   EXPECT_EQ(spec.bodies[0].mesh, "/data/scenes/meshes/beam.msh");
 }
 
+TEST(SceneFile, ChoosesThePreconditionerAndItsRefresh) {
+  const dc::SceneSpec spec = dio::parseScene(
+      replaced(kScene, "method: direct",
+               "method: cg, preconditioner: block_jacobi, coarse_refresh_interval: 3"),
+      "test.yaml", ".");
+  EXPECT_EQ(spec.solver.preconditioner, dc::SolverSettings::Preconditioner::kBlockJacobi);
+  EXPECT_EQ(spec.solver.coarse_refresh_interval, 3);
+}
+
 TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
   EXPECT_EQ(errorOf(replaced(kScene, "youngs_modulus", "youngs_modulu")),
             "test.yaml:10: bodies[0].material.youngs_modulu: unknown key (expected one of: "
@@ -117,6 +127,10 @@ TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
             "test.yaml:3: effects.gravity: expected a list of 3 numbers");
   EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: magic")),
             "test.yaml:4: solver.method: 'magic' is not one of: cg, direct");
+  EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: cg, preconditioner: ilu")),
+            "test.yaml:4: solver.preconditioner: 'ilu' is not one of: two_level, block_jacobi");
+  EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: cg, coarse_refresh_interval: 0")),
+            "test.yaml:4: solver.coarse_refresh_interval: must be >= 1");
   EXPECT_EQ(errorOf(replaced(kScene, "dt: 0.005", "dt: -1")), "test.yaml:2: dt: must be > 0");
   EXPECT_EQ(errorOf(replaced(kScene, "model: fem", "model: rigid")),
             "test.yaml:9: bodies[0].model: 'rigid' is not supported (fem)");

@@ -8,17 +8,28 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "deformable_sim/core/block_sparse_matrix.h"
+#include "deformable_sim/core/rigid_mode_coarse_space.h"
 
 namespace deformable_sim::core {
 
 struct SolverSettings {
   enum class Method { kConjugateGradient, kDirect };
+  /// Conjugate gradient preconditioners: block-Jacobi alone, or block-Jacobi plus the coarse
+  /// correction of RigidModeCoarseSpace (far fewer iterations on anything larger than a few
+  /// hundred nodes).
+  enum class Preconditioner { kBlockJacobi, kTwoLevel };
   Method method = Method::kConjugateGradient;
+  Preconditioner preconditioner = Preconditioner::kTwoLevel;
   double tolerance = 1.0e-6;  ///< conjugate gradient: relative residual ||r|| / ||b_free||
   int max_iterations = 1000;  ///< conjugate gradient: iteration cap
+  /// Two-level: the coarse operator is rebuilt every this many solves (and whenever the mass or
+  /// stiffness coefficient changes); in between the last one still preconditions well, since
+  /// rotations change little from one step to the next.
+  int coarse_refresh_interval = 10;
 };
 
 struct SolveReport {
@@ -33,6 +44,8 @@ struct SystemMatrix {
   const std::vector<double>* nodal_mass = nullptr;  ///< kg per node (may be null if c_m == 0)
   double mass_coefficient = 0.0;
   double stiffness_coefficient = 1.0;
+  /// Current node positions (3n), for the rigid modes of the two-level preconditioner.
+  const Eigen::VectorXd* positions = nullptr;
 
   /// y = A x.
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
@@ -41,17 +54,25 @@ struct SystemMatrix {
 /// Which nodes are constrained (non-zero) for a solve.
 using ConstraintMask = std::vector<std::uint8_t>;
 
-/// Block-Jacobi preconditioned conjugate gradients. `x` comes in with the prescribed values on
-/// constrained nodes and the initial guess elsewhere (a warm start), and leaves with the solution.
-/// Buffers are sized on the first call; later calls of the same size allocate nothing.
+/// Preconditioned conjugate gradients. `x` comes in with the prescribed values on constrained
+/// nodes and the initial guess elsewhere (a warm start), and leaves with the solution. Buffers and
+/// the coarse space are set up on the first call; later calls of the same size allocate nothing.
 class ConjugateGradientSolver {
  public:
   SolveReport solve(const SystemMatrix& a, const ConstraintMask& constrained,
                     const Eigen::VectorXd& b, const SolverSettings& settings, Eigen::VectorXd& x);
 
  private:
+  void refreshPreconditioner(const SystemMatrix& a, const ConstraintMask& constrained,
+                             const SolverSettings& settings);
+  void precondition(const ConstraintMask& constrained, const Eigen::VectorXd& r,
+                    Eigen::VectorXd& z);
+
   std::vector<Eigen::Matrix3d> inverse_diagonal_;
   Eigen::VectorXd r_, z_, p_, q_;
+  std::unique_ptr<RigidModeCoarseSpace> coarse_;
+  int solves_since_coarse_refresh_ = 0;
+  double coarse_mass_coefficient_ = 0.0, coarse_stiffness_coefficient_ = 0.0;
 };
 
 /// Sparse LDL^T factorization (Eigen's SimplicialLDLT). The scalar pattern and its ordering are

@@ -1,0 +1,68 @@
+// The coarse level of the two-level preconditioner: nodes grouped into aggregates (a node and
+// its mesh neighbours), each aggregate moving as a rigid body (3 translations, 3 small rotations
+// about its centroid). Block-Jacobi smooths out the short wavelengths quickly but needs hundreds
+// of iterations for the long ones (a beam bending as a whole); the coarse operator
+// A_c = P^T A P over these modes takes those out in one solve, as in smoothed-aggregation
+// multigrid (Vanek, Mandel, Brezina 1996) with its tentative prolongator.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <cstdint>
+#include <vector>
+
+#include "deformable_sim/core/block_sparse_matrix.h"
+
+namespace deformable_sim::core {
+
+struct SystemMatrix;
+using ConstraintMask = std::vector<std::uint8_t>;
+
+class RigidModeCoarseSpace {
+ public:
+  /// Aggregates the nodes of the pattern of `k` (greedy: a node whose neighbours are all free
+  /// takes them; leftovers join a neighbouring aggregate) and builds the coarse pattern and its
+  /// symbolic factorization. Once per mesh.
+  explicit RigidModeCoarseSpace(const BlockSparseMatrix& k);
+
+  int numAggregates() const { return num_aggregates_; }
+  const std::vector<int>& aggregateOfNode() const { return aggregate_; }
+
+  /// Recomputes A_c = P^T A P for the rigid modes of each aggregate at `positions`, over the free
+  /// nodes, and factorizes it. Allocates nothing.
+  void refresh(const SystemMatrix& a, const ConstraintMask& constrained,
+               const Eigen::VectorXd& positions);
+
+  /// z += P A_c^-1 P^T r on the free nodes (r is zero on constrained nodes).
+  void addCorrection(const ConstraintMask& constrained, const Eigen::VectorXd& r,
+                     Eigen::VectorXd& z);
+
+ private:
+  int num_aggregates_ = 0;
+  std::vector<int> aggregate_;           ///< per node
+  std::vector<Eigen::Vector3d> offset_;  ///< per node: position minus its aggregate's centroid
+  std::vector<Eigen::Vector3d> centroid_;
+  std::vector<int> centroid_count_;
+  /// Per block of A (in the order of its storage): where block (agg(i), agg(j)) of A_c starts.
+  std::vector<int> coarse_block_;
+  /// Eigen's LDL^T with the refactorization that reuses its storage (its public factorize()
+  /// builds a temporary matrix on every call; this one allocates nothing).
+  class Factorization : public Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper,
+                                                     Eigen::NaturalOrdering<int>> {
+   public:
+    void refactorize(const Eigen::SparseMatrix<double>& upper) {
+      factorize_preordered<true>(upper);
+    }
+  };
+
+  /// A_c in a fill-reducing order (AMD, computed once), upper triangle only.
+  Eigen::SparseMatrix<double> coarse_;
+  std::vector<int> permutation_;   ///< coarse unknown -> its row in coarse_
+  std::vector<int> coarse_value_;  ///< per coarse block, 36 (row-major): index into the values
+                                   ///< of coarse_, or -1 for the lower triangle
+  Factorization factorization_;
+  Eigen::VectorXd coarse_rhs_, coarse_solution_;
+};
+
+}  // namespace deformable_sim::core

@@ -1,0 +1,206 @@
+#include "deformable_sim/core/rigid_mode_coarse_space.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/OrderingMethods>
+#include <algorithm>
+
+#include "deformable_sim/core/linear_solver.h"
+
+namespace deformable_sim::core {
+
+namespace {
+
+// [d]x, the matrix of d x (.).
+Eigen::Matrix3d crossMatrix(const Eigen::Vector3d& d) {
+  Eigen::Matrix3d c;
+  c << 0.0, -d.z(), d.y(), d.z(), 0.0, -d.x(), -d.y(), d.x(), 0.0;
+  return c;
+}
+
+}  // namespace
+
+RigidModeCoarseSpace::RigidModeCoarseSpace(const BlockSparseMatrix& k) {
+  const int n = k.numBlockRows();
+  const std::vector<int>& row_start = k.rowStart();
+  const std::vector<int>& columns = k.columns();
+
+  // Aggregation: a node whose two rings of neighbours are untouched takes all of them ...
+  aggregate_.assign(n, -1);
+  for (int i = 0; i < n; ++i) {
+    bool untouched = true;
+    for (int s = row_start[i]; s < row_start[i + 1] && untouched; ++s) {
+      const int j = columns[s];
+      for (int t = row_start[j]; t < row_start[j + 1] && untouched; ++t) {
+        untouched = aggregate_[columns[t]] < 0;
+      }
+    }
+    if (!untouched) continue;
+    for (int s = row_start[i]; s < row_start[i + 1]; ++s) {
+      const int j = columns[s];
+      for (int t = row_start[j]; t < row_start[j + 1]; ++t)
+        aggregate_[columns[t]] = num_aggregates_;
+    }
+    ++num_aggregates_;
+  }
+  // ... and every node left over joins the aggregate of a neighbour (or starts one if isolated).
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int i = 0; i < n; ++i) {
+      if (aggregate_[i] >= 0) continue;
+      for (int s = row_start[i]; s < row_start[i + 1] && aggregate_[i] < 0; ++s) {
+        aggregate_[i] = aggregate_[columns[s]];
+      }
+      if (aggregate_[i] < 0 && pass == 1) aggregate_[i] = num_aggregates_++;
+    }
+  }
+
+  // Coarse pattern: blocks (agg(i), agg(j)) over the blocks (i, j) of the fine pattern.
+  std::vector<std::vector<int>> neighbours(num_aggregates_);
+  for (int i = 0; i < n; ++i) {
+    for (int s = row_start[i]; s < row_start[i + 1]; ++s) {
+      neighbours[aggregate_[i]].push_back(aggregate_[columns[s]]);
+    }
+  }
+  std::vector<int> coarse_row_start{0};
+  std::vector<int> coarse_columns;
+  for (std::vector<int>& row : neighbours) {
+    std::sort(row.begin(), row.end());
+    row.erase(std::unique(row.begin(), row.end()), row.end());
+    coarse_columns.insert(coarse_columns.end(), row.begin(), row.end());
+    coarse_row_start.push_back(static_cast<int>(coarse_columns.size()));
+  }
+  auto coarseBlock = [&](int a, int b) {
+    const auto begin = coarse_columns.begin() + coarse_row_start[a];
+    const auto end = coarse_columns.begin() + coarse_row_start[a + 1];
+    return static_cast<int>(std::lower_bound(begin, end, b) - coarse_columns.begin());
+  };
+  coarse_block_.resize(columns.size());
+  for (int i = 0; i < n; ++i) {
+    for (int s = row_start[i]; s < row_start[i + 1]; ++s) {
+      coarse_block_[s] = coarseBlock(aggregate_[i], aggregate_[columns[s]]);
+    }
+  }
+
+  // Fill-reducing order of the scalar coarse pattern, once.
+  const int size = 6 * num_aggregates_;
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(36 * coarse_columns.size());
+  for (int a = 0; a < num_aggregates_; ++a) {
+    for (int s = coarse_row_start[a]; s < coarse_row_start[a + 1]; ++s) {
+      for (int e = 0; e < 36; ++e) {
+        entries.emplace_back(6 * a + e / 6, 6 * coarse_columns[s] + e % 6, 1.0);
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> pattern(size, size);
+  pattern.setFromTriplets(entries.begin(), entries.end());
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> ordering;
+  Eigen::AMDOrdering<int>()(pattern, ordering);
+  const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse = ordering.inverse();
+  permutation_.assign(inverse.indices().data(), inverse.indices().data() + size);
+
+  // The permuted upper triangle, each value tagged with its entry's id to find where it went.
+  entries.clear();
+  for (int a = 0; a < num_aggregates_; ++a) {
+    for (int s = coarse_row_start[a]; s < coarse_row_start[a + 1]; ++s) {
+      for (int e = 0; e < 36; ++e) {
+        const int row = permutation_[6 * a + e / 6];
+        const int column = permutation_[6 * coarse_columns[s] + e % 6];
+        if (row <= column) entries.emplace_back(row, column, 1.0 + 36.0 * s + e);
+      }
+    }
+  }
+  coarse_.resize(size, size);
+  coarse_.setFromTriplets(entries.begin(), entries.end());
+  coarse_.makeCompressed();
+  coarse_value_.assign(36 * coarse_columns.size(), -1);
+  for (int v = 0; v < coarse_.nonZeros(); ++v) {
+    coarse_value_[static_cast<int>(coarse_.valuePtr()[v]) - 1] = v;
+  }
+  factorization_.analyzePattern(coarse_);
+  coarse_rhs_.resize(size);
+  coarse_solution_.resize(size);
+  offset_.resize(n);
+  centroid_.resize(num_aggregates_);
+  centroid_count_.resize(num_aggregates_);
+}
+
+void RigidModeCoarseSpace::refresh(const SystemMatrix& a, const ConstraintMask& constrained,
+                                   const Eigen::VectorXd& positions) {
+  const BlockSparseMatrix& k = *a.stiffness;
+  const int n = k.numBlockRows();
+  // Rotations about each aggregate's centroid of free nodes, at the current positions.
+  std::fill(centroid_.begin(), centroid_.end(), Eigen::Vector3d::Zero());
+  std::fill(centroid_count_.begin(), centroid_count_.end(), 0);
+  for (int i = 0; i < n; ++i) {
+    if (constrained[i]) continue;
+    centroid_[aggregate_[i]] += positions.segment<3>(3 * i);
+    ++centroid_count_[aggregate_[i]];
+  }
+  for (int g = 0; g < num_aggregates_; ++g) {
+    if (centroid_count_[g] > 0) centroid_[g] /= centroid_count_[g];
+  }
+  for (int i = 0; i < n; ++i) offset_[i] = positions.segment<3>(3 * i) - centroid_[aggregate_[i]];
+
+  // A_c = sum over blocks (i, j) of P_i^T A_ij P_j with P_i = [I, -[d_i]x]: the 3 x 6 map from
+  // an aggregate's translation t and rotation w to node i's displacement t + w x d_i.
+  double* values = coarse_.valuePtr();
+  std::fill(values, values + coarse_.nonZeros(), 0.0);
+  double largest_diagonal = 0.0;
+  for (int i = 0; i < n; ++i) {
+    if (constrained[i]) continue;
+    const Eigen::Matrix3d di = crossMatrix(offset_[i]);
+    for (int s = k.rowStart()[i]; s < k.rowStart()[i + 1]; ++s) {
+      const int j = k.columns()[s];
+      if (constrained[j]) continue;
+      Eigen::Matrix3d aij = a.stiffness_coefficient * k.blocks()[s];
+      if (i == j && a.mass_coefficient != 0.0) {
+        aij.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
+      }
+      Eigen::Matrix<double, 3, 6> t;  // A_ij P_j
+      t.leftCols<3>() = aij;
+      t.rightCols<3>().noalias() = -aij * crossMatrix(offset_[j]);
+      Eigen::Matrix<double, 6, 6> block;  // P_i^T A_ij P_j; -[d]x^T = [d]x
+      block.topRows<3>() = t;
+      block.bottomRows<3>().noalias() = di * t;
+      const int* slot = &coarse_value_[36 * coarse_block_[s]];
+      for (int e = 0; e < 36; ++e) {
+        if (slot[e] >= 0) values[slot[e]] += block(e / 6, e % 6);
+      }
+      if (i == j) largest_diagonal = std::max(largest_diagonal, aij.diagonal().maxCoeff());
+    }
+  }
+  // Aggregates with constrained nodes can lose modes (all of them, or a rotation about the line
+  // through their only free node): a tiny shift keeps A_c definite, and those modes carry no
+  // residual, so it changes nothing else.
+  factorization_.setShift(1e-12 * largest_diagonal);
+  factorization_.refactorize(coarse_);
+}
+
+void RigidModeCoarseSpace::addCorrection(const ConstraintMask& constrained,
+                                         const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+  const int n = static_cast<int>(aggregate_.size());
+  coarse_rhs_.setZero();
+  for (int i = 0; i < n; ++i) {
+    if (constrained[i]) continue;
+    const int g = 6 * aggregate_[i];
+    const Eigen::Vector3d ri = r.segment<3>(3 * i);
+    const Eigen::Vector3d torque = offset_[i].cross(ri);
+    for (int q = 0; q < 3; ++q) {
+      coarse_rhs_[permutation_[g + q]] += ri[q];
+      coarse_rhs_[permutation_[g + 3 + q]] += torque[q];
+    }
+  }
+  coarse_solution_ = factorization_.solve(coarse_rhs_);
+  for (int i = 0; i < n; ++i) {
+    if (constrained[i]) continue;
+    const int g = 6 * aggregate_[i];
+    Eigen::Vector3d translation, rotation;
+    for (int q = 0; q < 3; ++q) {
+      translation[q] = coarse_solution_[permutation_[g + q]];
+      rotation[q] = coarse_solution_[permutation_[g + 3 + q]];
+    }
+    z.segment<3>(3 * i) += translation + rotation.cross(offset_[i]);
+  }
+}
+
+}  // namespace deformable_sim::core
