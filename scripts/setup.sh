@@ -22,7 +22,7 @@ ws=${DEFORMABLE_SIM_WS:-$HOME/deformable_sim_ws}
 export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
 
 packages=(
-  build-essential cmake libgtest-dev libeigen3-dev libyaml-cpp-dev
+  build-essential cmake libgtest-dev libeigen3-dev libyaml-cpp-dev libbenchmark-dev
   ros-core-dev catkin python3-catkin-pkg python3-rostest rosbash
   libtf2-ros-dev libstd-srvs-dev libdiagnostic-updater-dev liburdfdom-dev
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure

@@ -1,6 +1,7 @@
 #include "deformable_sim/core/fem_body.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -9,6 +10,10 @@
 namespace deformable_sim::core {
 
 namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
 // The readers validate files; this guards meshes built in code. Throws naming the element/node.
 void validateMesh(const std::string& body, const Mesh& mesh) {
@@ -186,11 +191,19 @@ int FemBody::numConstrained() const {
   return count;
 }
 
-int FemBody::updateStiffness() {
+int FemBody::updateStiffness(StepTimes* times) {
   if (stiffness_assembled_ && !effects_.warping) return 0;  // linear FEM: K is constant
   stiffness_assembled_ = true;
   matrix_changed_ = true;
-  return elasticity_.update(x_, effects_.warping);
+  const auto start = Clock::now();
+  const int inverted = effects_.warping ? elasticity_.updateRotations(x_) : 0;
+  const auto rotated = Clock::now();
+  elasticity_.assemble();
+  if (times) {
+    times->rotations += seconds(rotated - start);
+    times->assembly += seconds(Clock::now() - rotated);
+  }
+  return inverted;
 }
 
 SystemMatrix FemBody::systemMatrix(double mass_coefficient, double stiffness_coefficient) const {
@@ -222,7 +235,8 @@ SolveReport FemBody::solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eige
 
 StepReport FemBody::step(double dt) {
   StepReport report;
-  report.inverted_elements = updateStiffness();
+  const auto start = Clock::now();
+  report.inverted_elements = updateStiffness(&report.times);
   const double h = dt;
   const RayleighDamping damping = effects_.damping.value_or(RayleighDamping{});
   const SystemMatrix a = systemMatrix(1.0 + h * damping.mass, h * damping.stiffness + h * h);
@@ -242,7 +256,9 @@ StepReport FemBody::step(double dt) {
     if (constrained_[i])
       next_.segment<3>(3 * i) = (targets_.segment<3>(3 * i) - x_.segment<3>(3 * i)) / h;
   }
+  const auto solve_start = Clock::now();
   report.solve = solve(a, rhs_, next_);
+  report.times.solve = seconds(Clock::now() - solve_start);
 
   // A v+ - b = h (M (v+ - v) / h - f_ext - f_elastic - f_damping): h times the constraint force.
   a.multiply(next_, scratch_);
@@ -253,6 +269,7 @@ StepReport FemBody::step(double dt) {
   }
   x_ += h * next_;
   v_ = next_;
+  report.times.total = seconds(Clock::now() - start);
   return report;
 }
 

@@ -37,10 +37,19 @@ struct StaticSettings {
   double tolerance = 1.0e-8;  ///< stop when |dx| <= tolerance * |x - x0|
 };
 
+/// Wall time of a step's phases, s (steady clock; for benchmarks and the node's statistics).
+struct StepTimes {
+  double rotations = 0.0;  ///< element rotations (zero without warping)
+  double assembly = 0.0;   ///< K' and f0' (zero when nothing changed: linear FEM)
+  double solve = 0.0;      ///< the linear solve, preconditioner set-up included
+  double total = 0.0;      ///< the whole step
+};
+
 struct StepReport {
   SolveReport solve;
   int inverted_elements = 0;  ///< elements with det F <= 0 at the start of the step
   int contacts = 0;           ///< nodes put back on an obstacle's surface after the step
+  StepTimes times;
 };
 
 struct StaticReport {
@@ -125,8 +134,9 @@ class FemBody {
   const CorotationalElasticity& elasticity() const { return elasticity_; }
 
  private:
-  /// Updates rotations, K' and f0' from the current positions when they can have changed.
-  int updateStiffness();
+  /// Updates rotations, K' and f0' from the current positions when they can have changed;
+  /// adds the time of each half to `times` when given.
+  int updateStiffness(StepTimes* times = nullptr);
   /// x = A^-1 b with prescribed values already in x on constrained nodes.
   SolveReport solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x);
   SystemMatrix systemMatrix(double mass_coefficient, double stiffness_coefficient) const;
