@@ -80,7 +80,12 @@ FemBody::FemBody(std::string name, Mesh mesh, const LinearElasticMaterial& mater
       scratch_(x0_.size()) {
   setSolverLimits(solver.tolerance, solver.max_iterations);
   setDamping(effects.damping);
+  if (solver.threads < 1 || solver.coarse_refresh_interval < 1) {
+    throw std::invalid_argument("body '" + name_ +
+                                "': solver threads and coarse_refresh_interval must be >= 1");
+  }
   if (solver.method == SolverSettings::Method::kDirect) direct_ = std::make_unique<DirectSolver>();
+  elasticity_.setThreads(solver.threads);
 }
 
 void FemBody::setMaterial(const LinearElasticMaterial& material) {
@@ -213,6 +218,7 @@ SystemMatrix FemBody::systemMatrix(double mass_coefficient, double stiffness_coe
   a.mass_coefficient = mass_coefficient;
   a.stiffness_coefficient = stiffness_coefficient;
   a.positions = &x_;
+  a.threads = solver_settings_.threads;
   return a;
 }
 

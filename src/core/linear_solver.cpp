@@ -1,6 +1,7 @@
 #include "deformable_sim/core/linear_solver.h"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 
 namespace deformable_sim::core {
@@ -25,13 +26,20 @@ void keepConstrained(const ConstraintMask& constrained, const Eigen::VectorXd& x
 }  // namespace
 
 void SystemMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  stiffness->multiply(x, y);
-  if (stiffness_coefficient != 1.0) y *= stiffness_coefficient;
-  if (mass_coefficient != 0.0) {
-    const std::vector<double>& m = *nodal_mass;
-    for (size_t i = 0; i < m.size(); ++i) {
-      y.segment<3>(3 * i) += (mass_coefficient * m[i]) * x.segment<3>(3 * i);
+  const BlockSparseMatrix& k = *stiffness;
+  const int n = k.numBlockRows();
+  const std::vector<int>& row_start = k.rowStart();
+  const std::vector<int>& columns = k.columns();
+  const std::vector<Eigen::Matrix3d>& blocks = k.blocks();
+#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int s = row_start[i]; s < row_start[i + 1]; ++s) {
+      sum.noalias() += blocks[s] * x.segment<3>(3 * columns[s]);
     }
+    sum *= stiffness_coefficient;
+    if (mass_coefficient != 0.0) sum += (mass_coefficient * (*nodal_mass)[i]) * x.segment<3>(3 * i);
+    y.segment<3>(3 * i) = sum;
   }
 }
 
@@ -84,6 +92,7 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
     p_.resize(b.size());
     q_.resize(b.size());
     inverse_diagonal_.resize(num_nodes);
+    partial_sums_.resize((num_nodes + kChunkNodes - 1) / kChunkNodes);
   }
   if (settings.preconditioner != SolverSettings::Preconditioner::kTwoLevel) coarse_.reset();
   refreshPreconditioner(a, constrained, settings);
@@ -107,21 +116,48 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
   zeroConstrained(constrained, r_);
   precondition(constrained, r_, z_);
   p_ = z_;
-  double rz = r_.dot(z_);
-  double residual = r_.norm() / reference;
+  const int num_chunks = static_cast<int>(partial_sums_.size());
+  // Sums over nodes in fixed chunks, added in chunk order: the same bits on any thread count.
+  auto sum = [&](auto&& chunk_sum) {
+#pragma omp parallel for num_threads(a.threads) if (a.threads > 1) schedule(static)
+    for (int c = 0; c < num_chunks; ++c) {
+      partial_sums_[c] = chunk_sum(c * kChunkNodes, std::min(num_nodes, (c + 1) * kChunkNodes));
+    }
+    double total = 0.0;
+    for (double partial : partial_sums_) total += partial;
+    return total;
+  };
+  auto dot = [&](const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
+    return sum([&](int begin, int end) {
+      return u.segment(3 * begin, 3 * (end - begin)).dot(v.segment(3 * begin, 3 * (end - begin)));
+    });
+  };
+  double rz = dot(r_, z_);
+  double residual = std::sqrt(dot(r_, r_)) / reference;
   while (residual > settings.tolerance && report.iterations < settings.max_iterations) {
     a.multiply(p_, q_);
     zeroConstrained(constrained, q_);
-    const double pq = p_.dot(q_);
+    const double pq = dot(p_, q_);
     if (!(pq > 0.0)) break;  // not positive definite along p (or NaN): stop, report below
     const double alpha = rz / pq;
-    x += alpha * p_;
-    r_ -= alpha * q_;
-    precondition(constrained, r_, z_);
-    const double rz_next = r_.dot(z_);
-    p_ = z_ + (rz_next / rz) * p_;
+    // One pass: x += alpha p, r -= alpha q, z = D^-1 r, and |r|^2.
+    const double rr = sum([&](int begin, int end) {
+      double partial = 0.0;
+      for (int i = begin; i < end; ++i) {
+        x.segment<3>(3 * i) += alpha * p_.segment<3>(3 * i);
+        r_.segment<3>(3 * i) -= alpha * q_.segment<3>(3 * i);
+        z_.segment<3>(3 * i).noalias() = inverse_diagonal_[i] * r_.segment<3>(3 * i);
+        partial += r_.segment<3>(3 * i).squaredNorm();
+      }
+      return partial;
+    });
+    if (coarse_) coarse_->addCorrection(constrained, r_, z_, a.threads);
+    const double rz_next = dot(r_, z_);
+    const double beta = rz_next / rz;
+#pragma omp parallel for num_threads(a.threads) if (a.threads > 1) schedule(static)
+    for (int i = 0; i < 3 * num_nodes; ++i) p_[i] = z_[i] + beta * p_[i];
     rz = rz_next;
-    residual = r_.norm() / reference;
+    residual = std::sqrt(rr) / reference;
     ++report.iterations;
   }
   report.relative_residual = residual;

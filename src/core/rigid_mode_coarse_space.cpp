@@ -53,6 +53,13 @@ RigidModeCoarseSpace::RigidModeCoarseSpace(const BlockSparseMatrix& k) {
     }
   }
 
+  member_start_.assign(num_aggregates_ + 1, 0);
+  for (int g : aggregate_) ++member_start_[g + 1];
+  for (int g = 0; g < num_aggregates_; ++g) member_start_[g + 1] += member_start_[g];
+  members_.resize(n);
+  std::vector<int> next(member_start_.begin(), member_start_.end() - 1);
+  for (int i = 0; i < n; ++i) members_[next[aggregate_[i]]++] = i;
+
   // Coarse pattern: blocks (agg(i), agg(j)) over the blocks (i, j) of the fine pattern.
   std::vector<std::vector<int>> neighbours(num_aggregates_);
   for (int i = 0; i < n; ++i) {
@@ -177,20 +184,28 @@ void RigidModeCoarseSpace::refresh(const SystemMatrix& a, const ConstraintMask& 
 }
 
 void RigidModeCoarseSpace::addCorrection(const ConstraintMask& constrained,
-                                         const Eigen::VectorXd& r, Eigen::VectorXd& z) {
-  const int n = static_cast<int>(aggregate_.size());
-  coarse_rhs_.setZero();
-  for (int i = 0; i < n; ++i) {
-    if (constrained[i]) continue;
-    const int g = 6 * aggregate_[i];
-    const Eigen::Vector3d ri = r.segment<3>(3 * i);
-    const Eigen::Vector3d torque = offset_[i].cross(ri);
+                                         const Eigen::VectorXd& r, Eigen::VectorXd& z,
+                                         int threads) {
+  // Restriction by aggregates (each sums its own nodes in node order), the coarse solve, and
+  // the prolongation by nodes.
+#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
+  for (int g = 0; g < num_aggregates_; ++g) {
+    Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+    for (int k = member_start_[g]; k < member_start_[g + 1]; ++k) {
+      const int i = members_[k];
+      if (constrained[i]) continue;
+      const Eigen::Vector3d ri = r.segment<3>(3 * i);
+      force += ri;
+      torque += offset_[i].cross(ri);
+    }
     for (int q = 0; q < 3; ++q) {
-      coarse_rhs_[permutation_[g + q]] += ri[q];
-      coarse_rhs_[permutation_[g + 3 + q]] += torque[q];
+      coarse_rhs_[permutation_[6 * g + q]] = force[q];
+      coarse_rhs_[permutation_[6 * g + 3 + q]] = torque[q];
     }
   }
   coarse_solution_ = factorization_.solve(coarse_rhs_);
+  const int n = static_cast<int>(aggregate_.size());
+#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
   for (int i = 0; i < n; ++i) {
     if (constrained[i]) continue;
     const int g = 6 * aggregate_[i];

@@ -184,9 +184,9 @@ class SceneParser {
   void parseSolver(const YAML::Node& node, core::SolverSettings& solver) const {
     if (!node) return;
     expectMap(node, "solver");
-    checkKeys(
-        node, "solver",
-        {"method", "preconditioner", "tolerance", "max_iterations", "coarse_refresh_interval"});
+    checkKeys(node, "solver",
+              {"method", "preconditioner", "tolerance", "max_iterations", "coarse_refresh_interval",
+               "threads"});
     if (node["method"]) {
       const std::string method = text(node["method"], "solver.method");
       if (method == "cg") {
@@ -213,6 +213,10 @@ class SceneParser {
           integer(node["coarse_refresh_interval"], "solver.coarse_refresh_interval"));
       if (solver.coarse_refresh_interval < 1)
         fail(node["coarse_refresh_interval"], "solver.coarse_refresh_interval", "must be >= 1");
+    }
+    if (node["threads"]) {
+      solver.threads = static_cast<int>(integer(node["threads"], "solver.threads"));
+      if (solver.threads < 1) fail(node["threads"], "solver.threads", "must be >= 1");
     }
     if (node["tolerance"]) solver.tolerance = positive(node["tolerance"], "solver.tolerance");
     if (node["max_iterations"]) {

@@ -3,7 +3,8 @@
 // --benchmark_report_aggregates_only=true). The scene is perf/cantilever.h: a soft cantilever
 // swinging under gravity, dt = 0.01 s, CG to a relative residual of 1e-6.
 //
-// Step/<tets>/<preconditioner>: the whole implicit step (0 block-Jacobi, 1 two-level); counters
+// Step/<mesh>/<preconditioner>/<threads>: the whole implicit step (preconditioner 0 block-Jacobi,
+// 1 two-level); counters
 // give its phases (rotations, assembly, solve, in ms), CG iterations and the heap a body keeps
 // per tetrahedron. MatVec/<tets>: one product with the assembled K', the unit of a CG iteration.
 #include <benchmark/benchmark.h>
@@ -11,6 +12,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <tuple>
 #include <utility>
 
 #include "deformable_sim/bench/heap_usage.h"
@@ -32,13 +34,14 @@ struct Swinging {
   double bytes_per_tetrahedron = 0.0;
 };
 
-// One swinging body per (mesh, preconditioner), kept across benchmarks and repetitions.
-Swinging& swinging(int mesh, core::SolverSettings::Preconditioner preconditioner) {
-  static std::map<std::pair<int, int>, Swinging> bodies;
-  Swinging& s = bodies[{mesh, static_cast<int>(preconditioner)}];
+// One swinging body per (mesh, preconditioner, threads), kept across benchmarks and repetitions.
+Swinging& swinging(int mesh, core::SolverSettings::Preconditioner preconditioner, int threads) {
+  static std::map<std::tuple<int, int, int>, Swinging> bodies;
+  Swinging& s = bodies[{mesh, static_cast<int>(preconditioner), threads}];
   if (!s.body) {
     perf::Cantilever cantilever = perf::makeCantilever(kCells[mesh]);
     cantilever.solver.preconditioner = preconditioner;
+    cantilever.solver.threads = threads;
     const std::size_t before = deformable_sim::bench::liveHeapBytes();
     s.body = std::make_unique<core::FemBody>(perf::makeBody(cantilever));
     s.body->step(cantilever.dt);  // buffers and the coarse space are made in the first step
@@ -51,7 +54,8 @@ Swinging& swinging(int mesh, core::SolverSettings::Preconditioner preconditioner
 
 void Step(benchmark::State& state) {
   const auto preconditioner = static_cast<core::SolverSettings::Preconditioner>(state.range(1));
-  Swinging& s = swinging(static_cast<int>(state.range(0)), preconditioner);
+  Swinging& s =
+      swinging(static_cast<int>(state.range(0)), preconditioner, static_cast<int>(state.range(2)));
   core::StepTimes sum;
   double iterations = 0.0;
   bool converged = true;
@@ -74,8 +78,8 @@ void Step(benchmark::State& state) {
 }
 
 void MatVec(benchmark::State& state) {
-  Swinging& s =
-      swinging(static_cast<int>(state.range(0)), core::SolverSettings::Preconditioner::kTwoLevel);
+  Swinging& s = swinging(static_cast<int>(state.range(0)),
+                         core::SolverSettings::Preconditioner::kTwoLevel, 1);
   const core::BlockSparseMatrix& k = s.body->elasticity().stiffness();
   Eigen::VectorXd y(s.body->positions().size());
   for (auto _ : state) {
@@ -92,13 +96,15 @@ void meshSizes(benchmark::internal::Benchmark* b, bool with_preconditioners) {
       b->Args({mesh});
       continue;
     }
-    for (int p : {1, 0}) b->Args({mesh, p});
+    for (int p : {1, 0}) {
+      for (int threads : {1, 2}) b->Args({mesh, p, threads});
+    }
   }
 }
 
 BENCHMARK(Step)
     ->Apply([](benchmark::internal::Benchmark* b) { meshSizes(b, true); })
-    ->ArgNames({"mesh", "two_level"})
+    ->ArgNames({"mesh", "two_level", "threads"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(MatVec)

@@ -43,13 +43,15 @@ TEST(Allocations, NoneInAStepAfterTheFirst) {
   std::vector<double> probe(1000 + start % 2);
   sink = probe.data();
   EXPECT_GT(g_allocations.load(), start);
-  for (bool warping : {true, false}) {
+  for (auto [warping, threads] : {std::pair{true, 1}, std::pair{false, 1}, std::pair{true, 2}}) {
+    dc::SolverSettings solver;
+    solver.threads = threads;
     dc::BodyEffects effects;
     effects.warping = warping;
     effects.gravity = Eigen::Vector3d(0, 0, -9.81);
     effects.damping = dc::RayleighDamping{0.1, 0.01};
     dc::FemBody body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {1, 0.05, 0.05}, {10, 2, 2}),
-                     {1e5, 0.3, 1000}, effects, {});
+                     {1e5, 0.3, 1000}, effects, solver);
     dc::NodeSelection end;
     end.kind = dc::NodeSelection::Kind::kBox;
     end.box = {{-1e-9, -1, -1}, {1e-9, 1, 1}};
@@ -58,7 +60,7 @@ TEST(Allocations, NoneInAStepAfterTheFirst) {
     const long before = g_allocations.load();
     int iterations = 0;
     for (int s = 0; s < 20; ++s) iterations += body.step(0.01).solve.iterations;
-    EXPECT_EQ(g_allocations.load() - before, 0) << "warping " << warping;
+    EXPECT_EQ(g_allocations.load() - before, 0) << "warping " << warping << ", threads " << threads;
     EXPECT_GT(iterations, 0);  // the steps really solved something
   }
 }

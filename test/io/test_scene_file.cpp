@@ -107,10 +107,11 @@ TEST(SceneFile, ResolvesMeshPathsAgainstTheSceneFile) {
 TEST(SceneFile, ChoosesThePreconditionerAndItsRefresh) {
   const dc::SceneSpec spec = dio::parseScene(
       replaced(kScene, "method: direct",
-               "method: cg, preconditioner: block_jacobi, coarse_refresh_interval: 3"),
+               "method: cg, preconditioner: block_jacobi, coarse_refresh_interval: 3, threads: 2"),
       "test.yaml", ".");
   EXPECT_EQ(spec.solver.preconditioner, dc::SolverSettings::Preconditioner::kBlockJacobi);
   EXPECT_EQ(spec.solver.coarse_refresh_interval, 3);
+  EXPECT_EQ(spec.solver.threads, 2);
 }
 
 TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
@@ -131,6 +132,8 @@ TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
             "test.yaml:4: solver.preconditioner: 'ilu' is not one of: two_level, block_jacobi");
   EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: cg, coarse_refresh_interval: 0")),
             "test.yaml:4: solver.coarse_refresh_interval: must be >= 1");
+  EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: cg, threads: 0")),
+            "test.yaml:4: solver.threads: must be >= 1");
   EXPECT_EQ(errorOf(replaced(kScene, "dt: 0.005", "dt: -1")), "test.yaml:2: dt: must be > 0");
   EXPECT_EQ(errorOf(replaced(kScene, "model: fem", "model: rigid")),
             "test.yaml:9: bodies[0].model: 'rigid' is not supported (fem)");

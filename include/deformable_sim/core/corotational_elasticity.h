@@ -36,6 +36,11 @@ class CorotationalElasticity {
   int updateRotations(const Eigen::VectorXd& x);
   void assemble();
 
+  /// Threads for the element loops (1: none started). With more than one, elements are added
+  /// colour by colour: results are the same for any count above one and differ from one thread's
+  /// only by the rounding of a different summation order.
+  void setThreads(int threads) { threads_ = threads; }
+
   const BlockSparseMatrix& stiffness() const { return stiffness_; }     ///< K', N/m
   const Eigen::VectorXd& forceOffset() const { return force_offset_; }  ///< f0', N
   const std::vector<Eigen::Matrix3d>& rotations() const { return rotations_; }
@@ -51,6 +56,9 @@ class CorotationalElasticity {
 
  private:
   void setRestForces();
+  void colourElements(int num_nodes);
+  /// Adds element e's warped blocks to K' and its share of f0'.
+  void addElement(int e);
 
   std::vector<Tetrahedron> tetrahedra_;
   Eigen::VectorXd rest_positions_;
@@ -59,7 +67,11 @@ class CorotationalElasticity {
   /// Per element, (Ke x0)_i: the rest-frame force offset that a rotation turns into f0'.
   std::vector<std::array<Eigen::Vector3d, 4>> rest_forces_;
   std::vector<std::array<int, 16>> block_index_;  ///< per element, slot of block (i, j) at 4i + j
+  /// Elements grouped by colour (no two of one colour share a node), so that the elements of a
+  /// colour can add into K' at once; colour c is colour_start_[c] .. colour_start_[c + 1].
+  std::vector<int> coloured_elements_, colour_start_;
   std::vector<Eigen::Matrix3d> rotations_;
+  int threads_ = 1;
   BlockSparseMatrix stiffness_;
   Eigen::VectorXd force_offset_;
 };

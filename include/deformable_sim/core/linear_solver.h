@@ -30,6 +30,10 @@ struct SolverSettings {
   /// stiffness coefficient changes); in between the last one still preconditions well, since
   /// rotations change little from one step to the next.
   int coarse_refresh_interval = 10;
+  /// Threads for the element loops, products with A and CG's vector operations (1: none
+  /// started). Results are the same for any count above one; one thread sums the stiffness in
+  /// another order (see CorotationalElasticity::setThreads).
+  int threads = 1;
 };
 
 struct SolveReport {
@@ -46,6 +50,7 @@ struct SystemMatrix {
   double stiffness_coefficient = 1.0;
   /// Current node positions (3n), for the rigid modes of the two-level preconditioner.
   const Eigen::VectorXd* positions = nullptr;
+  int threads = 1;  ///< for products and the conjugate gradient's vector operations
 
   /// y = A x.
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
@@ -68,8 +73,11 @@ class ConjugateGradientSolver {
   void precondition(const ConstraintMask& constrained, const Eigen::VectorXd& r,
                     Eigen::VectorXd& z);
 
+  static constexpr int kChunkNodes = 256;  ///< nodes per partial sum of a dot product
+
   std::vector<Eigen::Matrix3d> inverse_diagonal_;
   Eigen::VectorXd r_, z_, p_, q_;
+  std::vector<double> partial_sums_;
   std::unique_ptr<RigidModeCoarseSpace> coarse_;
   int solves_since_coarse_refresh_ = 0;
   double coarse_mass_coefficient_ = 0.0, coarse_stiffness_coefficient_ = 0.0;

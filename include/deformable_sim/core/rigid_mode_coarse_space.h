@@ -36,12 +36,13 @@ class RigidModeCoarseSpace {
 
   /// z += P A_c^-1 P^T r on the free nodes (r is zero on constrained nodes).
   void addCorrection(const ConstraintMask& constrained, const Eigen::VectorXd& r,
-                     Eigen::VectorXd& z);
+                     Eigen::VectorXd& z, int threads = 1);
 
  private:
   int num_aggregates_ = 0;
-  std::vector<int> aggregate_;           ///< per node
-  std::vector<Eigen::Vector3d> offset_;  ///< per node: position minus its aggregate's centroid
+  std::vector<int> aggregate_;               ///< per node
+  std::vector<int> member_start_, members_;  ///< the nodes of aggregate g, in node order
+  std::vector<Eigen::Vector3d> offset_;      ///< per node: position minus its aggregate's centroid
   std::vector<Eigen::Vector3d> centroid_;
   std::vector<int> centroid_count_;
   /// Per block of A (in the order of its storage): where block (agg(i), agg(j)) of A_c starts.
