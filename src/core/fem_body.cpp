@@ -77,7 +77,9 @@ FemBody::FemBody(std::string name, Mesh mesh, const LinearElasticMaterial& mater
       reaction_(Eigen::VectorXd::Zero(x0_.size())),
       rhs_(x0_.size()),
       next_(x0_.size()),
-      scratch_(x0_.size()) {
+      scratch_(x0_.size()),
+      v_history_{Eigen::VectorXd::Zero(x0_.size()), Eigen::VectorXd::Zero(x0_.size()),
+                 Eigen::VectorXd::Zero(x0_.size())} {
   setSolverLimits(solver.tolerance, solver.max_iterations);
   setDamping(effects.damping);
   if (solver.threads < 1 || solver.coarse_refresh_interval < 1) {
@@ -135,6 +137,7 @@ void FemBody::setState(const Eigen::VectorXd& positions, const Eigen::VectorXd& 
   }
   x_ = positions;
   v_ = velocities;
+  history_size_ = 0;
 }
 
 void FemBody::fixNodes(const std::vector<int>& nodes) {
@@ -239,6 +242,26 @@ SolveReport FemBody::solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eige
   return report;
 }
 
+void FemBody::predictVelocity(Eigen::VectorXd& guess) const {
+  const int order =
+      solver_settings_.warm_start == SolverSettings::WarmStart::kExtrapolated ? history_size_ : 0;
+  // Polynomial extrapolation through the last velocities (backward differences of order 0-3).
+  switch (order) {
+    case 0:
+      guess = v_;
+      break;
+    case 1:
+      guess = 2.0 * v_ - v_history_[0];
+      break;
+    case 2:
+      guess = 3.0 * v_ - 3.0 * v_history_[0] + v_history_[1];
+      break;
+    default:
+      guess = 4.0 * v_ - 6.0 * v_history_[0] + 4.0 * v_history_[1] - v_history_[2];
+      break;
+  }
+}
+
 StepReport FemBody::step(double dt) {
   StepReport report;
   const auto start = Clock::now();
@@ -256,8 +279,9 @@ StepReport FemBody::step(double dt) {
     rhs_.segment<3>(3 * i) = mass_[i] * v_.segment<3>(3 * i) -
                              h * (scratch_.segment<3>(3 * i) + f0.segment<3>(3 * i) - load);
   }
-  // Warm start from the last velocity; constrained nodes move to their targets in this step.
-  next_ = v_;
+  // Warm start; constrained nodes move to their targets in this step.
+  if (h != history_dt_) history_size_ = 0;  // the history is of another step size
+  predictVelocity(next_);
   for (int i = 0; i < numNodes(); ++i) {
     if (constrained_[i])
       next_.segment<3>(3 * i) = (targets_.segment<3>(3 * i) - x_.segment<3>(3 * i)) / h;
@@ -274,7 +298,13 @@ StepReport FemBody::step(double dt) {
                         : Eigen::Vector3d::Zero();
   }
   x_ += h * next_;
+  // History for the next prediction: shift by swapping, so nothing is copied or allocated.
+  std::swap(v_history_[2], v_history_[1]);
+  std::swap(v_history_[1], v_history_[0]);
+  std::swap(v_history_[0], v_);  // v_history_[0] = last velocity; v_ holds a dead buffer
   v_ = next_;
+  history_size_ = std::min(history_size_ + 1, 3);
+  history_dt_ = h;
   report.times.total = seconds(Clock::now() - start);
   return report;
 }
@@ -336,6 +366,7 @@ StaticReport FemBody::solveStatic(const StaticSettings& settings) {
                        (!effects_.warping || report.last_change <= settings.tolerance);
   }
   v_.setZero();
+  history_size_ = 0;
   // Reactions at equilibrium, with the stiffness of the final configuration.
   updateStiffness();
   elasticity_.stiffness().multiply(x_, scratch_);

@@ -186,7 +186,7 @@ class SceneParser {
     expectMap(node, "solver");
     checkKeys(node, "solver",
               {"method", "preconditioner", "tolerance", "max_iterations", "coarse_refresh_interval",
-               "threads"});
+               "threads", "warm_start"});
     if (node["method"]) {
       const std::string method = text(node["method"], "solver.method");
       if (method == "cg") {
@@ -206,6 +206,17 @@ class SceneParser {
       } else {
         fail(node["preconditioner"], "solver.preconditioner",
              "'" + name + "' is not one of: two_level, block_jacobi");
+      }
+    }
+    if (node["warm_start"]) {
+      const std::string name = text(node["warm_start"], "solver.warm_start");
+      if (name == "extrapolated") {
+        solver.warm_start = core::SolverSettings::WarmStart::kExtrapolated;
+      } else if (name == "last_velocity") {
+        solver.warm_start = core::SolverSettings::WarmStart::kLastVelocity;
+      } else {
+        fail(node["warm_start"], "solver.warm_start",
+             "'" + name + "' is not one of: extrapolated, last_velocity");
       }
     }
     if (node["coarse_refresh_interval"]) {

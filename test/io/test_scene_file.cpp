@@ -59,6 +59,7 @@ TEST(SceneFile, ReadsEveryKey) {
   EXPECT_EQ(spec.solver.tolerance, 1e-8);
   EXPECT_EQ(spec.solver.max_iterations, 50);
   EXPECT_EQ(spec.solver.preconditioner, dc::SolverSettings::Preconditioner::kTwoLevel);  // default
+  EXPECT_EQ(spec.solver.warm_start, dc::SolverSettings::WarmStart::kExtrapolated);       // default
   EXPECT_EQ(spec.statics.load_steps, 3);
   ASSERT_EQ(spec.bodies.size(), 1u);
   const dc::BodySpec& body = spec.bodies[0];
@@ -107,11 +108,13 @@ TEST(SceneFile, ResolvesMeshPathsAgainstTheSceneFile) {
 TEST(SceneFile, ChoosesThePreconditionerAndItsRefresh) {
   const dc::SceneSpec spec = dio::parseScene(
       replaced(kScene, "method: direct",
-               "method: cg, preconditioner: block_jacobi, coarse_refresh_interval: 3, threads: 2"),
+               "method: cg, preconditioner: block_jacobi, coarse_refresh_interval: 3, threads: 2, "
+               "warm_start: last_velocity"),
       "test.yaml", ".");
   EXPECT_EQ(spec.solver.preconditioner, dc::SolverSettings::Preconditioner::kBlockJacobi);
   EXPECT_EQ(spec.solver.coarse_refresh_interval, 3);
   EXPECT_EQ(spec.solver.threads, 2);
+  EXPECT_EQ(spec.solver.warm_start, dc::SolverSettings::WarmStart::kLastVelocity);
 }
 
 TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
@@ -132,6 +135,8 @@ TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
             "test.yaml:4: solver.preconditioner: 'ilu' is not one of: two_level, block_jacobi");
   EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: cg, coarse_refresh_interval: 0")),
             "test.yaml:4: solver.coarse_refresh_interval: must be >= 1");
+  EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: cg, warm_start: zero")),
+            "test.yaml:4: solver.warm_start: 'zero' is not one of: extrapolated, last_velocity");
   EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: cg, threads: 0")),
             "test.yaml:4: solver.threads: must be >= 1");
   EXPECT_EQ(errorOf(replaced(kScene, "dt: 0.005", "dt: -1")), "test.yaml:2: dt: must be > 0");

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -140,6 +141,8 @@ class FemBody {
   /// x = A^-1 b with prescribed values already in x on constrained nodes.
   SolveReport solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x);
   SystemMatrix systemMatrix(double mass_coefficient, double stiffness_coefficient) const;
+  /// The solver's initial guess for the next velocity (SolverSettings::warm_start).
+  void predictVelocity(Eigen::VectorXd& guess) const;
 
   std::string name_;
   Mesh mesh_;
@@ -163,6 +166,10 @@ class FemBody {
   ConjugateGradientSolver cg_;
   std::unique_ptr<DirectSolver> direct_;  ///< only when the scene asks for it
   Eigen::VectorXd rhs_, next_, scratch_;
+  /// The velocities of the last steps, newest first, for the solver's initial guess.
+  std::array<Eigen::VectorXd, 3> v_history_;
+  int history_size_ = 0;
+  double history_dt_ = 0.0;
 };
 
 }  // namespace deformable_sim::core
