@@ -5,6 +5,7 @@
 #include <bitset>
 #include <numeric>
 
+#include "deformable_sim/core/parallel_for.h"
 #include "deformable_sim/core/rotation.h"
 
 namespace deformable_sim::core {
@@ -99,18 +100,14 @@ int CorotationalElasticity::update(const Eigen::VectorXd& x, bool warping) {
 }
 
 int CorotationalElasticity::updateRotations(const Eigen::VectorXd& x) {
-  const int num_elements = static_cast<int>(tetrahedra_.size());
-  int inverted = 0;
-#pragma omp parallel for num_threads(threads_) if (threads_ > 1) schedule(static) reduction(+ : inverted)
-  for (int e = 0; e < num_elements; ++e) {
+  return parallelCount(threads_, 0, static_cast<int>(tetrahedra_.size()), [&](int e) {
     const Tetrahedron& t = tetrahedra_[e];
     const Eigen::Matrix3d f =
         deformationGradient(rest_[e], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
                             x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
-    if (!(f.determinant() > 0.0)) ++inverted;
     rotations_[e] = extractRotation(f);
-  }
-  return inverted;
+    return f.determinant() > 0.0 ? 0 : 1;
+  });
 }
 
 void CorotationalElasticity::assemble() {

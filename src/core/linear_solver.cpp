@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "deformable_sim/core/parallel_for.h"
+
 namespace deformable_sim::core {
 
 namespace {
@@ -31,8 +33,7 @@ void SystemMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const 
   const std::vector<int>& row_start = k.rowStart();
   const std::vector<int>& columns = k.columns();
   const std::vector<Eigen::Matrix3d>& blocks = k.blocks();
-#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
-  for (int i = 0; i < n; ++i) {
+  parallelFor(threads, 0, n, [&](int i) {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     for (int s = row_start[i]; s < row_start[i + 1]; ++s) {
       sum.noalias() += blocks[s] * x.segment<3>(3 * columns[s]);
@@ -40,7 +41,7 @@ void SystemMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const 
     sum *= stiffness_coefficient;
     if (mass_coefficient != 0.0) sum += (mass_coefficient * (*nodal_mass)[i]) * x.segment<3>(3 * i);
     y.segment<3>(3 * i) = sum;
-  }
+  });
 }
 
 void ConjugateGradientSolver::refreshPreconditioner(const SystemMatrix& a,
@@ -119,10 +120,9 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
   const int num_chunks = static_cast<int>(partial_sums_.size());
   // Sums over nodes in fixed chunks, added in chunk order: the same bits on any thread count.
   auto sum = [&](auto&& chunk_sum) {
-#pragma omp parallel for num_threads(a.threads) if (a.threads > 1) schedule(static)
-    for (int c = 0; c < num_chunks; ++c) {
+    parallelFor(a.threads, 0, num_chunks, [&](int c) {
       partial_sums_[c] = chunk_sum(c * kChunkNodes, std::min(num_nodes, (c + 1) * kChunkNodes));
-    }
+    });
     double total = 0.0;
     for (double partial : partial_sums_) total += partial;
     return total;
@@ -154,8 +154,9 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
     if (coarse_) coarse_->addCorrection(constrained, r_, z_, a.threads);
     const double rz_next = dot(r_, z_);
     const double beta = rz_next / rz;
-#pragma omp parallel for num_threads(a.threads) if (a.threads > 1) schedule(static)
-    for (int i = 0; i < 3 * num_nodes; ++i) p_[i] = z_[i] + beta * p_[i];
+    parallelFor(a.threads, 0, num_nodes, [&](int i) {
+      p_.segment<3>(3 * i) = z_.segment<3>(3 * i) + beta * p_.segment<3>(3 * i);
+    });
     rz = rz_next;
     residual = std::sqrt(rr) / reference;
     ++report.iterations;

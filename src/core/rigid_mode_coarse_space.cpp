@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "deformable_sim/core/linear_solver.h"
+#include "deformable_sim/core/parallel_for.h"
 
 namespace deformable_sim::core {
 
@@ -188,8 +189,7 @@ void RigidModeCoarseSpace::addCorrection(const ConstraintMask& constrained,
                                          int threads) {
   // Restriction by aggregates (each sums its own nodes in node order), the coarse solve, and
   // the prolongation by nodes.
-#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
-  for (int g = 0; g < num_aggregates_; ++g) {
+  parallelFor(threads, 0, num_aggregates_, [&](int g) {
     Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
     for (int k = member_start_[g]; k < member_start_[g + 1]; ++k) {
       const int i = members_[k];
@@ -202,12 +202,11 @@ void RigidModeCoarseSpace::addCorrection(const ConstraintMask& constrained,
       coarse_rhs_[permutation_[6 * g + q]] = force[q];
       coarse_rhs_[permutation_[6 * g + 3 + q]] = torque[q];
     }
-  }
+  });
   coarse_solution_ = factorization_.solve(coarse_rhs_);
   const int n = static_cast<int>(aggregate_.size());
-#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
-  for (int i = 0; i < n; ++i) {
-    if (constrained[i]) continue;
+  parallelFor(threads, 0, n, [&](int i) {
+    if (constrained[i]) return;
     const int g = 6 * aggregate_[i];
     Eigen::Vector3d translation, rotation;
     for (int q = 0; q < 3; ++q) {
@@ -215,7 +214,7 @@ void RigidModeCoarseSpace::addCorrection(const ConstraintMask& constrained,
       rotation[q] = coarse_solution_[permutation_[g + 3 + q]];
     }
     z.segment<3>(3 * i) += translation + rotation.cross(offset_[i]);
-  }
+  });
 }
 
 }  // namespace deformable_sim::core

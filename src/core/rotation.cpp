@@ -19,7 +19,7 @@ constexpr double kNewtonConvergedUpdate2 = 1e-13;
 // Scaling only pays while the singular values are far from one.
 constexpr double kNewtonScaledUpdate2 = 1e-4;
 
-// Cofactor matrix C with X^T C = det(X) I, i.e. X^-T = C / det(X).
+// Cofactor matrix C with X^T C = det(X) I, i.e. X^-T = C / det(X) and det(X) = x_0 . c_0.
 Eigen::Matrix3d cofactor(const Eigen::Matrix3d& x) {
   Eigen::Matrix3d c;
   c.col(0) = x.col(1).cross(x.col(2));
@@ -42,23 +42,26 @@ Eigen::Matrix3d extractRotationBySvd(const Eigen::Matrix3d& deformation_gradient
 
 Eigen::Matrix3d extractRotation(const Eigen::Matrix3d& deformation_gradient) {
   Eigen::Matrix3d x = deformation_gradient;
-  double det = x.determinant();
+  Eigen::Matrix3d c = cofactor(x);
+  double det = x.col(0).dot(c.col(0));
   if (!(det > kNewtonMinDeterminant)) return extractRotationBySvd(deformation_gradient);
-  double update2 = 1.0;
+  bool scaled = true;
   for (int k = 0; k < kNewtonMaxIterations; ++k) {
-    const Eigen::Matrix3d inverse_transpose = cofactor(x) / det;
-    Eigen::Matrix3d next;
-    if (update2 > kNewtonScaledUpdate2) {
-      // Frobenius-norm scaling (Higham 1986) evens out the singular values in the first steps.
-      const double g = std::sqrt(std::sqrt(inverse_transpose.squaredNorm() / x.squaredNorm()));
-      next = 0.5 * (g * x + inverse_transpose / g);
-    } else {
-      next = 0.5 * (x + inverse_transpose);
+    // X+ = (g X + X^-T / g) / 2 with X^-T = C / det.
+    const double inverse_det = 1.0 / det;
+    double g = 1.0;
+    if (scaled) {
+      // Frobenius-norm scaling (Higham 1986), g^2 = |X^-T| / |X|, evens out the singular values
+      // in the first steps.
+      g = std::sqrt(std::sqrt(c.squaredNorm() / x.squaredNorm()) * inverse_det);
     }
-    update2 = (next - x).squaredNorm();
+    const Eigen::Matrix3d next = (0.5 * g) * x + (0.5 * inverse_det / g) * c;
+    const double update2 = (next - x).squaredNorm();
     x = next;
     if (update2 < kNewtonConvergedUpdate2) return x;
-    det = x.determinant();
+    scaled = update2 > kNewtonScaledUpdate2;
+    c = cofactor(x);
+    det = x.col(0).dot(c.col(0));
   }
   return extractRotationBySvd(deformation_gradient);  // not reached for det F > the threshold
 }

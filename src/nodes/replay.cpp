@@ -70,9 +70,12 @@ int main(int argc, char** argv) {
     const auto report = deformable_sim::ros_layer::replay(options, quiet ? nullptr : &std::cerr);
     const bool same_settings =
         !options.solver_method && !options.solver_tolerance && !options.solver_max_iterations;
-    std::printf("node %s: re-simulated %ld steps (%.2f s simulated) in %.3f s: %.1fx real time\n",
-                report.node.c_str(), report.steps, report.simulated_time, report.wall_time,
-                report.wall_time > 0.0 ? report.simulated_time / report.wall_time : 0.0);
+    std::printf(
+        "node %s: re-simulated %ld steps (%.2f s simulated) in %.3f s: %.1fx real time, %.1f CG "
+        "iterations a step\n",
+        report.node.c_str(), report.steps, report.simulated_time, report.wall_time,
+        report.wall_time > 0.0 ? report.simulated_time / report.wall_time : 0.0,
+        report.steps > 0 ? static_cast<double>(report.solver_iterations) / report.steps : 0.0);
     std::printf(
         "compared %ld recorded states: largest difference %.17g m in position, %.17g m/s "
         "in velocity%s\n",

@@ -309,6 +309,8 @@ ReplayReport replay(const ReplayOptions& options, std::ostream* progress) {
     core::Simulation& sim = session->simulation();
     while (sim.stepCount() < step) {
       session->step(reports);
+      for (const core::StepReport& body : reports)
+        report.solver_iterations += body.solve.iterations;
       ++report.steps;
       report.simulated_time += sim.dt();
       compare();
