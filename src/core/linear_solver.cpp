@@ -106,6 +106,12 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
   zeroConstrained(constrained, r_);
   const double reference = r_.norm();
   SolveReport report;
+  if (!std::isfinite(reference)) {
+    // A non-finite right-hand side: nothing to solve; say so rather than return a "solution".
+    report.converged = false;
+    report.relative_residual = reference;
+    return report;
+  }
   if (!(reference > 0.0)) {
     // Free rows have a zero right-hand side: the solution is zero there.
     x = p_;

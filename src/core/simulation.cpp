@@ -79,6 +79,8 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
       throw std::invalid_argument(key + ".wrench_radius: must be finite and >= 0 m");
     }
     wrench_radii_.push_back(body_spec.wrench_radius);
+    last_good_positions_.push_back(body.positions());
+    recoveries_.push_back(0);
     if (contact_) contact_states_.emplace_back(body.numNodes());
     for (const auto& [name, selection] : body_spec.groups) {
       if (name.empty() || name.find('/') != std::string::npos) {
@@ -134,15 +136,24 @@ void Simulation::setDt(double dt) {
 void Simulation::step(std::vector<StepReport>& reports) {
   reports.resize(bodies_.size());
   for (size_t b = 0; b < bodies_.size(); ++b) {
+    FemBody& body = bodies_[b];
+    last_good_positions_[b] = body.positions();
     if (!contact_) {
-      reports[b] = bodies_[b].step(dt_);
-      continue;
+      reports[b] = body.step(dt_);
+    } else {
+      ContactState& contacts = contact_states_[b];
+      contacts.hold(body);
+      reports[b] = body.step(dt_);
+      contacts.release(body, *contact_);
+      reports[b].contacts = contacts.project(body, obstacles_, *contact_);
     }
-    ContactState& contacts = contact_states_[b];
-    contacts.hold(bodies_[b]);
-    reports[b] = bodies_[b].step(dt_);
-    contacts.release(bodies_[b], *contact_);
-    reports[b].contacts = contacts.project(bodies_[b], obstacles_, *contact_);
+    if (!std::isfinite(reports[b].solve.relative_residual) || !body.positions().allFinite() ||
+        !body.velocities().allFinite()) {
+      body.mutableVelocities().setZero();
+      body.setState(last_good_positions_[b], body.velocities());
+      reports[b].recovered = true;
+      ++recoveries_[b];
+    }
   }
   ++step_count_;
   time_ += dt_;

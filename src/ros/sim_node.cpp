@@ -271,6 +271,19 @@ void SimNode::advance(int steps) {
     session_->step(reports_);
   }
   step_time_s_ = (ros::WallTime::now() - start).toSec();
+  // The watchdog's recoveries (core::Simulation::step): counted, warned about, diagnosed.
+  long recoveries = 0;
+  for (size_t b = 0; b < sim().bodies().size(); ++b) {
+    recoveries += sim().recoveries(static_cast<int>(b));
+    if (reports_[b].recovered) {
+      ROS_WARN_THROTTLE(1.0,
+                        "body '%s': step %ld left a non-finite value; the watchdog restored the "
+                        "last good positions and stopped the body",
+                        sim().bodies()[b].name().c_str(), sim().stepCount());
+    }
+  }
+  if (recoveries > recoveries_seen_) last_recovery_ = ros::WallTime::now();
+  recoveries_seen_ = recoveries;  // a reset starts the count again
 }
 
 Eigen::Isometry3d SimNode::graspFramePose(const std::string& name) {
@@ -536,6 +549,8 @@ void SimNode::publishStats() {
     s.inverted_elements = static_cast<uint32_t>(reports_[b].inverted_elements);
     s.fixed_nodes = static_cast<uint32_t>(body.numConstrained());
     s.contacts = static_cast<uint32_t>(reports_[b].contacts);
+    s.recovered = reports_[b].recovered;
+    s.recoveries = static_cast<uint32_t>(sim().recoveries(static_cast<int>(b)));
     for (const auto& [name, grasp] : session_->commands().grasps()) {
       if (grasp.body == static_cast<int>(b)) s.grasped_nodes += grasp.nodes.size();
     }
@@ -795,7 +810,10 @@ void SimNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
     converged = converged && r.solve.converged;
     inverted += r.inverted_elements;
   }
-  if (!converged) {
+  if (!last_recovery_.isZero() && (ros::WallTime::now() - last_recovery_).toSec() < 2.0) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+                   "the watchdog undid a step that left a non-finite value");
+  } else if (!converged) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "a solve did not reach its tolerance");
   } else if (!paused_ && real_time_factor_ < 0.9 && sim().stepCount() > 10 * substeps_) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "cannot keep real time");
@@ -807,6 +825,7 @@ void SimNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("real-time factor", real_time_factor_);
   status.add("step time (ms)", 1e3 * step_time_s_);
   status.add("inverted elements", inverted);
+  status.add("watchdog recoveries", recoveries_seen_);
   status.add("dropped messages", refusals_.count());
   status.add("last refusal", refusals_.last());
 }

@@ -50,6 +50,9 @@ struct StepReport {
   SolveReport solve;
   int inverted_elements = 0;  ///< elements with det F <= 0 at the start of the step
   int contacts = 0;           ///< nodes put back on an obstacle's surface after the step
+  /// The step left a non-finite value and was undone by Simulation's watchdog: the body is back
+  /// at its last good positions, at rest.
+  bool recovered = false;
   StepTimes times;
 };
 

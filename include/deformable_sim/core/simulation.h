@@ -33,7 +33,13 @@ class Simulation {
   double wrenchRadius(int index) const { return wrench_radii_[index]; }
 
   /// One step of every body; reports[i] belongs to bodies()[i]. `reports` is resized once.
+  /// The watchdog: a body whose step leaves a non-finite position or velocity or whose solve
+  /// saw a non-finite residual (absurd input that got past validation, an overflow) gets its
+  /// positions from before the step back and stops (velocities zero: infinite damping for that
+  /// step), and its report says `recovered`.
   void step(std::vector<StepReport>& reports);
+  /// Steps of bodies()[index] that the watchdog undid, since construction.
+  long recoveries(int index) const { return recoveries_[index]; }
 
   /// Obstacles of the contact effect; their poses may be changed between steps.
   std::vector<PlacedShape>& obstacles() { return obstacles_; }
@@ -53,6 +59,9 @@ class Simulation {
   std::optional<ContactSettings> contact_;
   std::vector<ContactState> contact_states_;  ///< per body, with the contact effect
   std::vector<PlacedShape> obstacles_;
+  /// Per body: the state before the step (the watchdog's last good state), and its recoveries.
+  std::vector<Eigen::VectorXd> last_good_positions_;
+  std::vector<long> recoveries_;
 };
 
 }  // namespace deformable_sim::core

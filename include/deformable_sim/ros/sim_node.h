@@ -121,6 +121,8 @@ class SimNode {
   std::map<std::string, ros::Time> wrench_times_;  ///< for ~wrench_timeout
   bool paused_ = false;
   double step_time_s_ = 0.0;
+  long recoveries_seen_ = 0;     ///< the watchdog's recoveries, all bodies, this episode
+  ros::WallTime last_recovery_;  ///< when the last one happened (zero: never)
   std::deque<std::pair<ros::Time, double>> sim_time_samples_;  ///< (ROS time, sim time)
   double real_time_factor_ = 0.0;
   RefusalLog refusals_;

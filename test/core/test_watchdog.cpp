@@ -1,0 +1,62 @@
+// The watchdog of Simulation::step: a step that leaves a non-finite value is undone.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "deformable_sim/core/box_mesh.h"
+#include "deformable_sim/core/default_scene.h"
+#include "deformable_sim/core/simulation.h"
+
+namespace dc = deformable_sim::core;
+
+namespace {
+
+dc::Simulation makeDefault() {
+  const dc::SceneSpec spec = dc::defaultScene();
+  const dc::BoxMeshSpec& box = *spec.bodies[0].box_mesh;
+  std::vector<dc::Mesh> meshes{dc::makeBoxMesh(box.min, box.max, box.cells)};
+  return dc::Simulation(spec, std::move(meshes));
+}
+
+}  // namespace
+
+TEST(Watchdog, UndoesANonFiniteStepAndTheBodyCarriesOn) {
+  dc::Simulation sim = makeDefault();
+  std::vector<dc::StepReport> reports;
+  for (int s = 0; s < 20; ++s) sim.step(reports);
+  dc::FemBody& body = sim.bodies()[0];
+  ASSERT_GT(body.velocities().norm(), 0.0);  // sagging: a moving state to be rescued
+  const Eigen::VectorXd before = body.positions();
+
+  // A NaN force that got past every check (the core API does not validate this vector).
+  const int tip = body.numNodes() - 1;
+  body.externalForces()[3 * tip + 2] = std::numeric_limits<double>::quiet_NaN();
+  sim.step(reports);
+  EXPECT_TRUE(reports[0].recovered);
+  EXPECT_EQ(sim.recoveries(0), 1);
+  EXPECT_EQ(body.positions(), before);  // the last good state, exactly
+  EXPECT_EQ(body.velocities().norm(), 0.0);
+  EXPECT_TRUE(body.positions().allFinite());
+
+  // With the bad force gone, the body simply goes on: finite, solved, sagging again.
+  body.externalForces()[3 * tip + 2] = 0.0;
+  for (int s = 0; s < 30; ++s) {
+    sim.step(reports);
+    EXPECT_FALSE(reports[0].recovered) << "step " << s;
+    EXPECT_TRUE(reports[0].solve.converged) << "step " << s;
+  }
+  EXPECT_EQ(sim.recoveries(0), 1);
+  EXPECT_TRUE(body.positions().allFinite());
+  EXPECT_GT(body.velocities().norm(), 0.0);
+}
+
+TEST(Watchdog, LeavesGoodStepsAlone) {
+  dc::Simulation sim = makeDefault();
+  std::vector<dc::StepReport> reports;
+  for (int s = 0; s < 50; ++s) {
+    sim.step(reports);
+    EXPECT_FALSE(reports[0].recovered);
+  }
+  EXPECT_EQ(sim.recoveries(0), 0);
+}
