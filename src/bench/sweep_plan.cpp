@@ -99,8 +99,10 @@ std::vector<BenchSetting> shortPlan() {
     addDynamic(CaseKind::kFreeVibration,
                {mesh, {30, 60, 120, 240, 480}, {60}, {1e-2, 1e-4, 1e-6}, {}, {2}}, plan);
   }
+  // With a warm start from the extrapolated velocity 1e-2 is already close to converged: the
+  // sweep starts at 1e-1 so that the loose end shows.
   addDynamic(CaseKind::kTrajectory,
-             {"tetU_L1", {30, 60, 120, 240}, {60}, {1e-2, 1e-4, 1e-6}, {}, {2}}, plan);
+             {"tetU_L1", {30, 60, 120, 240}, {60}, {1e-1, 1e-2, 1e-4, 1e-6}, {}, {2}}, plan);
   return plan;
 }
 
@@ -111,7 +113,7 @@ std::vector<BenchSetting> fullPlan() {
       // tetS_L4 takes minutes at large deflection and adds nothing tetU_L4 does not show
       {"tetU_L1", "tetU_L2", "tetU_L3", "tetU_L4", "tetS_L1", "tetS_L2", "tetS_L3"},
       {1e-1, 1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10}, "tetU_L3", {10, 30, 100, 300, 1000}, true, plan);
-  const std::vector<double> tolerances = {1e-2, 1e-3, 1e-4, 1e-6, 1e-8};
+  const std::vector<double> tolerances = {1e-1, 1e-2, 1e-3, 1e-4, 1e-6, 1e-8};
   // C2 on tetU only: the split first-mode pair of the tetS meshes beats. On tetU_L4 a warped
   // direct step refactorises 26k tetrahedra (about 1 s): linear FEM (factorised once) and CG there.
   for (const std::string mesh : {"tetU_L1", "tetU_L2"}) {

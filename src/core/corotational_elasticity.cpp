@@ -2,7 +2,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
-#include <bitset>
+#include <cmath>
 #include <numeric>
 
 #include "deformable_sim/core/parallel_for.h"
@@ -33,37 +33,28 @@ CorotationalElasticity::CorotationalElasticity(const Mesh& mesh,
   lambda_ = lameLambda(material);
   mu_ = lameMu(material);
   setRestForces();
-  colourElements(mesh.numNodes());
+  listIncidences(mesh.numNodes());
 }
 
-void CorotationalElasticity::colourElements(int num_nodes) {
-  // Greedy: each element takes the lowest colour none of its nodes' elements has yet.
-  constexpr int kMaxColours = 256;
-  std::vector<std::bitset<kMaxColours>> used(num_nodes);
-  std::vector<int> colour(tetrahedra_.size());
-  int num_colours = 0;
-  for (size_t e = 0; e < tetrahedra_.size(); ++e) {
-    const Tetrahedron& t = tetrahedra_[e];
-    const std::bitset<kMaxColours> taken = used[t[0]] | used[t[1]] | used[t[2]] | used[t[3]];
-    int c = 0;
-    while (c < kMaxColours && taken[c]) ++c;
-    if (c == kMaxColours) {  // a node in hundreds of elements: one colour each, no parallelism
-      coloured_elements_.resize(tetrahedra_.size());
-      std::iota(coloured_elements_.begin(), coloured_elements_.end(), 0);
-      colour_start_.resize(tetrahedra_.size() + 1);
-      std::iota(colour_start_.begin(), colour_start_.end(), 0);
-      return;
-    }
-    for (int i : t) used[i].set(c);
-    colour[e] = c;
-    num_colours = std::max(num_colours, c + 1);
+void CorotationalElasticity::listIncidences(int num_nodes) {
+  incidence_start_.assign(num_nodes + 1, 0);
+  for (const Tetrahedron& t : tetrahedra_) {
+    for (int i : t) ++incidence_start_[i + 1];
   }
-  colour_start_.assign(num_colours + 1, 0);
-  for (int c : colour) ++colour_start_[c + 1];
-  for (int c = 0; c < num_colours; ++c) colour_start_[c + 1] += colour_start_[c];
-  coloured_elements_.resize(tetrahedra_.size());
-  std::vector<int> next(colour_start_.begin(), colour_start_.end() - 1);
-  for (size_t e = 0; e < tetrahedra_.size(); ++e) coloured_elements_[next[colour[e]]++] = e;
+  for (int i = 0; i < num_nodes; ++i) incidence_start_[i + 1] += incidence_start_[i];
+  incidences_.resize(4 * tetrahedra_.size());
+  std::vector<int> next(incidence_start_.begin(), incidence_start_.end() - 1);
+  // Element order within each node's list: the order in which its blocks are summed.
+  for (size_t e = 0; e < tetrahedra_.size(); ++e) {
+    for (int a = 0; a < 4; ++a)
+      incidences_[next[tetrahedra_[e][a]]++] = 4 * static_cast<int>(e) + a;
+  }
+}
+
+void CorotationalElasticity::setThreads(int threads) {
+  threads_ = threads;
+  warped_.resize(threads > 1 ? tetrahedra_.size() : 0);
+  warped_.shrink_to_fit();
 }
 
 void CorotationalElasticity::setMaterial(const LinearElasticMaterial& material) {
@@ -110,42 +101,56 @@ int CorotationalElasticity::updateRotations(const Eigen::VectorXd& x) {
   });
 }
 
-void CorotationalElasticity::assemble() {
-  stiffness_.setZero();
-  force_offset_.setZero();
-  if (threads_ <= 1) {
-    // Element order: neighbouring elements share blocks, which stay in cache.
-    for (int e = 0; e < static_cast<int>(tetrahedra_.size()); ++e) addElement(e);
-    return;
+CorotationalElasticity::WarpedElement CorotationalElasticity::warp(int e) const {
+  const double root_volume = std::sqrt(rest_[e].volume);
+  WarpedElement w;
+  for (int a = 0; a < 4; ++a) {
+    w.gradients[a].noalias() = root_volume * (rotations_[e] * rest_[e].gradients[a]);
+    w.offsets[a].noalias() = rotations_[e] * rest_forces_[e][a];
   }
-  // Colour by colour: the elements of a colour touch disjoint blocks, and every block sums its
-  // elements in colour order, the same for any number of threads above one.
-  const int num_colours = static_cast<int>(colour_start_.size()) - 1;
-#pragma omp parallel num_threads(threads_)
-  for (int c = 0; c < num_colours; ++c) {
-#pragma omp for schedule(static)
-    for (int k = colour_start_[c]; k < colour_start_[c + 1]; ++k) addElement(coloured_elements_[k]);
-  }
+  return w;
 }
 
-void CorotationalElasticity::addElement(int e) {
+void CorotationalElasticity::assemble() {
+  // Every block sums its elements' contributions in element order, whichever way is taken.
   std::vector<Eigen::Matrix3d>& blocks = stiffness_.blocks();
-  const Tetrahedron& t = tetrahedra_[e];
-  const TetrahedronRest& rest = rest_[e];
-  const Eigen::Matrix3d& r = rotations_[e];
-  const double lambda_volume = lambda_ * rest.volume, mu_volume = mu_ * rest.volume;
-  std::array<Eigen::Vector3d, 4> g;  // R grad N_i: R Ke_ij R^T is Ke_ij of these
-  for (int i = 0; i < 4; ++i) g[i].noalias() = r * rest.gradients[i];
-  const std::array<int, 16>& slot = block_index_[e];
-  for (int i = 0; i < 4; ++i) {
-    blocks[slot[5 * i]] += stiffnessBlock(lambda_volume, mu_volume, g[i], g[i]);
-    for (int j = i + 1; j < 4; ++j) {  // K'_ji = K'_ij^T: compute each pair once
-      const Eigen::Matrix3d warped = stiffnessBlock(lambda_volume, mu_volume, g[i], g[j]);
-      blocks[slot[4 * i + j]] += warped;
-      blocks[slot[4 * j + i]] += warped.transpose();
+  if (threads_ == 1) {
+    // Element by element, each symmetric pair of blocks computed once.
+    stiffness_.setZero();
+    force_offset_.setZero();
+    for (int e = 0; e < static_cast<int>(tetrahedra_.size()); ++e) {
+      const WarpedElement w = warp(e);
+      const std::array<int, 16>& slot = block_index_[e];
+      for (int a = 0; a < 4; ++a) {
+        blocks[slot[5 * a]] += stiffnessBlock(lambda_, mu_, w.gradients[a], w.gradients[a]);
+        for (int b = a + 1; b < 4; ++b) {
+          const Eigen::Matrix3d k = stiffnessBlock(lambda_, mu_, w.gradients[a], w.gradients[b]);
+          blocks[slot[4 * a + b]] += k;
+          blocks[slot[4 * b + a]] += k.transpose();
+        }
+        force_offset_.segment<3>(3 * tetrahedra_[e][a]) -= w.offsets[a];
+      }
     }
-    force_offset_.segment<3>(3 * t[i]).noalias() -= r * rest_forces_[e][i];
+    return;
   }
+  // On several threads, row by row: rows are disjoint, so no two threads add into one block.
+  parallelFor(threads_, 0, static_cast<int>(tetrahedra_.size()),
+              [&](int e) { warped_[e] = warp(e); });
+  const std::vector<int>& row_start = stiffness_.rowStart();
+  parallelFor(threads_, 0, static_cast<int>(incidence_start_.size()) - 1, [&](int i) {
+    for (int s = row_start[i]; s < row_start[i + 1]; ++s) blocks[s].setZero();
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+    for (int k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k) {
+      const int e = incidences_[k] / 4, a = incidences_[k] % 4;
+      const WarpedElement& w = warped_[e];
+      for (int b = 0; b < 4; ++b) {
+        blocks[block_index_[e][4 * a + b]] +=
+            stiffnessBlock(lambda_, mu_, w.gradients[a], w.gradients[b]);
+      }
+      offset -= w.offsets[a];
+    }
+    force_offset_.segment<3>(3 * i) = offset;
+  });
 }
 
 void CorotationalElasticity::addElasticForces(const Eigen::VectorXd& x, Eigen::VectorXd& f,

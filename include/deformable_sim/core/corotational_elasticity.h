@@ -36,10 +36,10 @@ class CorotationalElasticity {
   int updateRotations(const Eigen::VectorXd& x);
   void assemble();
 
-  /// Threads for the element loops (1: none started). With more than one, elements are added
-  /// colour by colour: results are the same for any count above one and differ from one thread's
-  /// only by the rounding of a different summation order.
-  void setThreads(int threads) { threads_ = threads; }
+  /// Threads for the element and row loops (1: none started). One thread adds element by element,
+  /// several row by row; either way every block of K' sums its elements in element order, so the
+  /// results are identical.
+  void setThreads(int threads);
 
   const BlockSparseMatrix& stiffness() const { return stiffness_; }     ///< K', N/m
   const Eigen::VectorXd& forceOffset() const { return force_offset_; }  ///< f0', N
@@ -56,9 +56,8 @@ class CorotationalElasticity {
 
  private:
   void setRestForces();
-  void colourElements(int num_nodes);
-  /// Adds element e's warped blocks to K' and its share of f0'.
-  void addElement(int e);
+  /// Builds each node's list of (element, corner) pairs, for the row-by-row assembly.
+  void listIncidences(int num_nodes);
 
   std::vector<Tetrahedron> tetrahedra_;
   Eigen::VectorXd rest_positions_;
@@ -67,9 +66,17 @@ class CorotationalElasticity {
   /// Per element, (Ke x0)_i: the rest-frame force offset that a rotation turns into f0'.
   std::vector<std::array<Eigen::Vector3d, 4>> rest_forces_;
   std::vector<std::array<int, 16>> block_index_;  ///< per element, slot of block (i, j) at 4i + j
-  /// Elements grouped by colour (no two of one colour share a node), so that the elements of a
-  /// colour can add into K' at once; colour c is colour_start_[c] .. colour_start_[c + 1].
-  std::vector<int> coloured_elements_, colour_start_;
+  /// Node i's elements and its corner in each, as 4 e + corner, at incidence_start_[i] ..
+  /// incidence_start_[i + 1] in element order.
+  std::vector<int> incidences_, incidence_start_;
+  /// An element under its current rotation: sqrt(V) R grad N_i (R Ke_ij R^T is their isotropic
+  /// block) and R (Ke x0)_i.
+  struct WarpedElement {
+    std::array<Eigen::Vector3d, 4> gradients, offsets;
+  };
+  WarpedElement warp(int e) const;
+  /// Per element, for the row-by-row assembly on several threads.
+  std::vector<WarpedElement> warped_;
   std::vector<Eigen::Matrix3d> rotations_;
   int threads_ = 1;
   BlockSparseMatrix stiffness_;

@@ -31,8 +31,7 @@ struct SolverSettings {
   /// rotations change little from one step to the next.
   int coarse_refresh_interval = 10;
   /// Threads for the element loops, products with A and CG's vector operations (1: none
-  /// started). Results are the same for any count above one; one thread sums the stiffness in
-  /// another order (see CorotationalElasticity::setThreads).
+  /// started). Every count sums in the same order: results are identical, bit for bit.
   int threads = 1;
   /// Conjugate gradient's initial guess for a step's velocity: the last velocity, or the cubic
   /// through the last four (exact for motions smooth in time, and free: about a third of the

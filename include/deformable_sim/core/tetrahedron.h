@@ -26,10 +26,16 @@ struct TetrahedronRest {
 /// (the mesh readers reorder or reject other elements).
 TetrahedronRest computeTetrahedronRest(const std::array<Eigen::Vector3d, 4>& x);
 
-/// Block (i, j) of Ke from the gradients g_i, g_j (rotated or not) and lambda V, mu V.
+/// Block (i, j) of Ke from the gradients g_i, g_j (rotated or not) and lambda V, mu V. Written
+/// entry by entry so that block (j, i) is the exact transpose of block (i, j), bit for bit: an
+/// assembly may compute a pair once or twice and get the same sums.
 inline Eigen::Matrix3d stiffnessBlock(double lambda_volume, double mu_volume,
                                       const Eigen::Vector3d& gi, const Eigen::Vector3d& gj) {
-  Eigen::Matrix3d k = lambda_volume * gi * gj.transpose() + mu_volume * gj * gi.transpose();
+  Eigen::Matrix3d k;
+  for (int c = 0; c < 3; ++c) {
+    for (int r = 0; r < 3; ++r)
+      k(r, c) = lambda_volume * (gi[r] * gj[c]) + mu_volume * (gj[r] * gi[c]);
+  }
   k.diagonal().array() += mu_volume * gi.dot(gj);
   return k;
 }
