@@ -1,11 +1,62 @@
 #include "deformable_sim/core/box_mesh.h"
 
+#include <array>
 #include <stdexcept>
 
 namespace deformable_sim::core {
 
+namespace {
+
+// One hexahedron per cell; or two wedges (the xy diagonal mirrored from cell to cell, as for the
+// tetrahedra); or six pyramids, one on each face with its apex at a node added at the centre.
+template <typename NodeIndex>
+void addCells(Mesh& mesh, const Eigen::Vector3i& cells, NodeIndex node, BoxElement element) {
+  for (int k = 0; k < cells.z(); ++k) {
+    for (int j = 0; j < cells.y(); ++j) {
+      for (int i = 0; i < cells.x(); ++i) {
+        // Gmsh's hexahedron order: the bottom face counter-clockwise seen from above, then the top.
+        const std::array<int, 8> hex = {node(i, j, k),
+                                        node(i + 1, j, k),
+                                        node(i + 1, j + 1, k),
+                                        node(i, j + 1, k),
+                                        node(i, j, k + 1),
+                                        node(i + 1, j, k + 1),
+                                        node(i + 1, j + 1, k + 1),
+                                        node(i, j + 1, k + 1)};
+        if (element == BoxElement::kHexahedron) {
+          mesh.cells.push_back({CellType::kHexahedron, hex});
+        } else if (element == BoxElement::kWedge) {
+          // Triangles (0, 1, 3) and (1, 2, 3), or (0, 1, 2) and (0, 2, 3) in mirrored cells.
+          const bool mirrored = (i + j) & 1;
+          const int halves[2][3] = {{0, 1, mirrored ? 2 : 3}, {mirrored ? 0 : 1, 2, 3}};
+          for (const auto& t : halves) {
+            mesh.cells.push_back({CellType::kWedge,
+                                  {hex[t[0]], hex[t[1]], hex[t[2]], hex[t[0] + 4], hex[t[1] + 4],
+                                   hex[t[2] + 4], 0, 0}});
+          }
+        } else {
+          Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+          for (int c : hex) centre += mesh.positions[c] / 8.0;
+          mesh.positions.push_back(centre);
+          mesh.node_numbers.push_back(static_cast<long>(mesh.positions.size()));
+          const int apex = mesh.numNodes() - 1;
+          // Each face counter-clockwise seen from inside, where the apex is.
+          static constexpr int kFaces[6][4] = {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1},
+                                               {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0}};
+          for (const auto& f : kFaces) {
+            mesh.cells.push_back(
+                {CellType::kPyramid, {hex[f[0]], hex[f[1]], hex[f[2]], hex[f[3]], apex, 0, 0, 0}});
+          }
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
 Mesh makeBoxMesh(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
-                 const Eigen::Vector3i& cells) {
+                 const Eigen::Vector3i& cells, BoxElement element) {
   if (!min.allFinite() || !max.allFinite() || !(min.array() < max.array()).all()) {
     throw std::invalid_argument("box mesh: min must be below max on every axis");
   }
@@ -23,6 +74,10 @@ Mesh makeBoxMesh(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
         mesh.node_numbers.push_back(static_cast<long>(mesh.positions.size()));
       }
     }
+  }
+  if (element != BoxElement::kTetrahedron) {
+    addCells(mesh, cells, node, element);
+    return mesh;
   }
   // Corner c of a cell has offset (c & 1, c >> 1 & 1, c >> 2 & 1). The six tetrahedra share the
   // diagonal 0-7 and walk the paths 0 -> 7 through one edge x, y or z at a time. Cells with an odd

@@ -14,8 +14,8 @@ CorotationalElasticity::CorotationalElasticity(const Mesh& mesh,
                                                const LinearElasticMaterial& material)
     : tetrahedra_(mesh.tetrahedra),
       rest_positions_(3 * mesh.numNodes()),
-      rotations_(mesh.tetrahedra.size(), Eigen::Matrix3d::Identity()),
-      stiffness_(mesh.numNodes(), mesh.tetrahedra),
+      rotations_(mesh.numElements(), Eigen::Matrix3d::Identity()),
+      stiffness_(mesh),
       force_offset_(Eigen::VectorXd::Zero(3 * mesh.numNodes())) {
   validate(material);
   for (int i = 0; i < mesh.numNodes(); ++i) rest_positions_.segment<3>(3 * i) = mesh.positions[i];
@@ -34,6 +34,36 @@ CorotationalElasticity::CorotationalElasticity(const Mesh& mesh,
   mu_ = lameMu(material);
   setRestForces();
   listIncidences(mesh.numNodes());
+  cells_.reserve(mesh.cells.size());
+  for (const Cell& c : mesh.cells) {
+    CellElement cell;
+    cell.cell = c;
+    cell.rest = computeCellRest(c.type, cellCorners(c, mesh.positions));
+    for (int i = 0; i < c.size(); ++i) {
+      for (int j = 0; j < c.size(); ++j) {
+        cell.block_index[c.size() * i + j] = stiffness_.blockIndex(c.nodes[i], c.nodes[j]);
+      }
+    }
+    cells_.push_back(std::move(cell));
+  }
+  setCellStiffness();
+}
+
+void CorotationalElasticity::setCellStiffness() {
+  for (CellElement& cell : cells_) {
+    const int n = cell.cell.size();
+    const CellVectors corners = currentCorners(cell.cell, rest_positions_);
+    cell.stiffness = cellStiffness(cell.cell.type, corners, lambda_, mu_);
+    Eigen::VectorXd x0(3 * n);
+    for (int k = 0; k < n; ++k) x0.segment<3>(3 * k) = corners[k];
+    cell.rest_forces = cell.stiffness * x0;
+  }
+}
+
+CellVectors CorotationalElasticity::currentCorners(const Cell& cell, const Eigen::VectorXd& x) {
+  CellVectors corners;
+  for (int k = 0; k < cell.size(); ++k) corners[k] = x.segment<3>(3 * cell.nodes[k]);
+  return corners;
 }
 
 void CorotationalElasticity::listIncidences(int num_nodes) {
@@ -62,6 +92,7 @@ void CorotationalElasticity::setMaterial(const LinearElasticMaterial& material) 
   lambda_ = lameLambda(material);
   mu_ = lameMu(material);
   setRestForces();
+  setCellStiffness();
 }
 
 void CorotationalElasticity::setRestForces() {
@@ -91,7 +122,8 @@ int CorotationalElasticity::update(const Eigen::VectorXd& x, bool warping) {
 }
 
 int CorotationalElasticity::updateRotations(const Eigen::VectorXd& x) {
-  return parallelCount(threads_, 0, static_cast<int>(tetrahedra_.size()), [&](int e) {
+  const int num_tetrahedra = static_cast<int>(tetrahedra_.size());
+  const int inverted = parallelCount(threads_, 0, num_tetrahedra, [&](int e) {
     const Tetrahedron& t = tetrahedra_[e];
     const Eigen::Matrix3d f =
         deformationGradient(rest_[e], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
@@ -99,6 +131,14 @@ int CorotationalElasticity::updateRotations(const Eigen::VectorXd& x) {
     rotations_[e] = extractRotation(f);
     return f.determinant() > 0.0 ? 0 : 1;
   });
+  // Other cells take their rotation from F at the centre.
+  return inverted + parallelCount(threads_, 0, static_cast<int>(cells_.size()), [&](int c) {
+           const CellElement& cell = cells_[c];
+           const Eigen::Matrix3d f =
+               cellDeformationGradient(cell.rest, cell.cell.size(), currentCorners(cell.cell, x));
+           rotations_[num_tetrahedra + c] = extractRotation(f);
+           return f.determinant() > 0.0 ? 0 : 1;
+         });
 }
 
 CorotationalElasticity::WarpedElement CorotationalElasticity::warp(int e) const {
@@ -131,6 +171,7 @@ void CorotationalElasticity::assemble() {
         force_offset_.segment<3>(3 * tetrahedra_[e][a]) -= w.offsets[a];
       }
     }
+    addCells();
     return;
   }
   // On several threads, row by row: rows are disjoint, so no two threads add into one block.
@@ -151,6 +192,28 @@ void CorotationalElasticity::assemble() {
     }
     force_offset_.segment<3>(3 * i) = offset;
   });
+  addCells();
+}
+
+void CorotationalElasticity::addCells() {
+  // After every tetrahedron, in cell order, on one thread: the same sums on any thread count.
+  std::vector<Eigen::Matrix3d>& blocks = stiffness_.blocks();
+  const int num_tetrahedra = static_cast<int>(tetrahedra_.size());
+  for (size_t c = 0; c < cells_.size(); ++c) {
+    const CellElement& cell = cells_[c];
+    const Eigen::Matrix3d& r = rotations_[num_tetrahedra + c];
+    const int n = cell.cell.size();
+    for (int i = 0; i < n; ++i) {
+      blocks[cell.block_index[n * i + i]] +=
+          r * cell.stiffness.block<3, 3>(3 * i, 3 * i) * r.transpose();
+      for (int j = i + 1; j < n; ++j) {  // K'_ji = K'_ij^T
+        const Eigen::Matrix3d warped = r * cell.stiffness.block<3, 3>(3 * i, 3 * j) * r.transpose();
+        blocks[cell.block_index[n * i + j]] += warped;
+        blocks[cell.block_index[n * j + i]] += warped.transpose();
+      }
+      force_offset_.segment<3>(3 * cell.cell.nodes[i]) -= r * cell.rest_forces.segment<3>(3 * i);
+    }
+  }
 }
 
 void CorotationalElasticity::addElasticForces(const Eigen::VectorXd& x, Eigen::VectorXd& f,
@@ -176,6 +239,18 @@ double CorotationalElasticity::elasticEnergy(const Eigen::VectorXd& x) const {
         energy += 0.5 * u.segment<3>(3 * i).dot(k_ij * u.segment<3>(3 * j));
       }
     }
+  }
+  const int num_tetrahedra = static_cast<int>(tetrahedra_.size());
+  for (size_t c = 0; c < cells_.size(); ++c) {
+    const CellElement& cell = cells_[c];
+    const int n = cell.cell.size();
+    Eigen::VectorXd u(3 * n);
+    for (int i = 0; i < n; ++i) {
+      const int node = cell.cell.nodes[i];
+      u.segment<3>(3 * i) = rotations_[num_tetrahedra + c].transpose() * x.segment<3>(3 * node) -
+                            rest_positions_.segment<3>(3 * node);
+    }
+    energy += 0.5 * u.dot(cell.stiffness * u);
   }
   return energy;
 }

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "deformable_sim/core/cell.h"
+
 namespace deformable_sim::core {
 
 namespace {
@@ -18,7 +20,7 @@ double seconds(Clock::duration d) { return std::chrono::duration<double>(d).coun
 // The readers validate files; this guards meshes built in code. Throws naming the element/node.
 void validateMesh(const std::string& body, const Mesh& mesh) {
   const std::string where = "body '" + body + "': ";
-  if (mesh.tetrahedra.empty()) throw std::invalid_argument(where + "mesh has no tetrahedra");
+  if (mesh.numElements() == 0) throw std::invalid_argument(where + "mesh has no elements");
   if (mesh.node_numbers.size() != mesh.positions.size()) {
     throw std::invalid_argument(where + "mesh has " + std::to_string(mesh.positions.size()) +
                                 " positions but " + std::to_string(mesh.node_numbers.size()) +
@@ -42,6 +44,21 @@ void validateMesh(const std::string& body, const Mesh& mesh) {
     if (!(signedVolume(mesh.positions, t) > 0.0)) {
       throw std::invalid_argument(where + "tetrahedron " + std::to_string(e) +
                                   " has non-positive volume");
+    }
+  }
+  for (size_t c = 0; c < mesh.cells.size(); ++c) {
+    const Cell& cell = mesh.cells[c];
+    const std::string name = "cell " + std::to_string(c) + ": ";
+    for (int k = 0; k < cell.size(); ++k) {
+      if (cell.nodes[k] < 0 || cell.nodes[k] >= mesh.numNodes()) {
+        throw std::invalid_argument(where + name + "refers to node index " +
+                                    std::to_string(cell.nodes[k]) + " outside the mesh");
+      }
+    }
+    try {
+      computeCellRest(cell.type, cellCorners(cell, mesh.positions));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(where + name + e.what());
     }
   }
 }

@@ -1,23 +1,64 @@
 #include "deformable_sim/core/loads.h"
 
 #include <Eigen/Geometry>
+#include <array>
+#include <cmath>
 #include <stdexcept>
 
 namespace deformable_sim::core {
 
-double addTractionLoad(const Mesh& mesh, const std::vector<Triangle>& surface,
+namespace {
+
+// Integrals of the bilinear shape functions over a quadrilateral (a, b, c, d), by 2x2 Gauss
+// (exact for a planar quadrilateral); returns the area.
+double quadShares(const std::array<Eigen::Vector3d, 4>& x, std::array<double, 4>& shares) {
+  const double g = 1.0 / std::sqrt(3.0);
+  const double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  shares.fill(0.0);
+  double area = 0.0;
+  for (double s : {-g, g}) {
+    for (double t : {-g, g}) {
+      Eigen::Vector3d dx_ds = Eigen::Vector3d::Zero(), dx_dt = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 4; ++k) {
+        dx_ds += 0.25 * corner[k][0] * (1 + corner[k][1] * t) * x[k];
+        dx_dt += 0.25 * corner[k][1] * (1 + corner[k][0] * s) * x[k];
+      }
+      const double da = dx_ds.cross(dx_dt).norm();
+      for (int k = 0; k < 4; ++k) {
+        shares[k] += 0.25 * (1 + corner[k][0] * s) * (1 + corner[k][1] * t) * da;
+      }
+      area += da;
+    }
+  }
+  return area;
+}
+
+}  // namespace
+
+double addTractionLoad(const Mesh& mesh, const std::vector<Face>& boundary,
                        const std::vector<int>& selected, const Eigen::Vector3d& traction,
                        Eigen::VectorXd& f) {
   std::vector<bool> in_selection(mesh.numNodes(), false);
   for (int i : selected) in_selection[i] = true;
   double area = 0.0;
-  for (const Triangle& tri : surface) {
-    if (!(in_selection[tri[0]] && in_selection[tri[1]] && in_selection[tri[2]])) continue;
-    const Eigen::Vector3d& a = mesh.positions[tri[0]];
-    const double face_area =
-        0.5 * (mesh.positions[tri[1]] - a).cross(mesh.positions[tri[2]] - a).norm();
-    for (int i : tri) f.segment<3>(3 * i) += (face_area / 3.0) * traction;
-    area += face_area;
+  for (const Face& face : boundary) {
+    const int size = face.size();
+    bool loaded = true;
+    for (int k = 0; k < size; ++k) loaded = loaded && in_selection[face.nodes[k]];
+    if (!loaded) continue;
+    if (size == 3) {
+      const Eigen::Vector3d& a = mesh.positions[face.nodes[0]];
+      const double face_area =
+          0.5 * (mesh.positions[face.nodes[1]] - a).cross(mesh.positions[face.nodes[2]] - a).norm();
+      for (int k = 0; k < 3; ++k) f.segment<3>(3 * face.nodes[k]) += (face_area / 3.0) * traction;
+      area += face_area;
+    } else {
+      std::array<Eigen::Vector3d, 4> x;
+      for (int k = 0; k < 4; ++k) x[k] = mesh.positions[face.nodes[k]];
+      std::array<double, 4> shares;
+      area += quadShares(x, shares);
+      for (int k = 0; k < 4; ++k) f.segment<3>(3 * face.nodes[k]) += shares[k] * traction;
+    }
   }
   return area;
 }

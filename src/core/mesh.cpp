@@ -7,6 +7,8 @@
 #include <string>
 #include <unordered_map>
 
+#include "deformable_sim/core/cell.h"
+
 namespace deformable_sim::core {
 
 double signedVolume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
@@ -21,26 +23,66 @@ double signedVolume(const std::vector<Eigen::Vector3d>& positions, const Tetrahe
 double totalVolume(const Mesh& mesh) {
   double volume = 0.0;
   for (const Tetrahedron& t : mesh.tetrahedra) volume += signedVolume(mesh.positions, t);
+  for (const Cell& c : mesh.cells)
+    volume += computeCellRest(c.type, cellCorners(c, mesh.positions)).volume;
   return volume;
 }
 
-std::vector<Triangle> extractSurface(const Mesh& mesh) {
+namespace {
+
+// Each element type's faces as local node lists, counter-clockwise seen from outside (-1 pads
+// a triangle).
+using LocalFaces = std::vector<std::array<int, 4>>;
+
+const LocalFaces& localFaces(CellType type) {
+  static const LocalFaces hexahedron = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                        {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  static const LocalFaces wedge = {
+      {0, 2, 1, -1}, {3, 4, 5, -1}, {0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}};
+  static const LocalFaces pyramid = {
+      {0, 3, 2, 1}, {0, 1, 4, -1}, {1, 2, 4, -1}, {2, 3, 4, -1}, {3, 0, 4, -1}};
+  switch (type) {
+    case CellType::kWedge:
+      return wedge;
+    case CellType::kPyramid:
+      return pyramid;
+    default:
+      return hexahedron;
+  }
+}
+
+}  // namespace
+
+std::vector<Face> extractBoundary(const Mesh& mesh) {
   // For a positively oriented tetrahedron (0,1,2,3) these faces have outward normals.
-  static constexpr int kFaces[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
-  // A face shared by two tetrahedra is interior; count faces by their sorted node triple.
-  std::map<std::array<int, 3>, std::pair<int, Triangle>> faces;
-  for (const Tetrahedron& t : mesh.tetrahedra) {
-    for (const auto& f : kFaces) {
-      Triangle tri{t[f[0]], t[f[1]], t[f[2]]};
-      std::array<int, 3> key = tri;
+  static const LocalFaces tetrahedron = {
+      {0, 2, 1, -1}, {0, 1, 3, -1}, {1, 2, 3, -1}, {0, 3, 2, -1}};
+  // A face shared by two elements is interior; count faces by their sorted nodes.
+  std::map<std::array<int, 4>, std::pair<int, Face>> faces;
+  auto add = [&](const int* nodes, const LocalFaces& local) {
+    for (const auto& f : local) {
+      Face face;
+      for (int k = 0; k < 4; ++k) face.nodes[k] = f[k] < 0 ? -1 : nodes[f[k]];
+      std::array<int, 4> key = face.nodes;
       std::sort(key.begin(), key.end());
-      auto [it, inserted] = faces.try_emplace(key, 0, tri);
+      auto [it, inserted] = faces.try_emplace(key, 0, face);
       ++it->second.first;
     }
+  };
+  for (const Tetrahedron& t : mesh.tetrahedra) add(t.data(), tetrahedron);
+  for (const Cell& c : mesh.cells) add(c.nodes.data(), localFaces(c.type));
+  std::vector<Face> boundary;
+  for (const auto& [key, count_and_face] : faces) {
+    if (count_and_face.first == 1) boundary.push_back(count_and_face.second);
   }
+  return boundary;
+}
+
+std::vector<Triangle> extractSurface(const Mesh& mesh) {
   std::vector<Triangle> surface;
-  for (const auto& [key, count_and_triangle] : faces) {
-    if (count_and_triangle.first == 1) surface.push_back(count_and_triangle.second);
+  for (const Face& f : extractBoundary(mesh)) {
+    surface.push_back({f.nodes[0], f.nodes[1], f.nodes[2]});
+    if (f.size() == 4) surface.push_back({f.nodes[0], f.nodes[2], f.nodes[3]});
   }
   return surface;
 }
@@ -50,6 +92,10 @@ std::vector<double> lumpedMasses(const Mesh& mesh, double density) {
   for (const Tetrahedron& t : mesh.tetrahedra) {
     const double share = 0.25 * density * std::abs(signedVolume(mesh.positions, t));
     for (int i : t) mass[i] += share;
+  }
+  for (const Cell& c : mesh.cells) {
+    const CellRest rest = computeCellRest(c.type, cellCorners(c, mesh.positions));
+    for (int k = 0; k < c.size(); ++k) mass[c.nodes[k]] += density * rest.shape_integrals[k];
   }
   return mass;
 }

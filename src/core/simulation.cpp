@@ -93,7 +93,7 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
       body.fixNodes(
           selectSome(body.mesh(), body_spec.fixed[k], key + ".fixed[" + std::to_string(k) + "]"));
     }
-    const std::vector<Triangle> surface = extractSurface(body.mesh());
+    const std::vector<Face> boundary = extractBoundary(body.mesh());
     for (size_t k = 0; k < body_spec.loads.size(); ++k) {
       const LoadSpec& load = body_spec.loads[k];
       const std::string load_key = key + ".loads[" + std::to_string(k) + "]";
@@ -103,11 +103,11 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
         addTotalForce(nodes, load.value, body.externalForces());
       } else if (load.kind == LoadSpec::Kind::kWrench) {
         addWrench(body, nodes, load, load_key);
-      } else if (addTractionLoad(body.mesh(), surface, nodes, load.value, body.externalForces()) ==
+      } else if (addTractionLoad(body.mesh(), boundary, nodes, load.value, body.externalForces()) ==
                  0.0) {
         throw std::invalid_argument(load_key +
-                                    ": traction selects no boundary face (all three nodes of a "
-                                    "surface triangle must be selected)");
+                                    ": traction selects no boundary face (all nodes of a "
+                                    "boundary face must be selected)");
       }
     }
   }

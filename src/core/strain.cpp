@@ -2,10 +2,21 @@
 
 #include <algorithm>
 
+#include "deformable_sim/core/cell.h"
 #include "deformable_sim/core/rotation.h"
 #include "deformable_sim/core/tetrahedron.h"
 
 namespace deformable_sim::core {
+
+namespace {
+
+// |sym(R^T F) - I|: the rotation-free (small-strain) measure of F.
+double strainMagnitude(const Eigen::Matrix3d& f) {
+  const Eigen::Matrix3d unrotated = extractRotation(f).transpose() * f;
+  return (0.5 * (unrotated + unrotated.transpose()) - Eigen::Matrix3d::Identity()).norm();
+}
+
+}  // namespace
 
 void nodalStrain(const FemBody& body, std::vector<double>& strain) {
   strain.assign(body.numNodes(), 0.0);
@@ -17,10 +28,19 @@ void nodalStrain(const FemBody& body, std::vector<double>& strain) {
     const Eigen::Matrix3d f =
         deformationGradient(rest[e], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
                             x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
-    const Eigen::Matrix3d unrotated = extractRotation(f).transpose() * f;
-    const double magnitude =
-        (0.5 * (unrotated + unrotated.transpose()) - Eigen::Matrix3d::Identity()).norm();
-    for (int i : t) strain[i] = std::max(strain[i], magnitude);
+    for (int i : t) strain[i] = std::max(strain[i], strainMagnitude(f));
+  }
+  // Cells: the strain at the centre, from the rest data the elasticity keeps.
+  const std::vector<Cell>& cells = body.mesh().cells;
+  for (size_t c = 0; c < cells.size(); ++c) {
+    const Cell& cell = cells[c];
+    const CellRest& rest = body.elasticity().cellRestData(static_cast<int>(c));
+    CellVectors corners;
+    for (int k = 0; k < cell.size(); ++k) corners[k] = x.segment<3>(3 * cell.nodes[k]);
+    const double magnitude = strainMagnitude(cellDeformationGradient(rest, cell.size(), corners));
+    for (int k = 0; k < cell.size(); ++k) {
+      strain[cell.nodes[k]] = std::max(strain[cell.nodes[k]], magnitude);
+    }
   }
 }
 

@@ -76,7 +76,7 @@ TEST(Loads, TractionGivesConsistentNodalForcesWithTheRightResultant) {
   tip.box = {{0.999, -1, -1}, {1.001, 1, 1}};
   Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh.numNodes());
   const double area = dc::addTractionLoad(
-      mesh, dc::extractSurface(mesh), dc::selectNodes(mesh, tip), Eigen::Vector3d(0, 0, -2.5), f);
+      mesh, dc::extractBoundary(mesh), dc::selectNodes(mesh, tip), Eigen::Vector3d(0, 0, -2.5), f);
   EXPECT_NEAR(area, 0.01, 1e-15);
   const Eigen::Vector3d resultant = f.reshaped(3, mesh.numNodes()).rowwise().sum();
   EXPECT_NEAR((resultant - Eigen::Vector3d(0, 0, -0.025)).norm(), 0.0, 1e-15);

@@ -159,8 +159,8 @@ TEST(SceneFile, EmptyOrUnknownSelectionsAreErrorsNamingTheKey) {
   EXPECT_EQ(errorOf(replaced(kScene, "{box: {min: [0.999, -1, -1], max: [1.001, 1, 1]}, traction",
                              "{nodes: [7], traction"),
                     true),
-            "bodies[0].loads[0]: traction selects no boundary face (all three nodes of a surface "
-            "triangle must be selected)");
+            "bodies[0].loads[0]: traction selects no boundary face (all nodes of a boundary face "
+            "must be selected)");
 }
 
 TEST(SceneFile, MissingFileIsAClearError) {

@@ -13,9 +13,9 @@ class BlockSparseMatrix {
  public:
   BlockSparseMatrix() = default;
 
-  /// Pattern with a block (i, j) for every pair of nodes that share a tetrahedron (i == j
+  /// Pattern with a block (i, j) for every pair of nodes that share an element (i == j
   /// included), both triangles stored. All blocks start at zero.
-  BlockSparseMatrix(int num_nodes, const std::vector<Tetrahedron>& tetrahedra);
+  explicit BlockSparseMatrix(const Mesh& mesh);
 
   int numBlockRows() const { return static_cast<int>(row_start_.size()) - 1; }
   int numBlocks() const { return static_cast<int>(blocks_.size()); }

@@ -1,4 +1,4 @@
-// A structured tetrahedral mesh of a box, for built-in scenes, tests and benchmarks.
+// A structured mesh of a box, for built-in scenes, tests and benchmarks.
 #pragma once
 
 #include <Eigen/Core>
@@ -7,12 +7,15 @@
 
 namespace deformable_sim::core {
 
-/// The box [min, max] cut into cells[0] x cells[1] x cells[2] cubes, each split into six
-/// tetrahedra around a main diagonal, mirrored from cell to cell (a conforming split with the
-/// box's mirror symmetries).
-/// Node numbers run from 1 in x-fastest order. Throws std::invalid_argument for an empty box or
-/// fewer than one cell per axis.
+enum class BoxElement { kTetrahedron, kHexahedron, kWedge, kPyramid };
+
+/// The box [min, max] cut into cells[0] x cells[1] x cells[2] cubes, each one hexahedron, or
+/// split into six tetrahedra around a main diagonal, mirrored from cell to cell (a conforming
+/// split with the box's mirror symmetries), two wedges, or six pyramids around a node added at
+/// its centre.
+/// Node numbers run from 1 in x-fastest order (cube centres last). Throws std::invalid_argument
+/// for an empty box or fewer than one cell per axis.
 Mesh makeBoxMesh(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
-                 const Eigen::Vector3i& cells);
+                 const Eigen::Vector3i& cells, BoxElement element = BoxElement::kTetrahedron);
 
 }  // namespace deformable_sim::core

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "deformable_sim/core/block_sparse_matrix.h"
+#include "deformable_sim/core/cell.h"
 #include "deformable_sim/core/material.h"
 #include "deformable_sim/core/mesh.h"
 #include "deformable_sim/core/tetrahedron.h"
@@ -43,8 +44,10 @@ class CorotationalElasticity {
 
   const BlockSparseMatrix& stiffness() const { return stiffness_; }     ///< K', N/m
   const Eigen::VectorXd& forceOffset() const { return force_offset_; }  ///< f0', N
+  /// Per element, the tetrahedra first, then the cells.
   const std::vector<Eigen::Matrix3d>& rotations() const { return rotations_; }
   const std::vector<TetrahedronRest>& restData() const { return rest_; }
+  const CellRest& cellRestData(int c) const { return cells_[c].rest; }  ///< of Mesh::cells[c]
 
   /// f += -(K' x + f0') with the K' and f0' of the last update. `scratch` has size 3n.
   void addElasticForces(const Eigen::VectorXd& x, Eigen::VectorXd& f,
@@ -58,6 +61,21 @@ class CorotationalElasticity {
   void setRestForces();
   /// Builds each node's list of (element, corner) pairs, for the row-by-row assembly.
   void listIncidences(int num_nodes);
+  /// Each cell's rest stiffness and rest-force offset for the current material.
+  void setCellStiffness();
+  /// Adds the warped cells to K' and f0'.
+  void addCells();
+  static CellVectors currentCorners(const Cell& cell, const Eigen::VectorXd& x);
+
+  /// A pyramid, wedge or hexahedron: its stiffness is integrated numerically, so it is stored.
+  struct CellElement {
+    Cell cell;
+    CellRest rest;
+    Eigen::MatrixXd stiffness;                                     ///< Ke (3n x 3n), N/m
+    Eigen::VectorXd rest_forces;                                   ///< Ke x0, N
+    std::array<int, kMaxCellNodes * kMaxCellNodes> block_index{};  ///< slot of (i, j) at n i + j
+  };
+  std::vector<CellElement> cells_;
 
   std::vector<Tetrahedron> tetrahedra_;
   Eigen::VectorXd rest_positions_;

@@ -8,10 +8,11 @@
 
 namespace deformable_sim::core {
 
-/// Adds to f (3n, N) the consistent nodal loads of a uniform traction (Pa) on every surface
-/// triangle whose three nodes are all in `selected` (node indices): a third of the triangle's
-/// area times the traction to each of its nodes. Returns the loaded area, m^2 (0: no face).
-double addTractionLoad(const Mesh& mesh, const std::vector<Triangle>& surface,
+/// Adds to f (3n, N) the consistent nodal loads of a uniform traction (Pa) on every boundary face
+/// whose nodes are all in `selected` (node indices): the traction times the integral of each
+/// node's shape function over the face (a third of a triangle's area; a quarter of a
+/// parallelogram's). Returns the loaded area, m^2 (0: no face).
+double addTractionLoad(const Mesh& mesh, const std::vector<Face>& boundary,
                        const std::vector<int>& selected, const Eigen::Vector3d& traction,
                        Eigen::VectorXd& f);
 

@@ -1,5 +1,6 @@
-// A volumetric mesh of linear tetrahedra: rest positions, the mesh file's own node numbers,
-// connectivity, and the geometric queries every body needs (volumes, surface, lumped mass).
+// A volumetric mesh: rest positions, the mesh file's own node numbers, connectivity (linear
+// tetrahedra, plus the pyramids, wedges and hexahedra of seed 004), and the geometric queries
+// every body needs (volumes, boundary, lumped mass).
 #pragma once
 
 #include <Eigen/Core>
@@ -15,13 +16,34 @@ using Tetrahedron = std::array<int, 4>;
 /// Three node indices of a boundary triangle, counter-clockwise seen from outside.
 using Triangle = std::array<int, 3>;
 
+/// The element types besides the tetrahedron; the value is the number of nodes.
+enum class CellType { kPyramid = 5, kWedge = 6, kHexahedron = 8 };
+
+/// A pyramid, wedge or hexahedron: its first size() entries index Mesh::positions, in Gmsh's
+/// order (the base counter-clockwise seen from the apex or the opposite face, then that face).
+struct Cell {
+  CellType type = CellType::kHexahedron;
+  std::array<int, 8> nodes{};
+  int size() const { return static_cast<int>(type); }
+};
+
+/// A boundary face, counter-clockwise seen from outside: a triangle, or a quadrilateral when
+/// nodes[3] >= 0.
+struct Face {
+  std::array<int, 4> nodes{-1, -1, -1, -1};
+  int size() const { return nodes[3] >= 0 ? 4 : 3; }
+};
+
 struct Mesh {
   std::vector<Eigen::Vector3d> positions;  ///< rest positions, m
   std::vector<long> node_numbers;          ///< the file's number of each node (same order)
   std::vector<Tetrahedron> tetrahedra;
+  /// The other elements, kept apart from the tetrahedra, which have a closed-form fast path.
+  std::vector<Cell> cells;
 
   int numNodes() const { return static_cast<int>(positions.size()); }
   int numTetrahedra() const { return static_cast<int>(tetrahedra.size()); }
+  int numElements() const { return numTetrahedra() + static_cast<int>(cells.size()); }
 };
 
 /// Signed volume of a tetrahedron with corners a, b, c, d, m^3 (positive when right-handed).
@@ -34,11 +56,15 @@ double signedVolume(const std::vector<Eigen::Vector3d>& positions, const Tetrahe
 /// Sum of the element volumes at rest, m^3.
 double totalVolume(const Mesh& mesh);
 
-/// The faces that belong to exactly one tetrahedron, oriented with outward normals.
+/// The faces that belong to exactly one element, oriented with outward normals.
+std::vector<Face> extractBoundary(const Mesh& mesh);
+
+/// The boundary as triangles (each quadrilateral split along a diagonal), for drawing.
 std::vector<Triangle> extractSurface(const Mesh& mesh);
 
-/// Lumped (diagonal) nodal masses: each element gives a quarter of density x volume to each of
-/// its nodes. density in kg/m^3, result in kg per node.
+/// Lumped (diagonal) nodal masses: each element gives node i density x the integral of its shape
+/// function N_i (a quarter of the volume for a tetrahedron). density in kg/m^3, result in kg per
+/// node.
 std::vector<double> lumpedMasses(const Mesh& mesh, double density);
 
 /// Index of each node given by its file number. Throws std::invalid_argument naming the first
