@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -315,7 +316,7 @@ class SceneParser {
     const YAML::Node box = node["box"];
     if (!box) fail(node, key + ".box", "missing");
     expectMap(box, key + ".box");
-    checkKeys(box, key + ".box", {"min", "max", "cells"});
+    checkKeys(box, key + ".box", {"min", "max", "cells", "element"});
     for (const char* required : {"min", "max", "cells"}) {
       if (!box[required]) fail(box, key + ".box." + required, "missing");
     }
@@ -330,6 +331,20 @@ class SceneParser {
       fail(box["cells"], key + ".box.cells", "expected three whole numbers >= 1");
     }
     spec.cells = cells.cast<int>();
+    if (box["element"]) {
+      const std::string element = text(box["element"], key + ".box.element");
+      const std::map<std::string, core::BoxElement> elements = {
+          {"tetrahedron", core::BoxElement::kTetrahedron},
+          {"hexahedron", core::BoxElement::kHexahedron},
+          {"wedge", core::BoxElement::kWedge},
+          {"pyramid", core::BoxElement::kPyramid}};
+      const auto it = elements.find(element);
+      if (it == elements.end()) {
+        fail(box["element"], key + ".box.element",
+             "'" + element + "' is not one of: tetrahedron, hexahedron, wedge, pyramid");
+      }
+      spec.element = it->second;
+    }
     body.box_mesh = spec;
   }
 
@@ -493,8 +508,8 @@ std::vector<core::Mesh> readMeshes(const core::SceneSpec& spec,
   std::vector<core::Mesh> meshes;
   for (const core::BodySpec& body : spec.bodies) {
     if (body.box_mesh) {
-      meshes.push_back(
-          core::makeBoxMesh(body.box_mesh->min, body.box_mesh->max, body.box_mesh->cells));
+      meshes.push_back(core::makeBoxMesh(body.box_mesh->min, body.box_mesh->max,
+                                         body.box_mesh->cells, body.box_mesh->element));
       continue;
     }
     MeshReadResult read = readMesh(body.mesh);

@@ -83,8 +83,9 @@ int main(int argc, char** argv) {
         deformable_sim::io::readSceneFile(options.scene), &warnings);
     for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
     for (const auto& body : sim.bodies()) {
-      std::printf("body %s: %d nodes, %d tetrahedra, %d constrained\n", body.name().c_str(),
-                  body.numNodes(), body.mesh().numTetrahedra(), body.numConstrained());
+      std::printf("body %s: %d nodes, %d tetrahedra, %d other elements, %d constrained\n",
+                  body.name().c_str(), body.numNodes(), body.mesh().numTetrahedra(),
+                  static_cast<int>(body.mesh().cells.size()), body.numConstrained());
     }
     using Clock = std::chrono::steady_clock;
     bool converged = true;

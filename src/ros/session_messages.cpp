@@ -237,6 +237,10 @@ Scene toSceneMessage(const std::string& path, const std::string& yaml, double dt
     for (const core::Tetrahedron& t : mesh.tetrahedra) {
       for (int i : t) data.tetrahedra.push_back(static_cast<uint32_t>(i));
     }
+    for (const core::Cell& c : mesh.cells) {
+      data.cell_types.push_back(static_cast<uint8_t>(c.size()));
+      for (int k = 0; k < c.size(); ++k) data.cells.push_back(static_cast<uint32_t>(c.nodes[k]));
+    }
     m.meshes.push_back(std::move(data));
   }
   return m;
@@ -266,6 +270,31 @@ std::vector<core::Mesh> meshesFromMessage(const Scene& message) {
         t[k] = static_cast<int>(data.tetrahedra[e + k]);
       }
       mesh.tetrahedra.push_back(t);
+    }
+    size_t next = 0;
+    for (uint8_t size : data.cell_types) {
+      if (size != 5 && size != 6 && size != 8) {
+        throw std::invalid_argument("scene message: the mesh of body '" + data.body +
+                                    "' has a cell of unknown type " + std::to_string(size));
+      }
+      if (next + size > data.cells.size()) {
+        throw std::invalid_argument("scene message: the mesh of body '" + data.body +
+                                    "' has arrays of inconsistent sizes");
+      }
+      core::Cell cell{static_cast<core::CellType>(size), {}};
+      for (int k = 0; k < size; ++k) {
+        if (data.cells[next + k] >= n) {
+          throw std::invalid_argument("scene message: the mesh of body '" + data.body +
+                                      "' refers to a node out of range");
+        }
+        cell.nodes[k] = static_cast<int>(data.cells[next + k]);
+      }
+      next += size;
+      mesh.cells.push_back(cell);
+    }
+    if (next != data.cells.size()) {
+      throw std::invalid_argument("scene message: the mesh of body '" + data.body +
+                                  "' has arrays of inconsistent sizes");
     }
     meshes.push_back(std::move(mesh));
   }

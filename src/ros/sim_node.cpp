@@ -96,8 +96,9 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
 
   timer_ = node.createTimer(ros::Duration(1.0 / rate_hz_), &SimNode::onTimer, this);
   for (const core::FemBody& body : sim().bodies()) {
-    ROS_INFO("body '%s': %d nodes, %d tetrahedra, %d fixed; frame '%s'", body.name().c_str(),
-             body.numNodes(), body.mesh().numTetrahedra(), body.numConstrained(),
+    ROS_INFO("body '%s': %d nodes, %d tetrahedra, %zu other elements, %d fixed; frame '%s'",
+             body.name().c_str(), body.numNodes(), body.mesh().numTetrahedra(),
+             body.mesh().cells.size(), body.numConstrained(),
              (frame_prefix_ + body.name()).c_str());
   }
   ROS_INFO("stepping %s at %.4g Hz x %d substeps (dt %.4g s) in frame '%s'",

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/contact.h"
 #include "deformable_sim/core/fem_body.h"
 #include "deformable_sim/core/linear_solver.h"
@@ -36,6 +37,7 @@ struct BoxMeshSpec {
   Eigen::Vector3d min = Eigen::Vector3d::Zero();  ///< m
   Eigen::Vector3d max = Eigen::Vector3d::Ones();  ///< m
   Eigen::Vector3i cells = Eigen::Vector3i::Ones();
+  BoxElement element = BoxElement::kTetrahedron;  ///< what each cube is cut into
 };
 
 struct BodySpec {
