@@ -105,6 +105,14 @@ FemBody::FemBody(std::string name, Mesh mesh, const LinearElasticMaterial& mater
   }
   if (solver.method == SolverSettings::Method::kDirect) direct_ = std::make_unique<DirectSolver>();
   elasticity_.setThreads(solver.threads);
+  if (effects.plasticity) {
+    try {
+      plasticity_.emplace(mesh_, *effects.plasticity);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("body '" + name_ + "': " + e.what());
+    }
+    plastic_forces_ = Eigen::VectorXd::Zero(x0_.size());
+  }
 }
 
 void FemBody::setMaterial(const LinearElasticMaterial& material) {
@@ -284,6 +292,7 @@ StepReport FemBody::step(double dt) {
   const auto start = Clock::now();
   report.inverted_elements = updateStiffness(&report.times);
   const double h = dt;
+  if (plasticity_) plasticity_->step(mesh_, elasticity_, x_, h, plastic_forces_);
   const RayleighDamping damping = effects_.damping.value_or(RayleighDamping{});
   const SystemMatrix a = systemMatrix(1.0 + h * damping.mass, h * damping.stiffness + h * h);
 
@@ -293,6 +302,7 @@ StepReport FemBody::step(double dt) {
   for (int i = 0; i < numNodes(); ++i) {
     Eigen::Vector3d load = external_forces_.segment<3>(3 * i);
     if (effects_.gravity) load += mass_[i] * *effects_.gravity;
+    if (plasticity_) load += plastic_forces_.segment<3>(3 * i);
     rhs_.segment<3>(3 * i) = mass_[i] * v_.segment<3>(3 * i) -
                              h * (scratch_.segment<3>(3 * i) + f0.segment<3>(3 * i) - load);
   }

@@ -164,7 +164,8 @@ class SceneParser {
   void parseEffects(const YAML::Node& node, core::BodyEffects& effects) const {
     if (!node) return;
     expectMap(node, "effects");
-    checkKeys(node, "effects", {"gravity", "warping", "damping", "stress_colouring", "contact"});
+    checkKeys(node, "effects",
+              {"gravity", "warping", "damping", "plasticity", "stress_colouring", "contact"});
     if (node["stress_colouring"]) {
       effects.stress_colouring = boolean(node["stress_colouring"], "effects.stress_colouring");
     }
@@ -179,6 +180,24 @@ class SceneParser {
         rayleigh.stiffness = nonNegative(damping["stiffness"], "effects.damping.stiffness");
       }
       effects.damping = rayleigh;
+    }
+    if (const YAML::Node plasticity = node["plasticity"]) {
+      expectMap(plasticity, "effects.plasticity");
+      checkKeys(plasticity, "effects.plasticity", {"yield", "creep", "max_strain"});
+      core::PlasticitySettings settings;
+      if (plasticity["yield"]) {
+        settings.yield = nonNegative(plasticity["yield"], "effects.plasticity.yield");
+      }
+      if (plasticity["creep"]) {
+        settings.creep = nonNegative(plasticity["creep"], "effects.plasticity.creep");
+      }
+      if (plasticity["max_strain"]) {
+        settings.max_strain = number(plasticity["max_strain"], "effects.plasticity.max_strain");
+        if (!(settings.max_strain > 0.0)) {
+          fail(plasticity["max_strain"], "effects.plasticity.max_strain", "must be > 0");
+        }
+      }
+      effects.plasticity = settings;
     }
   }
 

@@ -42,6 +42,8 @@ class CorotationalElasticity {
   /// results are identical.
   void setThreads(int threads);
 
+  double lambda() const { return lambda_; }  ///< Lame's first parameter, Pa
+  double mu() const { return mu_; }          ///< shear modulus, Pa
   const BlockSparseMatrix& stiffness() const { return stiffness_; }     ///< K', N/m
   const Eigen::VectorXd& forceOffset() const { return force_offset_; }  ///< f0', N
   /// Per element, the tetrahedra first, then the cells.

@@ -14,6 +14,7 @@
 #include "deformable_sim/core/linear_solver.h"
 #include "deformable_sim/core/material.h"
 #include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/plasticity.h"
 
 namespace deformable_sim::core {
 
@@ -28,6 +29,7 @@ struct BodyEffects {
   bool warping = false;                    ///< corotation; false = plain linear FEM (R = I)
   std::optional<Eigen::Vector3d> gravity;  ///< m/s^2
   std::optional<RayleighDamping> damping;
+  std::optional<PlasticitySettings> plasticity;  ///< dynamic steps only (not the static solve)
   bool stress_colouring = false;  ///< the surface marker is coloured by strain (ROS layer)
 };
 
@@ -136,6 +138,8 @@ class FemBody {
   double elasticEnergy() const;  ///< J, with the rotations of the last step
 
   const CorotationalElasticity& elasticity() const { return elasticity_; }
+  /// The plasticity effect's state, or null when the body has none.
+  const Plasticity* plasticity() const { return plasticity_ ? &*plasticity_ : nullptr; }
 
  private:
   /// Updates rotations, K' and f0' from the current positions when they can have changed;
@@ -157,6 +161,8 @@ class FemBody {
   Eigen::VectorXd x0_, x_, v_;
   std::vector<double> mass_;
   CorotationalElasticity elasticity_;
+  std::optional<Plasticity> plasticity_;  ///< only with the effect; then also its forces
+  Eigen::VectorXd plastic_forces_;
   bool stiffness_assembled_ = false;
   bool matrix_changed_ = true;  ///< for the direct solver: refactorize on the next solve
   double last_mass_coefficient_ = -1.0, last_stiffness_coefficient_ = -1.0;
