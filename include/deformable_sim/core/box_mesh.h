@@ -7,11 +7,15 @@
 
 namespace deformable_sim::core {
 
+/// The most cells a box mesh may have (6 tetrahedra each): far beyond real time already, and a
+/// bound on what a scene file can make the reader allocate (a few GB of stiffness at most).
+constexpr long kMaxBoxMeshCells = 1000000;
+
 /// The box [min, max] cut into cells[0] x cells[1] x cells[2] cubes, each split into six
 /// tetrahedra around a main diagonal, mirrored from cell to cell (a conforming split with the
 /// box's mirror symmetries).
-/// Node numbers run from 1 in x-fastest order. Throws std::invalid_argument for an empty box or
-/// fewer than one cell per axis.
+/// Node numbers run from 1 in x-fastest order. Throws std::invalid_argument for an empty box,
+/// fewer than one cell per axis or more than kMaxBoxMeshCells cells.
 Mesh makeBoxMesh(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
                  const Eigen::Vector3i& cells);
 
