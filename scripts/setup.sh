@@ -30,8 +30,12 @@ packages=(
   python3-tf2-ros python3-diagnostic-msgs python3-sensor-msgs ros-robot-state-publisher
   librosbag-dev libtf2-msgs-dev python3-rosbag
 )
-# rviz for the demo when asked; rviz under Xvfb with imagemagick for the screenshot test.
-if [ "$mode" = test ]; then packages+=(rviz xvfb imagemagick x11-utils python3-numpy python3-matplotlib); fi
+# rviz for the demo when asked; rviz under Xvfb with imagemagick for the screenshot test; clang
+# with libFuzzer for the fuzz targets (scripts/fuzz.sh).
+if [ "$mode" = test ]; then
+  packages+=(rviz xvfb imagemagick x11-utils python3-numpy python3-matplotlib clang-14
+    libclang-rt-14-dev)
+fi
 if [ "$rviz" = true ]; then packages+=(rviz); fi
 missing=()
 for p in "${packages[@]}"; do
@@ -89,6 +93,11 @@ if ! catkin_make tests -j2 > "$ws/test_build.log" 2>&1; then
 fi
 catkin_make run_tests -j2 > "$ws/test.log" 2>&1 || true  # exits 0 even on failures: judged below
 grep -E "^\[  (FAILED|PASSED)  \]|RESULT: " "$ws/test.log" || true
+# A short fuzz run of each target (clang, libFuzzer), one JUnit result per target beside the others.
+echo "== fuzzing (${DEFORMABLE_SIM_FUZZ_SECONDS:-15} s per target; log: $ws/fuzz.log)"
+DEFORMABLE_SIM_FUZZ_BUILD="$ws/fuzz" DEFORMABLE_SIM_FUZZ_RESULTS="$ws/build/test_results/deformable_sim" \
+  bash "$repo/scripts/fuzz.sh" "${DEFORMABLE_SIM_FUZZ_SECONDS:-15}" > "$ws/fuzz.log" 2>&1 || true
+grep -E "^== fuzz_|^#[0-9]+|FAILED" "$ws/fuzz.log" || true
 catkin_test_results "$ws/build/test_results" > "$ws/test_summary.txt" 2>&1 && results_ok=1 || results_ok=0
 tail -n 3 "$ws/test_summary.txt"
 # Count test cases from the result files (catkin's own summary counts suites and cases alike).

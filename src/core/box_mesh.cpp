@@ -2,6 +2,7 @@
 
 #include <array>
 #include <stdexcept>
+#include <string>
 
 namespace deformable_sim::core {
 
@@ -62,6 +63,11 @@ Mesh makeBoxMesh(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
   }
   if ((cells.array() < 1).any()) {
     throw std::invalid_argument("box mesh: needs at least one cell per axis");
+  }
+  // In long: the product of three ints overflows.
+  if (static_cast<long>(cells.x()) * cells.y() * cells.z() > kMaxBoxMeshCells) {
+    throw std::invalid_argument("box mesh: more than " + std::to_string(kMaxBoxMeshCells) +
+                                " cells");
   }
   const Eigen::Vector3i n = cells.array() + 1;  // nodes per axis
   auto node = [&](int i, int j, int k) { return i + n.x() * (j + n.y() * k); };

@@ -80,10 +80,8 @@ struct Section {
 
 class GmshParser {
  public:
-  explicit GmshParser(const std::string& path) : in_(path) {
-    raw_.node_path = path;
-    raw_.element_path = path;
-  }
+  explicit GmshParser(const std::string& path) : in_(path) { setPaths(path); }
+  GmshParser(const std::string& name, std::istream& stream) : in_(name, stream) { setPaths(name); }
 
   RawMesh parse() {
     if (!in_.next()) throw MeshError(in_.path() + ": the file is empty (expected $MeshFormat)");
@@ -133,6 +131,11 @@ class GmshParser {
 
  private:
   enum class Version { k22, k41 };
+
+  void setPaths(const std::string& path) {
+    raw_.node_path = path;
+    raw_.element_path = path;
+  }
 
   [[noreturn]] void fail(const std::string& message) const { in_.fail(message); }
 
@@ -386,6 +389,10 @@ class GmshParser {
 
 MeshReadResult readGmsh(const std::string& path) {
   return internal::finalizeMesh(GmshParser(path).parse());
+}
+
+MeshReadResult readGmsh(std::istream& stream, const std::string& name) {
+  return internal::finalizeMesh(GmshParser(name, stream).parse());
 }
 
 }  // namespace deformable_sim::io

@@ -53,20 +53,23 @@ std::string located(const std::string& path, long line, const std::string& messa
 // --- LineReader ---------------------------------------------------------------------------------
 
 LineReader::LineReader(std::string path, char comment_char)
-    : path_(std::move(path)), comment_char_(comment_char) {
+    : path_(std::move(path)), comment_char_(comment_char), stream_(&file_) {
   std::error_code error;
   // An ifstream happily "opens" a directory and then reads nothing; say what is wrong instead.
   if (std::filesystem::is_directory(path_, error)) {
     throw MeshError("cannot read mesh file '" + path_ + "': it is a directory");
   }
-  stream_.open(path_);
-  if (!stream_) {
+  file_.open(path_);
+  if (!file_) {
     throw MeshError("cannot open mesh file '" + path_ + "': " + std::strerror(errno));
   }
 }
 
+LineReader::LineReader(std::string path, std::istream& stream, char comment_char)
+    : path_(std::move(path)), comment_char_(comment_char), stream_(&stream) {}
+
 bool LineReader::next() {
-  while (std::getline(stream_, line_)) {
+  while (std::getline(*stream_, line_)) {
     ++line_number_;
     std::string_view rest(line_);
     if (comment_char_ != '\0') rest = rest.substr(0, rest.find(comment_char_));
@@ -82,7 +85,7 @@ bool LineReader::next() {
     }
     if (!tokens_.empty()) return true;
   }
-  if (stream_.bad()) fail("read error");
+  if (stream_->bad()) fail("read error");
   tokens_.clear();
   context_.clear();
   return false;

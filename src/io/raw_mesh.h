@@ -48,13 +48,15 @@ MeshReadResult finalizeMesh(const RawMesh& raw);
 // "path, line 12: message"
 std::string located(const std::string& path, long line, const std::string& message);
 
-// Reads a text file one non-blank line at a time and splits it into whitespace-separated tokens.
-// Parse errors are thrown as MeshError at the current line.
+// Reads a text file (or stream) one non-blank line at a time and splits it into
+// whitespace-separated tokens. Parse errors are thrown as MeshError at the current line.
 class LineReader {
  public:
   // comment_char starts a comment that runs to the end of the line ('\0': no comments).
   // Throws MeshError naming the path when the file cannot be opened.
   explicit LineReader(std::string path, char comment_char = '\0');
+  // Reads `stream` (kept by reference); `path` names it in messages.
+  LineReader(std::string path, std::istream& stream, char comment_char = '\0');
 
   // Advances to the next line holding at least one token; false at the end of the file.
   bool next();
@@ -82,7 +84,8 @@ class LineReader {
  private:
   std::string path_;
   char comment_char_;
-  std::ifstream stream_;
+  std::ifstream file_;    // when reading a file
+  std::istream* stream_;  // file_ or the caller's stream
   std::string line_;
   std::vector<std::string_view> tokens_;  // views into line_
   std::string context_;

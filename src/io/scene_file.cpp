@@ -101,10 +101,17 @@ class SceneParser {
     if (!node.IsMap()) fail(node, key, "expected a map of keys");
   }
 
+  // A map's key as text. YAML allows any node as a key ({[1, 2]: x}, a null); a scene's keys are
+  // names, and as<std::string>() would throw YAML's own exception for the others.
+  std::string keyName(const YAML::Node& key_node, const std::string& key) const {
+    if (!key_node.IsScalar()) fail(key_node, key, "expected a key name, found a list, map or null");
+    return key_node.Scalar();
+  }
+
   void checkKeys(const YAML::Node& node, const std::string& key,
                  const std::set<std::string>& allowed) const {
     for (const auto& entry : node) {
-      const std::string name = entry.first.as<std::string>();
+      const std::string name = keyName(entry.first, key);
       if (allowed.count(name) == 0) {
         std::string expected;
         for (const std::string& a : allowed) expected += (expected.empty() ? "" : ", ") + a;
@@ -302,7 +309,7 @@ class SceneParser {
     if (const YAML::Node groups = node["groups"]) {
       expectMap(groups, key + ".groups");
       for (const auto& entry : groups) {
-        const std::string name = entry.first.as<std::string>();
+        const std::string name = keyName(entry.first, key + ".groups");
         const std::string item = key + ".groups." + name;
         expectMap(entry.second, item);
         checkKeys(entry.second, item, {"nodes", "box", "sphere"});
@@ -348,6 +355,11 @@ class SceneParser {
     }
     if ((cells.array() < 1.0).any() || (cells.array() != cells.array().round()).any()) {
       fail(box["cells"], key + ".box.cells", "expected three whole numbers >= 1");
+    }
+    // Checked before the conversion to int, which would overflow (undefined) for 1e10.
+    if (cells.prod() > static_cast<double>(core::kMaxBoxMeshCells)) {
+      fail(box["cells"], key + ".box.cells",
+           "more than " + std::to_string(core::kMaxBoxMeshCells) + " cells in all");
     }
     spec.cells = cells.cast<int>();
     if (box["element"]) {

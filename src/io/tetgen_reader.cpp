@@ -57,8 +57,7 @@ void expectNoMore(LineReader& in, long count, const std::string& what, long head
   }
 }
 
-void readNodeFile(const std::string& path, RawMesh& raw) {
-  LineReader in(path, '#');
+void readNodeFile(LineReader& in, RawMesh& raw) {
   readHeader(in, "npoints dim nattributes boundarymarker");
   in.expectCount(4, "number of points, dimension, number of attributes, boundary marker flag");
   const long count = in.nonNegative(0, "number of points");
@@ -88,8 +87,7 @@ void readNodeFile(const std::string& path, RawMesh& raw) {
   expectNoMore(in, count, "node", header_line);
 }
 
-void readElementFile(const std::string& path, RawMesh& raw) {
-  LineReader in(path, '#');
+void readElementFile(LineReader& in, RawMesh& raw) {
   readHeader(in, "ntetrahedra nodes_per_tetrahedron nattributes");
   in.expectCount(3, "number of tetrahedra, nodes per tetrahedron, number of attributes");
   const long count = in.nonNegative(0, "number of tetrahedra");
@@ -126,8 +124,22 @@ MeshReadResult readTetGen(const std::string& path) {
   RawMesh raw;
   raw.node_path = prefix + ".node";
   raw.element_path = prefix + ".ele";
-  readNodeFile(raw.node_path, raw);
-  readElementFile(raw.element_path, raw);
+  LineReader nodes(raw.node_path, '#');
+  readNodeFile(nodes, raw);
+  LineReader elements(raw.element_path, '#');
+  readElementFile(elements, raw);
+  return internal::finalizeMesh(raw);
+}
+
+MeshReadResult readTetGen(std::istream& node_stream, std::istream& element_stream,
+                          const std::string& name) {
+  RawMesh raw;
+  raw.node_path = name + ".node";
+  raw.element_path = name + ".ele";
+  LineReader nodes(raw.node_path, node_stream, '#');
+  readNodeFile(nodes, raw);
+  LineReader elements(raw.element_path, element_stream, '#');
+  readElementFile(elements, raw);
   return internal::finalizeMesh(raw);
 }
 

@@ -18,6 +18,9 @@ TEST(BoxMesh, CountsVolumesAndOrientation) {
     EXPECT_GT(dc::signedVolume(mesh.positions, t), 0.0);
   EXPECT_NEAR(dc::totalVolume(mesh), 0.125, 1e-15);
   EXPECT_THROW(dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {0, 1, 1}), std::invalid_argument);
+  // More cells than an int can count nodes for, or than memory holds: refused, not attempted.
+  EXPECT_THROW(dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {2000, 2000, 2000}), std::invalid_argument);
+  EXPECT_THROW(dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1001, 1000, 1}), std::invalid_argument);
 }
 
 TEST(Surface, IsClosedOutwardAndConforming) {

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -187,6 +188,28 @@ TEST(MeshReadersGmsh, Version41RepairsInvertedElementAndDropsUnusedNode) {
   const std::string path = kTestMeshes + "repair_v41.msh";
   expectRepairedMesh(readGmsh(path), path);
   expectRepairedMesh(readMesh(path), path);
+}
+
+// The stream overloads read what the file readers read, and name the stream in every message.
+TEST(MeshReadersStreams, SameMeshAsFromTheFiles) {
+  for (const char* name : {"repair_v22.msh", "repair_v41.msh"}) {
+    std::ifstream file(kTestMeshes + name);
+    const MeshReadResult result = readGmsh(file, name);
+    expectSameMesh(result.mesh, readGmsh(kTestMeshes + name).mesh);
+    expectRepairedMesh(result, name);
+  }
+  const std::string prefix = kTestMeshes + "two_tets_0based";
+  std::ifstream nodes(prefix + ".node");
+  std::ifstream elements(prefix + ".ele");
+  expectSameMesh(readTetGen(nodes, elements, "two_tets").mesh, readTetGen(prefix).mesh);
+
+  std::istringstream text("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n1 0 0 x\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(text, "in memory"); }),
+                          {"in memory, line 6", "node 1", "'x'"}));
+  std::istringstream node_text("4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n");
+  std::istringstream element_text("1 4 0\n1 1 2 3 9\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readTetGen(node_text, element_text, "in_memory"); }),
+                          {"in_memory.ele, line 2", "node 9", "in_memory.node"}));
 }
 
 // --- Malformed files ----------------------------------------------------------------------------

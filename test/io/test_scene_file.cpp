@@ -163,6 +163,27 @@ TEST(SceneFile, EmptyOrUnknownSelectionsAreErrorsNamingTheKey) {
             "must be selected)");
 }
 
+// Found by fuzzing: a key that is not a name (a list, a map, a null) made yaml-cpp throw its own
+// exception out of the parser instead of a SceneError.
+TEST(SceneFile, KeysThatAreNotNamesAreErrorsNamingTheKey) {
+  EXPECT_EQ(errorOf("{[1, 2]: 3}"),
+            "test.yaml:1: scene: expected a key name, found a list, map or null");
+  EXPECT_EQ(errorOf(replaced(kScene, "min: [0, -0.05", "[1]: 1, min: [0, -0.05")),
+            "test.yaml:8: bodies[0].mesh.box: expected a key name, found a list, map or null");
+  EXPECT_EQ(errorOf(replaced(kScene, "model: fem", "groups: {{a: 1}: {nodes: [1]}}")),
+            "test.yaml:9: bodies[0].groups: expected a key name, found a list, map or null");
+}
+
+// The bound a user-facing parser needs: cells: [1e10, 1, 1] overflowed the conversion to int
+// (undefined behaviour), and [2000, 2000, 2000] asked for 4.8e10 tetrahedra.
+TEST(SceneFile, BoxMeshCellsAreBounded) {
+  EXPECT_EQ(errorOf(replaced(kScene, "cells: [10, 2, 2]", "cells: [1e10, 1, 1]")),
+            "test.yaml:8: bodies[0].mesh.box.cells: more than 1000000 cells in all");
+  EXPECT_EQ(errorOf(replaced(kScene, "cells: [10, 2, 2]", "cells: [2000, 2000, 2000]")),
+            "test.yaml:8: bodies[0].mesh.box.cells: more than 1000000 cells in all");
+  EXPECT_EQ(errorOf(replaced(kScene, "cells: [10, 2, 2]", "cells: [1000, 1000, 1]")), "");
+}
+
 TEST(SceneFile, MissingFileIsAClearError) {
   try {
     dio::readSceneFile("/nonexistent/scene.yaml");
