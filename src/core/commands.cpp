@@ -144,6 +144,10 @@ int CommandProcessor::apply(const WrenchCommand& command) {
       const int body = previous->second.body;
       wrenches_.erase(previous);
       updateExternalForces(body);
+    } else {
+      // Nothing to clear: it must still name nodes a wrench could act on, so that unknown
+      // bodies, nodes and groups are refused whatever the wrench.
+      resolve(simulation_.bodies()[findBody(command.body, command.nodes)], command.nodes);
     }
     return 0;
   }

@@ -627,7 +627,11 @@ void SimNode::onWrench(const geometry_msgs::WrenchStamped::ConstPtr& message) {
   command.source = frame;
   const Eigen::Vector3d force = toEigen(message->wrench.force);
   const Eigen::Vector3d torque = toEigen(message->wrench.torque);
-  if (!(force.isZero(0.0) && torque.isZero(0.0))) {
+  // A zero wrench removes the frame's wrench without resolving the frame (it may have left tf);
+  // one that removes nothing must name a frame a wrench could act on, like any other wrench.
+  const bool clears = force.isZero(0.0) && torque.isZero(0.0) &&
+                      session_->commands().activeWrenches().count(frame) > 0;
+  if (!clears) {
     FrameTarget target;
     std::string error;
     if (!resolveFrame(frame, target, error)) return refuse(topic, error);
@@ -781,7 +785,7 @@ void SimNode::onReconfigure(SimConfig& config) {
     }
   }
   if (tunes.empty() && !config.body.empty() && sim().bodyIndex(config.body) < 0) {
-    ROS_WARN("reconfigure: no body named '%s'; nothing changed", config.body.c_str());
+    refuse("~set_parameters", "no body named '" + config.body + "'; nothing changed");
     config = before;
     return;
   }
@@ -793,7 +797,7 @@ void SimNode::onReconfigure(SimConfig& config) {
   try {
     for (const core::TuneCommand& tune : tunes) apply(tune);
   } catch (const core::CommandError& e) {
-    ROS_WARN("reconfigure refused: %s", e.what());
+    refuse("~set_parameters", e.what());
     config = before;
     return;
   }

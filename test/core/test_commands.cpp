@@ -154,6 +154,16 @@ TEST(Commands, BadCommandsAreRefusedNamingTheProblemAndChangeNothing) {
   wrench.nodes.group.clear();
   wrench.nodes.node_numbers = {1, 99999};
   expectRefused(wrench, "99999");
+  // A zero wrench that has nothing to clear is checked like any other.
+  wrench.force.setZero();
+  expectRefused(wrench, "99999");
+  wrench.nodes.node_numbers.clear();
+  expectRefused(wrench, "exactly one of");
+  wrench.body = "sponge";
+  wrench.nodes.group = "tip";
+  expectRefused(wrench, "unknown body 'sponge'");
+  wrench.body = "beam";
+  EXPECT_EQ(commands.apply(wrench), 0);  // a valid target: nothing to clear, nothing changes
   dc::FixCommand fix;
   fix.body = "beam";
   fix.nodes.sphere = dc::Sphere{{5, 5, 5}, 0.1};

@@ -1,8 +1,13 @@
 """A small client of deformable_sim_node for the rostests: latest messages, services, waits."""
 import math
+import os
+import signal
+import subprocess
 import threading
 import time
+import xmlrpc.client
 
+import rosgraph
 import rospy
 from std_srvs.srv import Trigger
 
@@ -59,6 +64,35 @@ def connected(*publishers, timeout=10.0):
             return
         time.sleep(0.02)
     raise AssertionError('the node did not subscribe to %s' % [p.name for p in publishers])
+
+
+def start_recording(bag, topics, node='/deformable_sim', timeout=20.0):
+    """Starts rosbag record of topics into bag; returns once the node publishes every topic to
+    it (else the first messages are missing from the bag)."""
+    recorder = subprocess.Popen(['rosbag', 'record', '-O', bag] + list(topics),
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                start_new_session=True)
+    caller = rospy.get_name()
+    server = xmlrpc.client.ServerProxy(rosgraph.Master(caller).lookupNode(node))
+    deadline = time.time() + timeout
+    while time.time() < deadline:
+        connections = server.getBusInfo(caller)[2]
+        out = {c[4] for c in connections if c[2] == 'o' and 'record' in c[1]}
+        if all(t in out for t in topics):
+            return recorder
+        time.sleep(0.1)
+    raise AssertionError('rosbag record did not subscribe to %s' % list(topics))
+
+
+def stop_recording(recorder, bag):
+    """Stops rosbag record (SIGINT to it and its recorder: the bag is closed) and waits for the
+    bag."""
+    os.killpg(recorder.pid, signal.SIGINT)
+    recorder.wait(timeout=30)
+    deadline = time.time() + 10.0
+    while not os.path.exists(bag) and time.time() < deadline:
+        time.sleep(0.1)
+    assert os.path.exists(bag), 'rosbag record wrote no bag'
 
 
 def positions(state):
