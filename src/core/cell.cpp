@@ -1,6 +1,7 @@
 #include "deformable_sim/core/cell.h"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -187,6 +188,37 @@ CellRest computeCellRest(CellType type, const CellVectors& corners) {
     for (int k = 0; k < size; ++k) rest.shape_integrals[k] += q.weight * det * shape.values[k];
   }
   return rest;
+}
+
+std::pair<double, double> jacobianRange(CellType type, const CellVectors& corners) {
+  const int size = static_cast<int>(type);
+  auto det = [&](const Eigen::Vector3d& xi) {
+    return jacobian(size, corners, shapeFunctions(type, xi).gradients).determinant();
+  };
+  double low = det(naturalCentre(type)), high = low;
+  for (const QuadraturePoint& q : quadrature(type)) {
+    const double d = det(q.xi);
+    low = std::min(low, d);
+    high = std::max(high, d);
+  }
+  return {low, high};
+}
+
+Cell mirrored(const Cell& cell) {
+  Cell m = cell;
+  const std::array<int, 8>& n = cell.nodes;
+  switch (cell.type) {
+    case CellType::kHexahedron:
+      m.nodes = {n[4], n[5], n[6], n[7], n[0], n[1], n[2], n[3]};
+      break;
+    case CellType::kWedge:
+      m.nodes = {n[3], n[4], n[5], n[0], n[1], n[2], 0, 0};
+      break;
+    case CellType::kPyramid:
+      m.nodes = {n[0], n[3], n[2], n[1], n[4], 0, 0, 0};
+      break;
+  }
+  return m;
 }
 
 Eigen::MatrixXd cellStiffness(CellType type, const CellVectors& corners, double lambda, double mu) {

@@ -1,7 +1,7 @@
 // Gmsh ASCII .msh reader, format versions 2.2 and 4.1. Only $MeshFormat, $Nodes and $Elements
 // are interpreted; every other section is skipped. Lower-dimensional elements are skipped, linear
-// tetrahedra are kept, and any other volume element is an error (not silently dropped, which
-// would leave holes in the body).
+// tetrahedra, pyramids, wedges (prisms) and hexahedra are kept, and any other volume element is an
+// error (not silently dropped, which would leave holes in the body).
 #include <string>
 #include <string_view>
 
@@ -13,11 +13,12 @@ namespace {
 
 using internal::LineReader;
 using internal::located;
+using internal::RawElement;
 using internal::RawMesh;
 using internal::RawNode;
-using internal::RawTetrahedron;
 
-constexpr long kTetrahedronType = 4;
+// Gmsh's linear volume elements, which share their node order with core::Cell.
+bool isLinearVolumeType(long type) { return type == 4 || type == 5 || type == 6 || type == 7; }
 
 struct ElementType {
   long type;
@@ -278,19 +279,20 @@ class GmshParser {
     expectEnd(section, announced(num_blocks, "node blocks", header_line));
   }
 
-  // Keeps tetrahedra, counts lower-dimensional elements, throws for other volume elements.
-  // Returns whether the element is a tetrahedron whose nodes the caller should read.
+  // Keeps linear volume elements, counts lower-dimensional ones, throws for other volume
+  // elements. Returns whether the element is one whose nodes the caller should read.
   bool acceptElement(long number, const ElementType& type) {
     if (type.dimension < 3) {
       ++raw_.skipped_elements;
       return false;
     }
-    if (type.type != kTetrahedronType) {
+    if (!isLinearVolumeType(type.type)) {
       throw MeshError(located(in_.path(), in_.lineNumber(),
                               "element " + std::to_string(number) + " has type " +
                                   std::to_string(type.type) + " (" + type.name +
-                                  "), which is not supported yet (only 4-node tetrahedra, "
-                                  "type 4, are)"));
+                                  "), which is not supported yet (linear volume elements are: "
+                                  "4-node tetrahedra, type 4; 8-node hexahedra, 5; 6-node "
+                                  "prisms, 6; 5-node pyramids, 7)"));
     }
     return true;
   }
@@ -323,11 +325,14 @@ class GmshParser {
                           (num_tags == 1 ? " tag" : " tags") + " and the " +
                           std::to_string(type.num_nodes) + " nodes of a " + type.name);
       if (!acceptElement(number, type)) continue;
-      RawTetrahedron tet;
-      tet.number = number;
-      tet.line = in_.lineNumber();
-      for (int k = 0; k < 4; ++k) tet.nodes[k] = in_.integer(3 + num_tags + k, "node number");
-      raw_.tetrahedra.push_back(tet);
+      RawElement element;
+      element.number = number;
+      element.size = type.num_nodes;
+      element.line = in_.lineNumber();
+      for (int k = 0; k < element.size; ++k) {
+        element.nodes[k] = in_.integer(3 + num_tags + k, "node number");
+      }
+      raw_.elements.push_back(element);
     }
     expectEnd(section, announced(count, "elements", header_line));
   }
@@ -365,11 +370,12 @@ class GmshParser {
             "element tag and the " + std::to_string(type.num_nodes) + " nodes of a " + type.name);
         const long number = in_.integer(0, "element tag");
         if (!acceptElement(number, type)) continue;
-        RawTetrahedron tet;
-        tet.number = number;
-        tet.line = in_.lineNumber();
-        for (int k = 0; k < 4; ++k) tet.nodes[k] = in_.integer(1 + k, "node number");
-        raw_.tetrahedra.push_back(tet);
+        RawElement element;
+        element.number = number;
+        element.size = type.num_nodes;
+        element.line = in_.lineNumber();
+        for (int k = 0; k < element.size; ++k) element.nodes[k] = in_.integer(1 + k, "node number");
+        raw_.elements.push_back(element);
       }
       read += in_block;
     }

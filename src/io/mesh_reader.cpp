@@ -13,6 +13,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "deformable_sim/core/cell.h"
 #include "raw_mesh.h"
 
 namespace deformable_sim::io {
@@ -162,8 +163,8 @@ MeshReadResult finalizeMesh(const RawMesh& raw) {
     }
   }
 
-  if (raw.tetrahedra.empty()) {
-    std::string message = "the mesh has no tetrahedra";
+  if (raw.elements.empty()) {
+    std::string message = "the mesh has no volume elements";
     if (raw.skipped_elements > 0) {
       message +=
           " (" +
@@ -174,24 +175,24 @@ MeshReadResult finalizeMesh(const RawMesh& raw) {
   }
 
   // Elements: every node known and listed once.
-  std::vector<std::array<int, 4>> raw_corners(raw.tetrahedra.size());
+  std::vector<std::array<int, 8>> raw_corners(raw.elements.size());
   std::vector<bool> used(raw.nodes.size(), false);
-  for (std::size_t e = 0; e < raw.tetrahedra.size(); ++e) {
-    const RawTetrahedron& tet = raw.tetrahedra[e];
-    const std::string element = "element " + std::to_string(tet.number);
-    for (int k = 0; k < 4; ++k) {
-      const long number = tet.nodes[k];
+  for (std::size_t e = 0; e < raw.elements.size(); ++e) {
+    const RawElement& element = raw.elements[e];
+    const std::string name = "element " + std::to_string(element.number);
+    for (int k = 0; k < element.size; ++k) {
+      const long number = element.nodes[k];
       const auto it = raw_index_of.find(number);
       if (it == raw_index_of.end()) {
-        throw MeshError(located(raw.element_path, tet.line,
-                                element + " references node " + std::to_string(number) +
+        throw MeshError(located(raw.element_path, element.line,
+                                name + " references node " + std::to_string(number) +
                                     ", which is not defined in " + raw.node_path));
       }
       for (int j = 0; j < k; ++j) {
-        if (tet.nodes[j] == number) {
+        if (element.nodes[j] == number) {
           throw MeshError(
-              located(raw.element_path, tet.line,
-                      element + " lists node " + std::to_string(number) + " more than once"));
+              located(raw.element_path, element.line,
+                      name + " lists node " + std::to_string(number) + " more than once"));
         }
       }
       raw_corners[e][k] = it->second;
@@ -216,45 +217,70 @@ MeshReadResult finalizeMesh(const RawMesh& raw) {
   if (!dropped.empty()) {
     result.warnings.push_back(raw.node_path + ": dropped " +
                               counted(dropped.size(), "node", "nodes") +
-                              " that no tetrahedron uses: " + listNumbers(dropped));
+                              " that no element uses: " + listNumbers(dropped));
   }
 
-  // Tetrahedra: reject degenerate ones, reorient inverted ones.
+  // Reject degenerate elements, reorient mirrored ones.
   std::vector<long> reoriented;
-  mesh.tetrahedra.reserve(raw.tetrahedra.size());
-  for (std::size_t e = 0; e < raw.tetrahedra.size(); ++e) {
-    const RawTetrahedron& raw_tet = raw.tetrahedra[e];
-    core::Tetrahedron tet;
-    for (int k = 0; k < 4; ++k) tet[k] = new_index[raw_corners[e][k]];
-
+  for (std::size_t e = 0; e < raw.elements.size(); ++e) {
+    const RawElement& raw_element = raw.elements[e];
     double longest_edge = 0.0;
-    for (int a = 0; a < 4; ++a) {
-      for (int b = a + 1; b < 4; ++b) {
-        longest_edge =
-            std::max(longest_edge, (mesh.positions[tet[a]] - mesh.positions[tet[b]]).norm());
+    for (int a = 0; a < raw_element.size; ++a) {
+      for (int b = a + 1; b < raw_element.size; ++b) {
+        longest_edge = std::max(longest_edge, (mesh.positions[new_index[raw_corners[e][a]]] -
+                                               mesh.positions[new_index[raw_corners[e][b]]])
+                                                  .norm());
       }
     }
-    const double volume = core::signedVolume(mesh.positions, tet);
-    // Scale-free test: 6V relative to the cube of the element size.
-    if (std::abs(6.0 * volume) <= 1e-12 * longest_edge * longest_edge * longest_edge) {
+    // Scale-free: 6V (a tetrahedron) or det J (the others) against the cube of the element size.
+    const double negligible = 1e-12 * longest_edge * longest_edge * longest_edge;
+    auto describe = [&](const std::string& what) {
       std::ostringstream details;
-      details << "element " << raw_tet.number << " (nodes " << raw_tet.nodes[0] << " "
-              << raw_tet.nodes[1] << " " << raw_tet.nodes[2] << " " << raw_tet.nodes[3]
-              << ") has zero volume (" << volume << " m^3, longest edge " << longest_edge
-              << " m): its corners are coplanar or coincide";
-      throw MeshError(located(raw.element_path, raw_tet.line, details.str()));
+      details << "element " << raw_element.number << " (nodes";
+      for (int k = 0; k < raw_element.size; ++k) details << " " << raw_element.nodes[k];
+      details << ") " << what;
+      return located(raw.element_path, raw_element.line, details.str());
+    };
+    if (raw_element.size == 4) {
+      core::Tetrahedron tet;
+      for (int k = 0; k < 4; ++k) tet[k] = new_index[raw_corners[e][k]];
+      const double volume = core::signedVolume(mesh.positions, tet);
+      if (std::abs(6.0 * volume) <= negligible) {
+        std::ostringstream what;
+        what << "has zero volume (" << volume << " m^3, longest edge " << longest_edge
+             << " m): its corners are coplanar or coincide";
+        throw MeshError(describe(what.str()));
+      }
+      if (volume < 0.0) {
+        std::swap(tet[2], tet[3]);
+        reoriented.push_back(raw_element.number);
+      }
+      mesh.tetrahedra.push_back(tet);
+      continue;
     }
-    if (volume < 0.0) {
-      std::swap(tet[2], tet[3]);
-      reoriented.push_back(raw_tet.number);
+    core::Cell cell;
+    cell.type = static_cast<core::CellType>(raw_element.size);
+    for (int k = 0; k < raw_element.size; ++k) cell.nodes[k] = new_index[raw_corners[e][k]];
+    auto [low, high] = core::jacobianRange(cell.type, core::cellCorners(cell, mesh.positions));
+    if (high < -negligible) {
+      cell = core::mirrored(cell);
+      std::tie(low, high) = core::jacobianRange(cell.type, core::cellCorners(cell, mesh.positions));
+      reoriented.push_back(raw_element.number);
     }
-    mesh.tetrahedra.push_back(tet);
+    if (!(low > negligible)) {
+      std::ostringstream what;
+      what << "is degenerate or tangled: det J ranges over [" << low << ", " << high
+           << "] m^3 within it (it must stay positive)";
+      throw MeshError(describe(what.str()));
+    }
+    mesh.cells.push_back(cell);
   }
   if (!reoriented.empty()) {
     result.warnings.push_back(raw.element_path + ": reoriented " +
-                              counted(reoriented.size(), "negatively oriented tetrahedron",
-                                      "negatively oriented tetrahedra") +
-                              " by swapping the 3rd and 4th node: " +
+                              counted(reoriented.size(), "element listed in mirrored order",
+                                      "elements listed in mirrored order") +
+                              " (tetrahedra: 3rd and 4th node swapped; others: top and bottom "
+                              "swapped, a pyramid's base reversed): " +
                               (reoriented.size() == 1 ? "element " : "elements ") +
                               listNumbers(reoriented));
   }

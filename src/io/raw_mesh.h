@@ -22,26 +22,28 @@ struct RawNode {
   long position_line = 0;  // where the coordinates are (Gmsh 4.1 puts them on another line)
 };
 
-struct RawTetrahedron {
+// A volume element: a tetrahedron (4 nodes), pyramid (5), wedge (6) or hexahedron (8).
+struct RawElement {
   long number = 0;                 // the file's own element number
-  std::array<long, 4> nodes = {};  // file node numbers, as listed
+  int size = 4;                    // number of nodes
+  std::array<long, 8> nodes = {};  // file node numbers, as listed
   long line = 0;
 };
 
-// Nodes and tetrahedra exactly as listed in the file(s), unvalidated. TetGen keeps nodes and
-// elements in two files, so each has its own path for the messages.
+// Nodes and volume elements exactly as listed in the file(s), unvalidated. TetGen keeps nodes
+// and elements in two files, so each has its own path for the messages.
 struct RawMesh {
   std::string node_path;
   std::string element_path;
   std::vector<RawNode> nodes;
-  std::vector<RawTetrahedron> tetrahedra;
-  long element_section_line = 0;  // header of the element list, for "no tetrahedra" errors
+  std::vector<RawElement> elements;
+  long element_section_line = 0;  // header of the element list, for "no volume elements" errors
   long skipped_elements = 0;      // lower-dimensional elements the reader ignored
 };
 
 // Validates `raw` (finite coordinates, unique node numbers, known and distinct element nodes,
-// non-degenerate tetrahedra, at least one tetrahedron) and repairs what can be repaired without
-// guessing (drops unused nodes, reorients inverted tetrahedra), one warning per kind of repair.
+// non-degenerate elements, at least one) and repairs what can be repaired without guessing (drops
+// unused nodes, reorients elements listed in mirrored order), one warning per kind of repair.
 // Throws MeshError naming file, line and node/element number.
 MeshReadResult finalizeMesh(const RawMesh& raw);
 

@@ -9,9 +9,9 @@ namespace deformable_sim::io {
 namespace {
 
 using internal::LineReader;
+using internal::RawElement;
 using internal::RawMesh;
 using internal::RawNode;
-using internal::RawTetrahedron;
 
 bool endsWith(const std::string& text, const std::string& suffix) {
   return text.size() >= suffix.size() &&
@@ -107,12 +107,12 @@ void readElementFile(LineReader& in, RawMesh& raw) {
   for (long i = 0; i < count; ++i) {
     nextEntry(in, i, count, "element", header_line);
     in.expectCount(std::size_t{5} + static_cast<std::size_t>(num_attributes), layout);
-    RawTetrahedron tet;
+    RawElement tet;
     tet.number = in.integer(0, "element number");
     for (int k = 0; k < 4; ++k) tet.nodes[k] = in.integer(1 + k, "node number");
     for (long a = 0; a < num_attributes; ++a) in.real(5 + a, "attribute");
     tet.line = in.lineNumber();
-    raw.tetrahedra.push_back(tet);
+    raw.elements.push_back(tet);
   }
   expectNoMore(in, count, "element", header_line);
 }

@@ -2,7 +2,7 @@
 //
 // Input: a Gmsh file when it starts with '$'; otherwise a TetGen pair, the .node file, then a line
 // "%%ele", then the .ele file. A reader may only throw MeshError. What it accepts must be a valid
-// mesh (finite nodes, each used, tetrahedra of positive volume on known nodes) that builds a body,
+// mesh (finite nodes, each used, elements of positive volume on known nodes) that builds a body,
 // and a small one is stepped: its state must stay finite. Corpus:
 // test/fuzz/corpus/fuzz_mesh_readers.
 #include <cstddef>
@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "deformable_sim/core/cell.h"
 #include "deformable_sim/core/fem_body.h"
 #include "deformable_sim/core/mesh.h"
 #include "deformable_sim/io/mesh_reader.h"
@@ -24,7 +25,7 @@ constexpr char kElementSeparator[] = "\n%%ele\n";
 constexpr int kMaxSteppedTetrahedra = 64;  // larger meshes are only read: keep runs fast
 
 void requireValidMesh(const core::Mesh& mesh) {
-  require(!mesh.tetrahedra.empty(), "accepted a mesh without tetrahedra");
+  require(mesh.numElements() > 0, "accepted a mesh without elements");
   require(mesh.node_numbers.size() == mesh.positions.size(),
           "node numbers and positions differ in count");
   std::vector<bool> used(mesh.positions.size(), false);
@@ -36,9 +37,18 @@ void requireValidMesh(const core::Mesh& mesh) {
     }
     require(core::signedVolume(mesh.positions, tet) > 0.0, "accepted a non-positive volume");
   }
+  for (const core::Cell& cell : mesh.cells) {
+    for (int k = 0; k < cell.size(); ++k) {
+      require(cell.nodes[k] >= 0 && cell.nodes[k] < mesh.numNodes(), "node index out of range");
+      for (int j = 0; j < k; ++j) require(cell.nodes[j] != cell.nodes[k], "a node twice in a cell");
+      used[cell.nodes[k]] = true;
+    }
+    require(core::jacobianRange(cell.type, core::cellCorners(cell, mesh.positions)).first > 0.0,
+            "accepted a cell with a non-positive Jacobian");
+  }
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     require(mesh.positions[i].allFinite(), "accepted a non-finite coordinate");
-    require(used[i], "kept a node that no tetrahedron uses");
+    require(used[i], "kept a node that no element uses");
   }
 }
 

@@ -131,14 +131,22 @@ TEST(MeshReadersReference, TetS2Counts) {
   }
 }
 
-TEST(MeshReadersReference, HexahedralMeshIsRejectedWithTheElement) {
-  const std::string v22 = kReferenceMeshes + "hex_L1/hex_L1.msh";
-  EXPECT_TRUE(containsAll(
-      errorOf([&] { readGmsh(v22); }),
-      {v22, "line 57", "element 1 has type 5 (8-node hexahedron)", "not supported yet"}));
-  const std::string v41 = kReferenceMeshes + "hex_L1/hex_L1_v41.msh";
-  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(v41); }),
-                          {v41, "line 107", "element 1 has type 5 (8-node hexahedron)"}));
+TEST(MeshReadersReference, HexahedralMeshReadsTheSameFromBothVersions) {
+  const std::string prefix = kReferenceMeshes + "hex_L2/hex_L2";
+  const MeshReadResult v22 = readMesh(prefix + ".msh");
+  const MeshReadResult v41 = readMesh(prefix + "_v41.msh");
+  for (const MeshReadResult* result : {&v22, &v41}) {
+    EXPECT_TRUE(result->warnings.empty());
+    EXPECT_EQ(result->mesh.numNodes(), 189);  // the same nodes as tetS_L2
+    EXPECT_EQ(result->mesh.numTetrahedra(), 0);
+    ASSERT_EQ(result->mesh.cells.size(), 80u);
+    for (const core::Cell& cell : result->mesh.cells) {
+      EXPECT_EQ(cell.type, core::CellType::kHexahedron);
+    }
+    EXPECT_NEAR(core::totalVolume(result->mesh), 0.01, 1e-15);
+  }
+  EXPECT_EQ(v22.mesh.positions, v41.mesh.positions);
+  for (size_t c = 0; c < 80; ++c) EXPECT_EQ(v22.mesh.cells[c].nodes, v41.mesh.cells[c].nodes);
 }
 
 // --- Hand-written meshes ------------------------------------------------------------------------
@@ -174,7 +182,8 @@ void expectRepairedMesh(const MeshReadResult& result, const std::string& path) {
 
   ASSERT_EQ(result.warnings.size(), 2u);
   EXPECT_TRUE(containsAll(result.warnings[0], {path, "dropped 1 node", "60"}));
-  EXPECT_TRUE(containsAll(result.warnings[1], {path, "1 negatively oriented", "element 8"}));
+  EXPECT_TRUE(
+      containsAll(result.warnings[1], {path, "1 element listed in mirrored order", "element 8"}));
   EXPECT_EQ(result.warnings[1].find("element 7"), std::string::npos);
 }
 
@@ -319,16 +328,41 @@ TEST_F(MalformedMeshTest, TruncatedFile) {
                           {node, "line 5", "3 of the 5 nodes announced on line 2", "node 4 of 5"}));
 }
 
-TEST_F(MalformedMeshTest, UnsupportedHexahedron) {
-  // A triangle (skipped) and then element 12, a hexahedron, on line 18.
-  const std::string path = write(
-      "hex.msh", kFormat22 +
-                     "$Nodes\n8\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n"
-                     "5 0 0 1\n6 1 0 1\n7 1 1 1\n8 0 1 1\n$EndNodes\n"
-                     "$Elements\n2\n11 2 2 0 1 1 2 3\n12 5 2 0 1 1 2 3 4 5 6 7 8\n$EndElements\n");
-  EXPECT_TRUE(containsAll(
-      errorOf([&] { readGmsh(path); }),
-      {path, "line 18", "element 12 has type 5 (8-node hexahedron), which is not supported yet"}));
+TEST_F(MalformedMeshTest, CellsAreReadMirroredOnesReorderedTangledOnesRefused) {
+  // A unit cube and a pyramid on its top face (apex node 9), after a triangle that is skipped.
+  const std::string nodes =
+      "$Nodes\n9\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n"
+      "5 0 0 1\n6 1 0 1\n7 1 1 1\n8 0 1 1\n9 0.5 0.5 1.5\n$EndNodes\n";
+  auto mesh_with = [&](const std::string& name, const std::string& hex) {
+    return write(name, kFormat22 + nodes + "$Elements\n3\n11 2 2 0 1 1 2 3\n12 5 2 0 1 " + hex +
+                           "\n13 7 2 0 1 5 6 7 8 9\n$EndElements\n");
+  };
+  const MeshReadResult good = readGmsh(mesh_with("cube.msh", "1 2 3 4 5 6 7 8"));
+  EXPECT_TRUE(good.warnings.empty());
+  ASSERT_EQ(good.mesh.cells.size(), 2u);
+  EXPECT_EQ(good.mesh.cells[1].type, core::CellType::kPyramid);
+  EXPECT_NEAR(core::totalVolume(good.mesh), 1.0 + 1.0 / 6.0, 1e-15);
+  // The shared face is interior: five squares of the cube and four triangles of the pyramid.
+  EXPECT_EQ(core::extractBoundary(good.mesh).size(), 9u);
+
+  const std::string path = mesh_with("mirrored.msh", "5 6 7 8 1 2 3 4");
+  const MeshReadResult mirrored = readGmsh(path);
+  ASSERT_EQ(mirrored.warnings.size(), 1u);
+  EXPECT_TRUE(
+      containsAll(mirrored.warnings[0], {path, "1 element listed in mirrored order", "12"}));
+  EXPECT_NEAR(core::totalVolume(mirrored.mesh), 1.0 + 1.0 / 6.0, 1e-15);
+
+  const std::string tangled = mesh_with("tangled.msh", "2 1 3 4 5 6 7 8");
+  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(tangled); }),
+                          {tangled, "line 19", "element 12 (nodes 2 1 3 4 5 6 7 8)", "tangled"}));
+
+  // Second-order elements are refused, naming what is supported.
+  const std::string quadratic =
+      write("quadratic.msh",
+            kFormat22 + nodes + "$Elements\n1\n12 11 2 0 1 1 2 3 4 5 6 7 8 9 1\n$EndElements\n");
+  EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(quadratic); }),
+                          {quadratic, "line 18", "10-node second order tetrahedron",
+                           "not supported yet", "8-node hexahedra, 5"}));
 
   const std::string ele = (dir_ / "quadratic.ele").string();
   write("quadratic.node", "4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n");
@@ -411,15 +445,16 @@ TEST_F(MalformedMeshTest, MalformedValues) {
                           {short_tet, "line 13", "element 3", "4-node tetrahedron"}));
 }
 
-TEST_F(MalformedMeshTest, NoTetrahedra) {
+TEST_F(MalformedMeshTest, NoVolumeElements) {
   const std::string path =
       write("surface.msh", kFormat22 + kNodes22 + "$Elements\n1\n1 2 2 0 1 1 2 3\n$EndElements\n");
   EXPECT_TRUE(containsAll(errorOf([&] { readGmsh(path); }),
-                          {path, "line 11", "no tetrahedra", "1 lower-dimensional element"}));
+                          {path, "line 11", "no volume elements", "1 lower-dimensional element"}));
 
   write("empty.node", "# nothing\n0 3 0 0\n");
   const std::string ele = write("empty.ele", "0 4 0\n");
-  EXPECT_TRUE(containsAll(errorOf([&] { readTetGen(ele); }), {ele, "line 1", "no tetrahedra"}));
+  EXPECT_TRUE(
+      containsAll(errorOf([&] { readTetGen(ele); }), {ele, "line 1", "no volume elements"}));
 }
 
 TEST_F(MalformedMeshTest, ManyUnusedNodesGiveOneWarningWithACount) {

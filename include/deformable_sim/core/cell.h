@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "deformable_sim/core/mesh.h"
@@ -56,6 +57,14 @@ struct CellRest {
 /// Throws std::invalid_argument when the isoparametric map is not orientation-preserving
 /// (det J <= 0) at an integration point or the centre: an inverted, flat or tangled cell.
 CellRest computeCellRest(CellType type, const CellVectors& corners);
+
+/// The smallest and largest det J over the centre and the integration points: both positive for
+/// a valid cell, both negative for one listed in mirrored order, mixed for a tangled one.
+std::pair<double, double> jacobianRange(CellType type, const CellVectors& corners);
+
+/// The same cell with its node order mirrored (bottom and top swapped; a pyramid's base
+/// reversed): turns a mirrored cell into a valid one.
+Cell mirrored(const Cell& cell);
 
 /// The rest stiffness (3n x 3n, node-major) for Lame parameters lambda and mu, Pa.
 Eigen::MatrixXd cellStiffness(CellType type, const CellVectors& corners, double lambda, double mu);
