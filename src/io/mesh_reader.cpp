@@ -255,6 +255,27 @@ MeshReadResult finalizeMesh(const RawMesh& raw) {
                               (reoriented.size() == 1 ? "element " : "elements ") +
                               listNumbers(reoriented));
   }
+  // Slivers are kept (their volume is positive) but named: they make the stiffness ill-conditioned.
+  const std::vector<int> slivers = core::sliverTetrahedra(mesh);
+  if (!slivers.empty()) {
+    std::vector<long> numbers;
+    int worst = slivers.front();
+    for (int e : slivers) {
+      numbers.push_back(raw.tetrahedra[e].number);
+      if (core::shapeQuality(mesh.positions, mesh.tetrahedra[e]) <
+          core::shapeQuality(mesh.positions, mesh.tetrahedra[worst])) {
+        worst = e;
+      }
+    }
+    std::ostringstream text;
+    text << raw.element_path << ": kept "
+         << counted(slivers.size(), "sliver tetrahedron", "sliver tetrahedra")
+         << " (shape quality below " << core::kSliverQuality << ", 1 = regular; the worst "
+         << core::shapeQuality(mesh.positions, mesh.tetrahedra[worst]) << " at element "
+         << raw.tetrahedra[worst].number << "), which make the stiffness ill-conditioned: "
+         << (slivers.size() == 1 ? "element " : "elements ") << listNumbers(numbers);
+    result.warnings.push_back(text.str());
+  }
   return result;
 }
 
