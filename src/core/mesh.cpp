@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -18,6 +19,23 @@ double signedVolume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
 
 double signedVolume(const std::vector<Eigen::Vector3d>& positions, const Tetrahedron& t) {
   return signedVolume(positions[t[0]], positions[t[1]], positions[t[2]], positions[t[3]]);
+}
+
+double shapeQuality(const std::vector<Eigen::Vector3d>& positions, const Tetrahedron& t) {
+  double squares = 0.0;
+  for (int a = 0; a < 4; ++a) {
+    for (int b = a + 1; b < 4; ++b) squares += (positions[t[a]] - positions[t[b]]).squaredNorm();
+  }
+  const double rms = std::sqrt(squares / 6.0);
+  return 6.0 * std::sqrt(2.0) * signedVolume(positions, t) / (rms * rms * rms);
+}
+
+std::vector<int> sliverTetrahedra(const Mesh& mesh, double min_quality) {
+  std::vector<int> slivers;
+  for (int e = 0; e < mesh.numTetrahedra(); ++e) {
+    if (shapeQuality(mesh.positions, mesh.tetrahedra[e]) < min_quality) slivers.push_back(e);
+  }
+  return slivers;
 }
 
 double totalVolume(const Mesh& mesh) {

@@ -222,6 +222,7 @@ MeshReadResult finalizeMesh(const RawMesh& raw) {
 
   // Reject degenerate elements, reorient mirrored ones.
   std::vector<long> reoriented;
+  std::vector<long> tetrahedron_numbers;  // the file's number of each kept tetrahedron
   for (std::size_t e = 0; e < raw.elements.size(); ++e) {
     const RawElement& raw_element = raw.elements[e];
     double longest_edge = 0.0;
@@ -256,6 +257,7 @@ MeshReadResult finalizeMesh(const RawMesh& raw) {
         reoriented.push_back(raw_element.number);
       }
       mesh.tetrahedra.push_back(tet);
+      tetrahedron_numbers.push_back(raw_element.number);
       continue;
     }
     core::Cell cell;
@@ -283,6 +285,27 @@ MeshReadResult finalizeMesh(const RawMesh& raw) {
                               "swapped, a pyramid's base reversed): " +
                               (reoriented.size() == 1 ? "element " : "elements ") +
                               listNumbers(reoriented));
+  }
+  // Slivers are kept (their volume is positive) but named: they make the stiffness ill-conditioned.
+  const std::vector<int> slivers = core::sliverTetrahedra(mesh);
+  if (!slivers.empty()) {
+    std::vector<long> numbers;
+    int worst = slivers.front();
+    for (int e : slivers) {
+      numbers.push_back(tetrahedron_numbers[e]);
+      if (core::shapeQuality(mesh.positions, mesh.tetrahedra[e]) <
+          core::shapeQuality(mesh.positions, mesh.tetrahedra[worst])) {
+        worst = e;
+      }
+    }
+    std::ostringstream text;
+    text << raw.element_path << ": kept "
+         << counted(slivers.size(), "sliver tetrahedron", "sliver tetrahedra")
+         << " (shape quality below " << core::kSliverQuality << ", 1 = regular; the worst "
+         << core::shapeQuality(mesh.positions, mesh.tetrahedra[worst]) << " at element "
+         << tetrahedron_numbers[worst] << "), which make the stiffness ill-conditioned: "
+         << (slivers.size() == 1 ? "element " : "elements ") << listNumbers(numbers);
+    result.warnings.push_back(text.str());
   }
   return result;
 }

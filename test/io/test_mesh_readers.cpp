@@ -294,6 +294,20 @@ TEST_F(MalformedMeshTest, DegeneracyToleranceIsRelativeToElementSize) {
       containsAll(errorOf([&] { readTetGen(ele); }), {ele, "line 2", "element 1", "zero volume"}));
 }
 
+TEST_F(MalformedMeshTest, SliversAreKeptWithAWarningNamingThem) {
+  // Element 7 is the unit corner tetrahedron; element 9 shares its base and has its apex 1e-4
+  // above it, far enough from zero volume (1e-12) to be kept, but a sliver.
+  write("slivers.node", "5 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n5 0.3 0.3 -1e-4\n");
+  write("slivers.ele", "2 4 0\n7 1 2 3 4\n9 1 3 2 5\n");
+  const std::string ele = (dir_ / "slivers.ele").string();
+  const MeshReadResult read = readTetGen(ele);
+  ASSERT_EQ(read.mesh.numTetrahedra(), 2);
+  ASSERT_EQ(read.warnings.size(), 1u);
+  EXPECT_TRUE(containsAll(read.warnings[0], {ele, "1 sliver tetrahedron", "element 9"}));
+  EXPECT_EQ(read.warnings[0].find("element 7"), std::string::npos);
+  EXPECT_EQ(core::sliverTetrahedra(read.mesh), std::vector<int>{1});
+}
+
 TEST_F(MalformedMeshTest, NanCoordinate) {
   const std::string path =
       write("nan.msh", kFormat22 + "$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 nan 0\n4 0 0 1\n$EndNodes\n" +

@@ -53,6 +53,19 @@ double signedVolume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
 /// Signed volume of tetrahedron t of the mesh at the given positions, m^3.
 double signedVolume(const std::vector<Eigen::Vector3d>& positions, const Tetrahedron& t);
 
+/// Shape quality of tetrahedron t, 6 sqrt(2) V / l^3 with l the root mean square of its six edge
+/// lengths: 1 for the regular tetrahedron, 0.66 for those of makeBoxMesh, towards 0 as it
+/// flattens, negative when inverted. Scale-free.
+double shapeQuality(const std::vector<Eigen::Vector3d>& positions, const Tetrahedron& t);
+
+/// Below this shape quality a tetrahedron counts as a sliver: accepted (its volume is positive),
+/// but its stiffness across its thin direction is out of scale with its mass and its neighbours'.
+constexpr double kSliverQuality = 0.01;
+
+/// Indices of the tetrahedra whose shape quality is below `min_quality`, ascending. The mesh
+/// readers report them as a warning; meshes built in code can be checked with it.
+std::vector<int> sliverTetrahedra(const Mesh& mesh, double min_quality = kSliverQuality);
+
 /// Sum of the element volumes at rest, m^3.
 double totalVolume(const Mesh& mesh);
 
