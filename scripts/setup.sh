@@ -23,6 +23,7 @@ export PATH=/usr/bin:/bin:/usr/sbin:/sbin:$PATH
 
 packages=(
   build-essential cmake libgtest-dev libeigen3-dev libyaml-cpp-dev libbenchmark-dev
+  libbullet-dev pkg-config
   ros-core-dev catkin python3-catkin-pkg python3-rostest rosbash
   libtf2-ros-dev libstd-srvs-dev libdiagnostic-updater-dev liburdfdom-dev
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
