@@ -30,9 +30,10 @@ cxx=clang++-14
 command -v "$cxx" > /dev/null || { echo "$cxx not found (apt-get install clang-14 libclang-rt-14-dev)" >&2; exit 1; }
 
 # The ROS-free libraries: deformable_sim_core and the readers of deformable_sim_io (not URDF).
+# Paths are relative to the repository (the glob too: expanded after the cd).
+cd "$repo"
 sources=(src/core/*.cpp src/io/mesh_reader.cpp src/io/gmsh_reader.cpp src/io/tetgen_reader.cpp
   src/io/scene_file.cpp)
-cd "$repo"
 # No OpenMP: the solver's loops run on one thread (bit-identical results, documented). Eigen's
 # index checks are off as in a release build: traced by libFuzzer they took half of all time, and
 # AddressSanitizer still catches an index past a vector's end.
@@ -71,7 +72,8 @@ mkdir -p "$build/obj"
 signature="${flags[*]} | ${numeric[*]} | $(declare -f compile)"
 if [ "$(cat "$build/signature" 2>/dev/null)" != "$signature" ]; then rm -f "$build"/obj/*.o; fi
 
-# $1 target, $2 seconds taken, $3 failure text (empty: passed). One test case, as gtest writes.
+# $1 target, $2 seconds taken, $3 failure text (empty: passed), $4 the input that failed (if any).
+# One test case, as gtest writes.
 write_result() {
   local target=$1 time=$2 failure=$3 failures=0
   [ -n "$failure" ] && failures=1
@@ -83,7 +85,7 @@ write_result() {
     echo "    <testcase name=\"$target\" status=\"run\" time=\"$time\" classname=\"Fuzz\">"
     if [ -n "$failure" ]; then
       printf '      <failure message="%s" type=""><![CDATA[%s]]></failure>\n' \
-        "$target: $(basename "$4")" "${failure//]]>/]] >}"
+        "$target: $(basename "${4:-none}")" "${failure//]]>/]] >}"
     fi
     echo "    </testcase>"
     echo "  </testsuite>"
