@@ -4,7 +4,7 @@
 
 namespace deformable_sim::bench {
 
-void CaseRun::timeTick(core::FemBody& body, double dt, int substeps) {
+void CaseRun::timeTick(core::Body& body, double dt, int substeps) {
   using Clock = std::chrono::steady_clock;
   const double h = dt / substeps;
   const auto start = Clock::now();

@@ -79,21 +79,21 @@ ReferenceBeam::ReferenceBeam(const std::string& reference_dir, const std::string
   }
 }
 
-core::FemBody ReferenceBeam::makeBody(const core::BodyEffects& effects,
-                                      const core::SolverSettings& solver) const {
-  core::FemBody body(id_, mesh_, referenceMaterial(), effects, solver);
+core::Body ReferenceBeam::makeBody(const core::BodyEffects& effects,
+                                   const core::SolverSettings& solver) const {
+  core::Body body(id_, mesh_, referenceMaterial(), effects, solver);
   body.fixNodes(clamp_);
   return body;
 }
 
-void ReferenceBeam::applyTipLoad(core::FemBody& body, double load_n) const {
+void ReferenceBeam::applyTipLoad(core::Body& body, double load_n) const {
   body.externalForces().setZero();
   for (size_t k = 0; k < tip_.size(); ++k) {
     body.externalForces()[3 * tip_[k] + 2] = -load_n * tip_weights_[k];
   }
 }
 
-Eigen::Vector3d ReferenceBeam::tipDisplacement(const core::FemBody& body) const {
+Eigen::Vector3d ReferenceBeam::tipDisplacement(const core::Body& body) const {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (size_t k = 0; k < tip_.size(); ++k) {
     const int i = tip_[k];

@@ -16,7 +16,7 @@ constexpr const char* kConvergedElement = "C3D20R";
 constexpr const char* kConvergedMesh = "hex20_L4";
 
 // Solves the body statically with the tip load applied, timing the whole solve.
-void solveTimed(core::FemBody& body, const core::StaticSettings& statics, CaseRun& run) {
+void solveTimed(core::Body& body, const core::StaticSettings& statics, CaseRun& run) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   const core::StaticReport report = body.solveStatic(statics);
@@ -41,7 +41,7 @@ CaseRun runLinearStatic(const BenchSetting& setting, BenchContext& context) {
   core::BodyEffects effects;
   effects.warping = setting.warping;
   const std::size_t heap_before = liveHeapBytes();
-  core::FemBody body = beam.makeBody(effects, setting.solver);
+  core::Body body = beam.makeBody(effects, setting.solver);
   beam.applyTipLoad(body, kCaseALoad);
   solveTimed(body, core::StaticSettings{}, run);  // one load step, change below 1e-8
   run.memory_bytes = liveHeapBytes() - heap_before;
@@ -69,7 +69,7 @@ CaseRun runLargeDeflection(const BenchSetting& setting, BenchContext& context) {
   core::BodyEffects effects;
   effects.warping = setting.warping;
   const std::size_t heap_before = liveHeapBytes();
-  core::FemBody body = beam.makeBody(effects, setting.solver);
+  core::Body body = beam.makeBody(effects, setting.solver);
   beam.applyTipLoad(body, largeDeflectionLoad(setting.alpha));
   solveTimed(body, core::StaticSettings{4, 500, 1e-9}, run);
   run.memory_bytes = liveHeapBytes() - heap_before;

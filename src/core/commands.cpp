@@ -20,16 +20,16 @@ std::string vectorText(const Eigen::Vector3d& v) {
 
 CommandProcessor::CommandProcessor(Simulation& simulation, CommandLimits limits)
     : simulation_(simulation), limits_(limits) {
-  for (const FemBody& body : simulation_.bodies()) base_forces_.push_back(body.externalForces());
+  for (const Body& body : simulation_.bodies()) base_forces_.push_back(body.externalForces());
 }
 
 int CommandProcessor::findBody(const std::string& name, const NodeTarget& nodes) const {
-  const std::vector<FemBody>& bodies = simulation_.bodies();
+  const std::vector<Body>& bodies = simulation_.bodies();
   if (!name.empty()) {
     const int index = simulation_.bodyIndex(name);
     if (index >= 0) return index;
     std::string known;
-    for (const FemBody& b : bodies) known += (known.empty() ? "'" : ", '") + b.name() + "'";
+    for (const Body& b : bodies) known += (known.empty() ? "'" : ", '") + b.name() + "'";
     throw CommandError("unknown body '" + name + "' (bodies: " + known + ")");
   }
   if (bodies.size() == 1) return 0;
@@ -47,7 +47,7 @@ int CommandProcessor::findBody(const std::string& name, const NodeTarget& nodes)
   return best;
 }
 
-std::vector<int> CommandProcessor::resolve(const FemBody& body, const NodeTarget& nodes) const {
+std::vector<int> CommandProcessor::resolve(const Body& body, const NodeTarget& nodes) const {
   const int kinds = (nodes.node_numbers.empty() ? 0 : 1) + (nodes.group.empty() ? 0 : 1) +
                     (nodes.box ? 1 : 0) + (nodes.sphere ? 1 : 0) + (nodes.shapes.empty() ? 0 : 1);
   if (kinds == 0 && nodes.whole_body) {
@@ -152,7 +152,7 @@ int CommandProcessor::apply(const WrenchCommand& command) {
     return 0;
   }
   const int b = findBody(command.body, command.nodes);
-  const FemBody& body = simulation_.bodies()[b];
+  const Body& body = simulation_.bodies()[b];
   ActiveWrench active;
   active.body = b;
   active.nodes = resolve(body, command.nodes);
@@ -185,7 +185,7 @@ int CommandProcessor::apply(const WrenchCommand& command) {
 
 int CommandProcessor::apply(const FixCommand& command) {
   const int b = findBody(command.body, command.nodes);
-  FemBody& body = simulation_.bodies()[b];
+  Body& body = simulation_.bodies()[b];
   const std::vector<int> nodes = resolve(body, command.nodes);
   for (int i : nodes) {
     if (const std::string* grasp = graspOf(b, i)) {

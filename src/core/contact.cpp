@@ -2,14 +2,14 @@
 
 namespace deformable_sim::core {
 
-void ContactState::hold(FemBody& body) {
+void ContactState::hold(Body& body) {
   for (int i = 0; i < body.numNodes(); ++i) {
     held_[i] = !normal_[i].isZero(0.0) && !body.isConstrained(i);
     if (held_[i]) body.holdNode(i);
   }
 }
 
-void ContactState::release(FemBody& body, const ContactSettings& settings) {
+void ContactState::release(Body& body, const ContactSettings& settings) {
   for (int i = 0; i < body.numNodes(); ++i) {
     if (!held_[i]) continue;
     const Eigen::Vector3d r = body.reactionForces().segment<3>(3 * i);
@@ -23,7 +23,7 @@ void ContactState::release(FemBody& body, const ContactSettings& settings) {
   }
 }
 
-int ContactState::project(FemBody& body, const std::vector<PlacedShape>& obstacles,
+int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
                           const ContactSettings& settings) {
   Eigen::VectorXd& x = body.mutablePositions();
   Eigen::VectorXd& v = body.mutableVelocities();

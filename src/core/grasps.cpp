@@ -23,7 +23,7 @@ int CommandProcessor::apply(const GraspCommand& command) {
     throw CommandError("grasp '" + command.name + "': the frame's pose is not finite");
   }
   const int b = findBody(command.body, command.nodes);
-  FemBody& body = simulation_.bodies()[b];
+  Body& body = simulation_.bodies()[b];
   std::vector<int> nodes;
   try {
     nodes = resolve(body, command.nodes);
@@ -67,7 +67,7 @@ bool CommandProcessor::releaseGrasp(const std::string& name) {
 void CommandProcessor::moveGrasp(const std::string& name, const Eigen::Isometry3d& frame) {
   ActiveGrasp& grasp = grasps_.at(name);
   grasp.frame = frame;
-  FemBody& body = simulation_.bodies()[grasp.body];
+  Body& body = simulation_.bodies()[grasp.body];
   std::vector<Eigen::Vector3d> targets(grasp.nodes.size());
   for (size_t k = 0; k < grasp.nodes.size(); ++k) targets[k] = frame * grasp.local[k];
   body.setNodeTargets(grasp.nodes, targets);
@@ -75,7 +75,7 @@ void CommandProcessor::moveGrasp(const std::string& name, const Eigen::Isometry3
 
 Wrench CommandProcessor::graspReaction(const std::string& name) const {
   const ActiveGrasp& grasp = grasps_.at(name);
-  const FemBody& body = simulation_.bodies()[grasp.body];
+  const Body& body = simulation_.bodies()[grasp.body];
   Wrench wrench;
   wrench.point = grasp.frame.translation();
   for (int i : grasp.nodes) {
@@ -87,7 +87,7 @@ Wrench CommandProcessor::graspReaction(const std::string& name) const {
 }
 
 Wrench CommandProcessor::fixedReaction(int b, const Eigen::Vector3d& point) const {
-  const FemBody& body = simulation_.bodies()[b];
+  const Body& body = simulation_.bodies()[b];
   std::vector<bool> grasped(body.numNodes(), false);
   for (const auto& [name, grasp] : grasps_) {
     if (grasp.body != b) continue;

@@ -72,8 +72,8 @@ int Session::apply(const SessionCommand& command) {
 }
 
 int Session::applyTune(const TuneCommand& command) {
-  std::vector<FemBody*> bodies;
-  for (FemBody& body : simulation_->bodies()) {
+  std::vector<Body*> bodies;
+  for (Body& body : simulation_->bodies()) {
     if (command.body.empty() || body.name() == command.body) bodies.push_back(&body);
   }
   if (bodies.empty()) throw CommandError("tune: no body named '" + command.body + "'");
@@ -96,7 +96,7 @@ int Session::applyTune(const TuneCommand& command) {
   if (command.dt && !(*command.dt > 0.0 && std::isfinite(*command.dt))) {
     throw CommandError("tune: dt must be finite and > 0 s");
   }
-  for (FemBody* body : bodies) {
+  for (Body* body : bodies) {
     if (command.material) body->setMaterial(*command.material);
     if (command.damping) body->setDamping(*command.damping);
     if (command.solver_tolerance || command.solver_max_iterations) {

@@ -23,7 +23,7 @@ std::vector<int> selectSome(const Mesh& mesh, const NodeSelection& selection,
   return nodes;
 }
 
-void addWrench(FemBody& body, const std::vector<int>& nodes, const LoadSpec& load,
+void addWrench(Body& body, const std::vector<int>& nodes, const LoadSpec& load,
                const std::string& key) {
   if (!load.torque.allFinite()) throw std::invalid_argument(key + ": non-finite torque");
   std::vector<Eigen::Vector3d> points, forces;
@@ -69,19 +69,22 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
     const BodySpec& body_spec = spec.bodies[b];
     const std::string key = "bodies[" + std::to_string(b) + "]";
     try {
-      bodies_.emplace_back(body_spec.name, std::move(meshes[b]), body_spec.material, spec.effects,
-                           spec.solver);
+      bodies_.emplace_back(body_spec.name, std::move(meshes[b]), body_spec.material,
+                           body_spec.effects.value_or(spec.effects), spec.solver, body_spec.model);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(key + ": " + e.what());
     }
-    FemBody& body = bodies_.back();
+    Body& body = bodies_.back();
     if (!(body_spec.wrench_radius >= 0.0) || !std::isfinite(body_spec.wrench_radius)) {
       throw std::invalid_argument(key + ".wrench_radius: must be finite and >= 0 m");
     }
     wrench_radii_.push_back(body_spec.wrench_radius);
-    last_good_positions_.push_back(body.positions());
     recoveries_.push_back(0);
-    if (contact_) contact_states_.emplace_back(body.numNodes());
+    // Contact acts on the nodes of finite-element bodies; rigid and pseudo-rigid ones pass through.
+    contact_states_.emplace_back();
+    if (contact_ && body.model() == BodyModel::kFiniteElement) {
+      contact_states_.back().emplace(body.numNodes());
+    }
     for (const auto& [name, selection] : body_spec.groups) {
       if (name.empty() || name.find('/') != std::string::npos) {
         throw std::invalid_argument(key + ".groups: '" + name +
@@ -113,8 +116,8 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
   }
 }
 
-FemBody& Simulation::body(const std::string& name) {
-  for (FemBody& b : bodies_) {
+Body& Simulation::body(const std::string& name) {
+  for (Body& b : bodies_) {
     if (b.name() == name) return b;
   }
   throw std::out_of_range("no body named '" + name + "'");
@@ -136,21 +139,20 @@ void Simulation::setDt(double dt) {
 void Simulation::step(std::vector<StepReport>& reports) {
   reports.resize(bodies_.size());
   for (size_t b = 0; b < bodies_.size(); ++b) {
-    FemBody& body = bodies_[b];
-    last_good_positions_[b] = body.positions();
-    if (!contact_) {
+    Body& body = bodies_[b];
+    body.rememberState();
+    if (!contact_states_[b]) {
       reports[b] = body.step(dt_);
     } else {
-      ContactState& contacts = contact_states_[b];
+      ContactState& contacts = *contact_states_[b];
       contacts.hold(body);
       reports[b] = body.step(dt_);
       contacts.release(body, *contact_);
       reports[b].contacts = contacts.project(body, obstacles_, *contact_);
+      ++contact_steps_;
     }
-    if (!std::isfinite(reports[b].solve.relative_residual) || !body.positions().allFinite() ||
-        !body.velocities().allFinite()) {
-      body.mutableVelocities().setZero();
-      body.setState(last_good_positions_[b], body.velocities());
+    if (!std::isfinite(reports[b].solve.relative_residual) || !body.stateIsFinite()) {
+      body.returnToRememberedState();
       reports[b].recovered = true;
       ++recoveries_[b];
     }
@@ -161,7 +163,7 @@ void Simulation::step(std::vector<StepReport>& reports) {
 
 std::vector<StaticReport> Simulation::solveStatic() {
   std::vector<StaticReport> reports;
-  for (FemBody& b : bodies_) reports.push_back(b.solveStatic(statics_));
+  for (Body& b : bodies_) reports.push_back(b.solveStatic(statics_));
   return reports;
 }
 

@@ -18,8 +18,15 @@ double strainMagnitude(const Eigen::Matrix3d& f) {
 
 }  // namespace
 
-void nodalStrain(const FemBody& body, std::vector<double>& strain) {
+void nodalStrain(const Body& body, std::vector<double>& strain) {
   strain.assign(body.numNodes(), 0.0);
+  if (const ReducedDynamics* reduced = body.reduced()) {
+    // Homogeneous: the same everywhere (zero for a rigid body).
+    if (reduced->model() == BodyModel::kPseudoRigid) {
+      strain.assign(body.numNodes(), strainMagnitude(reduced->gradient()));
+    }
+    return;
+  }
   const Eigen::VectorXd& x = body.positions();
   const std::vector<TetrahedronRest>& rest = body.elasticity().restData();
   const std::vector<Tetrahedron>& tetrahedra = body.mesh().tetrahedra;

@@ -26,7 +26,7 @@ class SceneParser {
     expectMap(root, "scene");
     checkKeys(root, "", {"dt", "effects", "solver", "static", "bodies", "obstacles", "urdf"});
     if (root["dt"]) scene.dt = positive(root["dt"], "dt");
-    parseEffects(root["effects"], scene.effects);
+    parseEffects(root["effects"], "effects", scene.effects);
     if (const YAML::Node effects = root["effects"]) {
       if (const YAML::Node contact = effects["contact"]) {
         expectMap(contact, "effects.contact");
@@ -75,7 +75,7 @@ class SceneParser {
     std::set<std::string> names;
     for (size_t b = 0; b < bodies.size(); ++b) {
       const std::string key = "bodies[" + std::to_string(b) + "]";
-      scene.bodies.push_back(parseBody(bodies[b], key));
+      scene.bodies.push_back(parseBody(bodies[b], key, scene.effects));
       if (!names.insert(scene.bodies.back().name).second) {
         fail(bodies[b], key + ".name", "'" + scene.bodies.back().name + "' is used twice");
       }
@@ -168,43 +168,67 @@ class SceneParser {
             number(node[2], key + "[2]")};
   }
 
-  void parseEffects(const YAML::Node& node, core::BodyEffects& effects) const {
+  // `false` (or `off`) for an optional effect: a body turns off what its scene enables.
+  bool switchedOff(const YAML::Node& node) const {
+    bool value = true;
+    return node.IsScalar() && YAML::convert<bool>::decode(node, value) && !value;
+  }
+
+  // The scene's effects (key "effects"), or a body's ("bodies[i].effects"), which start from the
+  // scene's and change what they name.
+  void parseEffects(const YAML::Node& node, const std::string& key,
+                    core::BodyEffects& effects) const {
     if (!node) return;
-    expectMap(node, "effects");
-    checkKeys(node, "effects",
-              {"gravity", "warping", "damping", "plasticity", "stress_colouring", "contact"});
+    expectMap(node, key);
+    const bool scene = key == "effects";
+    std::set<std::string> keys = {"gravity",    "warping",          "damping",
+                                  "plasticity", "stress_colouring", "reactions"};
+    if (scene) keys.insert("contact");
+    checkKeys(node, key, keys);
     if (node["stress_colouring"]) {
-      effects.stress_colouring = boolean(node["stress_colouring"], "effects.stress_colouring");
+      effects.stress_colouring = boolean(node["stress_colouring"], key + ".stress_colouring");
     }
-    if (node["gravity"]) effects.gravity = vector3(node["gravity"], "effects.gravity");
-    if (node["warping"]) effects.warping = boolean(node["warping"], "effects.warping");
-    if (const YAML::Node damping = node["damping"]) {
-      expectMap(damping, "effects.damping");
-      checkKeys(damping, "effects.damping", {"mass", "stiffness"});
-      core::RayleighDamping rayleigh;
-      if (damping["mass"]) rayleigh.mass = nonNegative(damping["mass"], "effects.damping.mass");
-      if (damping["stiffness"]) {
-        rayleigh.stiffness = nonNegative(damping["stiffness"], "effects.damping.stiffness");
+    if (node["reactions"]) effects.reactions = boolean(node["reactions"], key + ".reactions");
+    if (node["warping"]) effects.warping = boolean(node["warping"], key + ".warping");
+    if (const YAML::Node gravity = node["gravity"]) {
+      if (switchedOff(gravity)) {
+        effects.gravity.reset();
+      } else {
+        effects.gravity = vector3(gravity, key + ".gravity");
       }
-      effects.damping = rayleigh;
+    }
+    if (const YAML::Node damping = node["damping"]) {
+      if (switchedOff(damping)) {
+        effects.damping.reset();
+      } else {
+        expectMap(damping, key + ".damping");
+        checkKeys(damping, key + ".damping", {"mass", "stiffness"});
+        core::RayleighDamping rayleigh;
+        if (damping["mass"]) rayleigh.mass = nonNegative(damping["mass"], key + ".damping.mass");
+        if (damping["stiffness"]) {
+          rayleigh.stiffness = nonNegative(damping["stiffness"], key + ".damping.stiffness");
+        }
+        effects.damping = rayleigh;
+      }
     }
     if (const YAML::Node plasticity = node["plasticity"]) {
-      expectMap(plasticity, "effects.plasticity");
-      checkKeys(plasticity, "effects.plasticity", {"yield", "creep", "max_strain"});
-      core::PlasticitySettings settings;
-      if (plasticity["yield"]) {
-        settings.yield = nonNegative(plasticity["yield"], "effects.plasticity.yield");
-      }
-      if (plasticity["creep"]) {
-        settings.creep = nonNegative(plasticity["creep"], "effects.plasticity.creep");
-      }
-      if (plasticity["max_strain"]) {
-        settings.max_strain = number(plasticity["max_strain"], "effects.plasticity.max_strain");
-        if (!(settings.max_strain > 0.0)) {
-          fail(plasticity["max_strain"], "effects.plasticity.max_strain", "must be > 0");
+      if (switchedOff(plasticity)) {
+        effects.plasticity.reset();
+      } else {
+        const std::string item = key + ".plasticity";
+        expectMap(plasticity, item);
+        checkKeys(plasticity, item, {"yield", "creep", "max_strain"});
+        core::PlasticitySettings settings;
+        if (plasticity["yield"]) settings.yield = nonNegative(plasticity["yield"], item + ".yield");
+        if (plasticity["creep"]) settings.creep = nonNegative(plasticity["creep"], item + ".creep");
+        if (plasticity["max_strain"]) {
+          settings.max_strain = number(plasticity["max_strain"], item + ".max_strain");
+          if (!(settings.max_strain > 0.0)) {
+            fail(plasticity["max_strain"], item + ".max_strain", "must be > 0");
+          }
         }
+        effects.plasticity = settings;
       }
-      effects.plasticity = settings;
     }
   }
 
@@ -282,18 +306,32 @@ class SceneParser {
     if (node["tolerance"]) statics.tolerance = positive(node["tolerance"], "static.tolerance");
   }
 
-  core::BodySpec parseBody(const YAML::Node& node, const std::string& key) const {
+  core::BodySpec parseBody(const YAML::Node& node, const std::string& key,
+                           const core::BodyEffects& scene_effects) const {
     expectMap(node, key);
     checkKeys(node, key,
-              {"name", "mesh", "model", "material", "fixed", "loads", "groups", "wrench_radius"});
+              {"name", "mesh", "model", "material", "effects", "fixed", "loads", "groups",
+               "wrench_radius"});
     core::BodySpec body;
     if (!node["name"]) fail(node, key + ".name", "missing");
     body.name = text(node["name"], key + ".name");
     parseMesh(node["mesh"], node, key + ".mesh", body);
     if (node["model"]) {
       const std::string model = text(node["model"], key + ".model");
-      if (model != "fem")
-        fail(node["model"], key + ".model", "'" + model + "' is not supported (fem)");
+      const std::map<std::string, core::BodyModel> models = {
+          {"fem", core::BodyModel::kFiniteElement},
+          {"pseudo_rigid", core::BodyModel::kPseudoRigid},
+          {"rigid", core::BodyModel::kRigid}};
+      const auto it = models.find(model);
+      if (it == models.end()) {
+        fail(node["model"], key + ".model",
+             "'" + model + "' is not one of: fem, pseudo_rigid, rigid");
+      }
+      body.model = it->second;
+    }
+    if (const YAML::Node effects = node["effects"]) {
+      body.effects = scene_effects;
+      parseEffects(effects, key + ".effects", *body.effects);
     }
     if (!node["material"]) fail(node, key + ".material", "missing");
     parseMaterial(node["material"], key + ".material", body.material);

@@ -40,7 +40,7 @@ const std::array<Eigen::Vector3i, 4> kCells = {Eigen::Vector3i(16, 4, 4), Eigen:
 constexpr int kWarmUpSteps = 20;  // from rest into the swing, so every step solves something
 
 struct Swinging {
-  std::unique_ptr<core::FemBody> body;
+  std::unique_ptr<core::Body> body;
   double bytes_per_tetrahedron = 0.0;
 };
 
@@ -53,7 +53,7 @@ Swinging& swinging(int mesh, core::SolverSettings::Preconditioner preconditioner
     cantilever.solver.preconditioner = preconditioner;
     cantilever.solver.threads = threads;
     const std::size_t before = deformable_sim::bench::liveHeapBytes();
-    s.body = std::make_unique<core::FemBody>(perf::makeBody(cantilever));
+    s.body = std::make_unique<core::Body>(perf::makeBody(cantilever));
     s.body->step(cantilever.dt);  // buffers and the coarse space are made in the first step
     s.bytes_per_tetrahedron = static_cast<double>(deformable_sim::bench::liveHeapBytes() - before) /
                               cantilever.mesh.numTetrahedra();

@@ -64,7 +64,7 @@ void writeDisplacements(const deformable_sim::core::Simulation& sim, std::ostrea
   }
 }
 
-Eigen::Vector3d sumOfReactions(const deformable_sim::core::FemBody& body) {
+Eigen::Vector3d sumOfReactions(const deformable_sim::core::Body& body) {
   return body.reactionForces().reshaped(3, body.numNodes()).rowwise().sum();
 }
 
@@ -83,8 +83,9 @@ int main(int argc, char** argv) {
         deformable_sim::io::readSceneFile(options.scene), &warnings);
     for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
     for (const auto& body : sim.bodies()) {
-      std::printf("body %s: %d nodes, %d tetrahedra, %d other elements, %d constrained\n",
-                  body.name().c_str(), body.numNodes(), body.mesh().numTetrahedra(),
+      std::printf("body %s (%s): %d nodes, %d tetrahedra, %d other elements, %d constrained\n",
+                  body.name().c_str(), deformable_sim::core::modelName(body.model()),
+                  body.numNodes(), body.mesh().numTetrahedra(),
                   static_cast<int>(body.mesh().cells.size()), body.numConstrained());
     }
     using Clock = std::chrono::steady_clock;

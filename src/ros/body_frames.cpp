@@ -5,7 +5,7 @@
 
 namespace deformable_sim::ros_layer {
 
-std::vector<geometry_msgs::TransformStamped> bodyFrames(const std::vector<core::FemBody>& bodies,
+std::vector<geometry_msgs::TransformStamped> bodyFrames(const std::vector<core::Body>& bodies,
                                                         const std::string& world_frame,
                                                         const std::string& prefix,
                                                         const ros::Time& stamp) {
@@ -18,7 +18,7 @@ std::vector<geometry_msgs::TransformStamped> bodyFrames(const std::vector<core::
     t.transform = toTransform(toPose(frame));
     frames.push_back(t);
   };
-  for (const core::FemBody& body : bodies) {
+  for (const core::Body& body : bodies) {
     add(prefix + body.name(),
         core::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses()));
     for (const auto& [name, nodes] : body.groups()) {

@@ -97,7 +97,7 @@ core::FixCommand toCommand(const FixedNodes& message, const Eigen::Isometry3d& f
   return command;
 }
 
-void fillState(const core::FemBody& body, BodyState& message) {
+void fillState(const core::Body& body, BodyState& message) {
   const int n = body.numNodes();
   message.body = body.name();
   message.node_ids.resize(n);

@@ -33,7 +33,7 @@ visualization_msgs::Marker marker(const std_msgs::Header& header, const std::str
 
 }  // namespace
 
-void fillSurfaceMarker(const core::FemBody& body, const std::vector<core::Triangle>& surface,
+void fillSurfaceMarker(const core::Body& body, const std::vector<core::Triangle>& surface,
                        const std::vector<double>* strain, double strain_scale,
                        visualization_msgs::Marker& m) {
   m.ns = body.name();
@@ -58,7 +58,7 @@ void fillSurfaceMarker(const core::FemBody& body, const std::vector<core::Triang
   }
 }
 
-visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::FemBody>& bodies,
+visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::Body>& bodies,
                                                    const core::CommandProcessor& commands,
                                                    const std_msgs::Header& header) {
   visualization_msgs::MarkerArray array;
@@ -67,7 +67,7 @@ visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::FemBo
   clear.action = visualization_msgs::Marker::DELETEALL;
   array.markers.push_back(clear);
   for (size_t b = 0; b < bodies.size(); ++b) {
-    const core::FemBody& body = bodies[b];
+    const core::Body& body = bodies[b];
     const Eigen::VectorXd& x = body.positions();
     // Grasped nodes are constrained too; they are drawn once, in the grasps' colour.
     std::vector<bool> grasped(body.numNodes(), false);

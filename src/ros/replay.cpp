@@ -194,7 +194,7 @@ ReplayReport replay(const ReplayOptions& options, std::ostream* progress) {
     throw ReplayError(std::string("the recorded scene: ") + e.what());
   }
   auto overrideSolver = [&]() {
-    for (core::FemBody& body : session->simulation().bodies()) {
+    for (core::Body& body : session->simulation().bodies()) {
       body.setSolverLimits(
           options.solver_tolerance.value_or(body.solverSettings().tolerance),
           options.solver_max_iterations.value_or(body.solverSettings().max_iterations));
@@ -232,7 +232,7 @@ ReplayReport replay(const ReplayOptions& options, std::ostream* progress) {
               scene.header.stamp.isZero() ? ros::TIME_MIN : scene.header.stamp, scene);
   }
   std::vector<std::vector<core::Triangle>> surfaces;
-  for (const core::FemBody& body : session->simulation().bodies()) {
+  for (const core::Body& body : session->simulation().bodies()) {
     surfaces.push_back(core::extractSurface(body.mesh()));
   }
   visualization_msgs::Marker mesh_message;
@@ -246,7 +246,7 @@ ReplayReport replay(const ReplayOptions& options, std::ostream* progress) {
     const long episode = session->episode() + episode_offset;
     bool marker_due = sim.time() >= next_marker_time;
     for (size_t b = 0; b < sim.bodies().size(); ++b) {
-      const core::FemBody& body = sim.bodies()[b];
+      const core::Body& body = sim.bodies()[b];
       const auto found = recording.states.find(StateKey{episode, sim.stepCount(), body.name()});
       if (found == recording.states.end()) continue;
       const BodyState& recorded = found->second;

@@ -63,7 +63,7 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
   fixed_nodes_sub_ = private_node.subscribe("fixed_nodes", 100, &SimNode::onFixedNodes, this);
   grasp_sub_ = private_node.subscribe("grasp", 100, &SimNode::onGrasp, this);
   grasp_srv_ = private_node.advertiseService("grasp", &SimNode::onSetGrasp, this);
-  for (const core::FemBody& body : sim().bodies()) {
+  for (const core::Body& body : sim().bodies()) {
     reaction_pubs_.push_back(
         private_node.advertise<geometry_msgs::WrenchStamped>("reactions/" + body.name(), 10));
   }
@@ -76,7 +76,7 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
   diagnostics_.add("simulation", this, &SimNode::diagnose);
 
   // Live tuning: start from the scene's values so that the first callback changes nothing.
-  const core::FemBody& first = sim().bodies().front();
+  const core::Body& first = sim().bodies().front();
   applied_config_.body = "";
   applied_config_.youngs_modulus = first.material().youngs_modulus;
   applied_config_.poisson_ratio = first.material().poisson_ratio;
@@ -95,11 +95,20 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
   reconfigure_->setCallback([this](SimConfig& config, uint32_t) { onReconfigure(config); });
 
   timer_ = node.createTimer(ros::Duration(1.0 / rate_hz_), &SimNode::onTimer, this);
-  for (const core::FemBody& body : sim().bodies()) {
-    ROS_INFO("body '%s': %d nodes, %d tetrahedra, %zu other elements, %d fixed; frame '%s'",
-             body.name().c_str(), body.numNodes(), body.mesh().numTetrahedra(),
-             body.mesh().cells.size(), body.numConstrained(),
-             (frame_prefix_ + body.name()).c_str());
+  for (const core::Body& body : sim().bodies()) {
+    std::string effects;
+    for (const std::string& name : core::effectNames(body.effects(), body.model())) {
+      effects += (effects.empty() ? "" : ", ") + name;
+    }
+    if (sim().contact() && body.model() == core::BodyModel::kFiniteElement) {
+      effects += effects.empty() ? "contact" : ", contact";
+    }
+    ROS_INFO(
+        "body '%s' (%s): %d nodes, %d tetrahedra, %zu other elements, %d fixed; frame '%s'; "
+        "effects: %s",
+        body.name().c_str(), core::modelName(body.model()), body.numNodes(),
+        body.mesh().numTetrahedra(), body.mesh().cells.size(), body.numConstrained(),
+        (frame_prefix_ + body.name()).c_str(), effects.empty() ? "none" : effects.c_str());
   }
   ROS_INFO("stepping %s at %.4g Hz x %d substeps (dt %.4g s) in frame '%s'",
            scene_path_.empty() ? "the built-in default scene" : scene_path_.c_str(), rate_hz_,
@@ -164,7 +173,7 @@ void SimNode::buildSimulation() {
   }
   for (const std::string& w : warnings) ROS_WARN("%s", w.c_str());
   session_->setListener([this](const core::AppliedCommand& applied) { publishApplied(applied); });
-  for (const core::FemBody& body : sim().bodies())
+  for (const core::Body& body : sim().bodies())
     surfaces_.push_back(core::extractSurface(body.mesh()));
   clearTickState();
 }
@@ -314,7 +323,7 @@ void SimNode::publishGrasps() {
     wrench.wrench.torque = toVector3(to_frame * reaction.torque);
     grasp_wrench_pubs_.at(name).publish(wrench);
     // The object seen from the gripper: how it slips or sags in the hand.
-    const core::FemBody& body = sim().bodies()[grasp.body];
+    const core::Body& body = sim().bodies()[grasp.body];
     geometry_msgs::TransformStamped object;
     object.header.stamp = now;
     object.header.frame_id = frame;
@@ -492,7 +501,7 @@ bool SimNode::onSetGrasp(SetGrasp::Request& request, SetGrasp::Response& respons
 
 void SimNode::publishState() {
   const ros::Time now = ros::Time::now();
-  for (const core::FemBody& body : sim().bodies()) {
+  for (const core::Body& body : sim().bodies()) {
     fillState(body, state_message_);
     state_message_.header.stamp = now;
     state_message_.header.frame_id = world_frame_;
@@ -512,7 +521,7 @@ void SimNode::publishMarkers() {
   header.stamp = ros::Time::now();
   header.frame_id = world_frame_;
   if (mesh_pub_.getNumSubscribers() > 0) {
-    for (const core::FemBody& body : sim().bodies()) {
+    for (const core::Body& body : sim().bodies()) {
       const bool colour = body.effects().stress_colouring;
       if (colour) core::nodalStrain(body, strain_);
       const size_t b = &body - sim().bodies().data();
@@ -539,9 +548,14 @@ void SimNode::publishStats() {
   stats.dropped_messages = refusals_.count();
   stats.last_refusal = refusals_.last();
   for (size_t b = 0; b < sim().bodies().size(); ++b) {
-    const core::FemBody& body = sim().bodies()[b];
+    const core::Body& body = sim().bodies()[b];
     BodyStats s;
     s.body = body.name();
+    s.model = core::modelName(body.model());
+    s.effects = core::effectNames(body.effects(), body.model());
+    if (sim().contact() && body.model() == core::BodyModel::kFiniteElement) {
+      s.effects.emplace_back("contact");
+    }
     s.solver_iterations = static_cast<uint32_t>(reports_[b].solve.iterations);
     s.solver_residual = reports_[b].solve.relative_residual;
     s.solver_converged = reports_[b].solve.converged;
@@ -570,7 +584,7 @@ bool SimNode::resolveFrame(const std::string& frame_id, FrameTarget& target,
   if (frame.empty() || frame == world_frame_) return true;
   std::string own;
   for (size_t b = 0; b < sim().bodies().size(); ++b) {
-    const core::FemBody& body = sim().bodies()[b];
+    const core::Body& body = sim().bodies()[b];
     const std::string name = bodyFrame(static_cast<int>(b));
     own += (own.empty() ? "" : ", ") + name;
     if (frame == name) {
@@ -756,7 +770,7 @@ bool SimNode::onStep(Step::Request& request, Step::Response& response) {
 void SimNode::onReconfigure(SimConfig& config) {
   const SimConfig before = applied_config_;
   std::vector<core::TuneCommand> tunes;
-  for (const core::FemBody& body : sim().bodies()) {
+  for (const core::Body& body : sim().bodies()) {
     if (!config.body.empty() && body.name() != config.body) continue;
     core::TuneCommand tune;
     tune.body = body.name();

@@ -4,8 +4,8 @@
 #include <atomic>
 #include <cstdlib>
 
+#include "deformable_sim/core/body.h"
 #include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/fem_body.h"
 #include "deformable_sim/core/selection.h"
 
 // Every heap allocation of the process goes through malloc (operator new and Eigen both call it):
@@ -50,8 +50,8 @@ TEST(Allocations, NoneInAStepAfterTheFirst) {
     effects.warping = warping;
     effects.gravity = Eigen::Vector3d(0, 0, -9.81);
     effects.damping = dc::RayleighDamping{0.1, 0.01};
-    dc::FemBody body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {1, 0.05, 0.05}, {10, 2, 2}),
-                     {1e5, 0.3, 1000}, effects, solver);
+    dc::Body body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {1, 0.05, 0.05}, {10, 2, 2}),
+                  {1e5, 0.3, 1000}, effects, solver);
     dc::NodeSelection end;
     end.kind = dc::NodeSelection::Kind::kBox;
     end.box = {{-1e-9, -1, -1}, {1e-9, 1, 1}};

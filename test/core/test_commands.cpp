@@ -66,7 +66,7 @@ TEST(Wrench, CollinearNodesCarryBendingButNotTwist) {
 
 TEST(RigidFrame, RecoversARigidMotionAndIsIdentityAtRest) {
   dc::Simulation sim = makeDefault();
-  const dc::FemBody& body = sim.bodies()[0];
+  const dc::Body& body = sim.bodies()[0];
   const dc::RigidFrame rest =
       dc::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses());
   EXPECT_TRUE(rest.rotation.isApprox(Eigen::Matrix3d::Identity(), 1e-12));
@@ -87,7 +87,7 @@ TEST(RigidFrame, RecoversARigidMotionAndIsIdentityAtRest) {
 TEST(Commands, GroupWrenchIsExactAndAZeroWrenchClearsIt) {
   dc::Simulation sim = makeDefault();
   dc::CommandProcessor commands(sim);
-  dc::FemBody& body = sim.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   const Eigen::VectorXd scene_forces = body.externalForces();
   dc::WrenchCommand push;
   push.source = "beam/tip";
@@ -124,7 +124,7 @@ TEST(Commands, GroupWrenchIsExactAndAZeroWrenchClearsIt) {
 TEST(Commands, BadCommandsAreRefusedNamingTheProblemAndChangeNothing) {
   dc::Simulation sim = makeDefault();
   dc::CommandProcessor commands(sim);
-  dc::FemBody& body = sim.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   const Eigen::VectorXd forces = body.externalForces();
   const int constrained = body.numConstrained();
   auto expectRefused = [&](auto command, const std::string& words) {
@@ -184,7 +184,7 @@ TEST(Commands, BadCommandsAreRefusedNamingTheProblemAndChangeNothing) {
 TEST(Commands, FixDragAndReleaseNodes) {
   dc::Simulation sim = makeDefault();
   dc::CommandProcessor commands(sim);
-  dc::FemBody& body = sim.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   const int clamped = body.numConstrained();
   dc::FixCommand drag;
   drag.body = "beam";
@@ -274,7 +274,7 @@ TEST(Grasps, NodesFollowTheFrameExactlyEvenWhenItMovesFast) {
     frame.linear() = Eigen::AngleAxisd(0.1 * s, Eigen::Vector3d::UnitY()).toRotationMatrix();
     commands.moveGrasp("hand", frame);
     sim.step(reports);
-    const dc::FemBody& body = sim.bodies()[0];
+    const dc::Body& body = sim.bodies()[0];
     for (size_t k = 0; k < grasp.nodes.size(); ++k) {
       ASSERT_LT((body.positions().segment<3>(3 * grasp.nodes[k]) - frame * grasp.local[k]).norm(),
                 1e-9);
@@ -291,7 +291,7 @@ TEST(Grasps, HangingBodyReactionIsItsWeightAboutItsCentreOfMass) {
   commands.apply(graspTopCorner(frame));
   std::vector<dc::StepReport> reports;
   for (int s = 0; s < 1500; ++s) sim.step(reports);
-  const dc::FemBody& body = sim.bodies()[0];
+  const dc::Body& body = sim.bodies()[0];
   double mass = 0.0;
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (int i = 0; i < body.numNodes(); ++i) {

@@ -67,7 +67,7 @@ TEST(Contact, ABlockDroppedOnATableComesToRestOnTop) {
     for (int i = 0; i < sim.bodies()[0].numNodes(); ++i) ASSERT_GE(x[3 * i + 2], -1e-12) << s;
   }
   EXPECT_EQ(reports[0].contacts, 25);  // resting on the bottom face's 5 x 5 nodes
-  const dc::FemBody& body = sim.bodies()[0];
+  const dc::Body& body = sim.bodies()[0];
   EXPECT_LT(body.velocities().lpNorm<Eigen::Infinity>(), 1e-3);
   double bottom = 1.0;
   for (int i = 0; i < body.numNodes(); ++i) bottom = std::min(bottom, body.positions()[3 * i + 2]);

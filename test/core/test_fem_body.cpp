@@ -3,8 +3,8 @@
 
 #include <Eigen/Geometry>
 
+#include "deformable_sim/core/body.h"
 #include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/fem_body.h"
 #include "deformable_sim/core/selection.h"
 
 namespace dc = deformable_sim::core;
@@ -13,16 +13,16 @@ namespace {
 
 const dc::LinearElasticMaterial kSoft{1.0e5, 0.3, 1000.0};
 
-dc::FemBody makeBeam(bool warping, std::optional<Eigen::Vector3d> gravity,
-                     dc::SolverSettings solver = {}) {
+dc::Body makeBeam(bool warping, std::optional<Eigen::Vector3d> gravity,
+                  dc::SolverSettings solver = {}) {
   dc::BodyEffects effects;
   effects.warping = warping;
   effects.gravity = gravity;
-  return dc::FemBody("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {1.0, 0.05, 0.05}, {10, 2, 2}),
-                     kSoft, effects, solver);
+  return dc::Body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {1.0, 0.05, 0.05}, {10, 2, 2}), kSoft,
+                  effects, solver);
 }
 
-std::vector<int> clampedEnd(const dc::FemBody& body) {
+std::vector<int> clampedEnd(const dc::Body& body) {
   dc::NodeSelection end;
   end.kind = dc::NodeSelection::Kind::kBox;
   end.box = {{-1e-9, -1, -1}, {1e-9, 1, 1}};
@@ -33,7 +33,7 @@ Eigen::Vector3d total(const Eigen::VectorXd& stacked) {
   return stacked.reshaped(3, stacked.size() / 3).rowwise().sum();
 }
 
-Eigen::Vector3d momentum(const dc::FemBody& body) {
+Eigen::Vector3d momentum(const dc::Body& body) {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   for (int i = 0; i < body.numNodes(); ++i)
     p += body.nodalMasses()[i] * body.velocities().segment<3>(3 * i);
@@ -42,12 +42,12 @@ Eigen::Vector3d momentum(const dc::FemBody& body) {
 
 }  // namespace
 
-TEST(FemBody, FallsFreelyWithExactlyGravitysAcceleration) {
+TEST(Body, FallsFreelyWithExactlyGravitysAcceleration) {
   const Eigen::Vector3d g(0, 0, -9.81);
   dc::SolverSettings tight;
   tight.tolerance = 1e-13;
   for (bool warping : {false, true}) {
-    dc::FemBody body = makeBeam(warping, g, tight);
+    dc::Body body = makeBeam(warping, g, tight);
     const double dt = 0.01;
     for (int s = 0; s < 50; ++s) body.step(dt);
     // Implicit Euler with a uniform field: v_n = n h g, x_n = x0 + h^2 g n (n + 1) / 2.
@@ -60,8 +60,8 @@ TEST(FemBody, FallsFreelyWithExactlyGravitysAcceleration) {
   }
 }
 
-TEST(FemBody, ConservesMomentumWithoutExternalForces) {
-  dc::FemBody body = makeBeam(true, std::nullopt);
+TEST(Body, ConservesMomentumWithoutExternalForces) {
+  dc::Body body = makeBeam(true, std::nullopt);
   // Start from a bent, spinning state.
   Eigen::VectorXd x = body.restPositions(), v = Eigen::VectorXd::Zero(x.size());
   for (int i = 0; i < body.numNodes(); ++i) {
@@ -80,7 +80,7 @@ TEST(FemBody, ConservesMomentumWithoutExternalForces) {
   EXPECT_TRUE(body.positions().allFinite());
 }
 
-TEST(FemBody, ClampedBeamSettlesAndItsReactionsCarryItsWeight) {
+TEST(Body, ClampedBeamSettlesAndItsReactionsCarryItsWeight) {
   const Eigen::Vector3d g(0, 0, -9.81);
   for (bool warping : {false, true}) {
     dc::BodyEffects effects;
@@ -88,8 +88,8 @@ TEST(FemBody, ClampedBeamSettlesAndItsReactionsCarryItsWeight) {
     effects.gravity = g;
     effects.damping = dc::RayleighDamping{5.0, 0.001};
     // Stiff enough to ring at ~1.6 Hz, damped at 2.5/s: at rest after 10 s.
-    dc::FemBody body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {1.0, 0.05, 0.05}, {10, 2, 2}),
-                     {1.0e7, 0.3, 1000.0}, effects, dc::SolverSettings{});
+    dc::Body body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {1.0, 0.05, 0.05}, {10, 2, 2}),
+                  {1.0e7, 0.3, 1000.0}, effects, dc::SolverSettings{});
     const std::vector<int> clamp = clampedEnd(body);
     body.fixNodes(clamp);
     for (int s = 0; s < 500; ++s) body.step(0.02);
@@ -105,10 +105,10 @@ TEST(FemBody, ClampedBeamSettlesAndItsReactionsCarryItsWeight) {
   }
 }
 
-TEST(FemBody, StaticSolveMatchesTheSettledDynamicStateAndBalancesLoads) {
+TEST(Body, StaticSolveMatchesTheSettledDynamicStateAndBalancesLoads) {
   dc::SolverSettings direct;
   direct.method = dc::SolverSettings::Method::kDirect;
-  dc::FemBody statics = makeBeam(false, Eigen::Vector3d(0, 0, -9.81), direct);
+  dc::Body statics = makeBeam(false, Eigen::Vector3d(0, 0, -9.81), direct);
   statics.fixNodes(clampedEnd(statics));
   const dc::StaticReport report = statics.solveStatic({});
   EXPECT_TRUE(report.converged);
@@ -118,7 +118,7 @@ TEST(FemBody, StaticSolveMatchesTheSettledDynamicStateAndBalancesLoads) {
 
   dc::SolverSettings tight;
   tight.tolerance = 1e-10;
-  dc::FemBody dynamics = makeBeam(false, Eigen::Vector3d(0, 0, -9.81), tight);
+  dc::Body dynamics = makeBeam(false, Eigen::Vector3d(0, 0, -9.81), tight);
   dynamics.fixNodes(clampedEnd(dynamics));
   // A huge step of implicit Euler with no inertia left is the static solution.
   for (int s = 0; s < 5; ++s) dynamics.step(1000.0);
@@ -126,14 +126,14 @@ TEST(FemBody, StaticSolveMatchesTheSettledDynamicStateAndBalancesLoads) {
             1e-6 * (statics.positions() - statics.restPositions()).norm());
 }
 
-TEST(FemBody, ConjugateGradientAndDirectSolversAgree) {
+TEST(Body, ConjugateGradientAndDirectSolversAgree) {
   dc::SolverSettings cg;
   cg.tolerance = 1e-12;
   cg.max_iterations = 5000;
   dc::SolverSettings direct;
   direct.method = dc::SolverSettings::Method::kDirect;
-  dc::FemBody a = makeBeam(true, Eigen::Vector3d(0, 0, -9.81), cg);
-  dc::FemBody b = makeBeam(true, Eigen::Vector3d(0, 0, -9.81), direct);
+  dc::Body a = makeBeam(true, Eigen::Vector3d(0, 0, -9.81), cg);
+  dc::Body b = makeBeam(true, Eigen::Vector3d(0, 0, -9.81), direct);
   a.fixNodes(clampedEnd(a));
   b.fixNodes(clampedEnd(b));
   for (int s = 0; s < 30; ++s) {
@@ -147,8 +147,8 @@ TEST(FemBody, ConjugateGradientAndDirectSolversAgree) {
             1e-8 * (b.positions() - b.restPositions()).norm());
 }
 
-TEST(FemBody, FixingAndReleasingAtRunTimeKeepsThePattern) {
-  dc::FemBody body = makeBeam(true, Eigen::Vector3d(0, 0, -9.81));
+TEST(Body, FixingAndReleasingAtRunTimeKeepsThePattern) {
+  dc::Body body = makeBeam(true, Eigen::Vector3d(0, 0, -9.81));
   const std::vector<int> clamp = clampedEnd(body);
   const int blocks = body.elasticity().stiffness().numBlocks();
   const Eigen::Matrix3d* storage = body.elasticity().stiffness().blocks().data();
@@ -166,8 +166,8 @@ TEST(FemBody, FixingAndReleasingAtRunTimeKeepsThePattern) {
   EXPECT_EQ(body.elasticity().stiffness().blocks().data(), storage);
 }
 
-TEST(FemBody, TargetsDragTheNodesExactlyThere) {
-  dc::FemBody body = makeBeam(true, std::nullopt);
+TEST(Body, TargetsDragTheNodesExactlyThere) {
+  dc::Body body = makeBeam(true, std::nullopt);
   const std::vector<int> clamp = clampedEnd(body);
   std::vector<Eigen::Vector3d> targets;
   for (int i : clamp)
@@ -182,8 +182,8 @@ TEST(FemBody, TargetsDragTheNodesExactlyThere) {
   EXPECT_THROW(body.fixNodes({body.numNodes()}), std::invalid_argument);
 }
 
-TEST(FemBody, EnergyDecaysAfterReleaseWithImplicitEuler) {
-  dc::FemBody body = makeBeam(true, std::nullopt);
+TEST(Body, EnergyDecaysAfterReleaseWithImplicitEuler) {
+  dc::Body body = makeBeam(true, std::nullopt);
   body.fixNodes(clampedEnd(body));
   Eigen::VectorXd x = body.restPositions();
   for (int i = 0; i < body.numNodes(); ++i) x[3 * i + 2] += 0.3 * std::pow(x[3 * i], 2);
@@ -198,26 +198,25 @@ TEST(FemBody, EnergyDecaysAfterReleaseWithImplicitEuler) {
   }
 }
 
-TEST(FemBody, RejectsBadMeshesAndSettings) {
+TEST(Body, RejectsBadMeshesAndSettings) {
   dc::Mesh mesh = dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1});
   std::swap(mesh.tetrahedra[2][0], mesh.tetrahedra[2][1]);
   try {
-    dc::FemBody("cube", mesh, kSoft, {}, {});
+    dc::Body("cube", mesh, kSoft, {}, {});
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "body 'cube': tetrahedron 2 has non-positive volume");
   }
   dc::SolverSettings bad;
   bad.tolerance = 0.0;
-  EXPECT_THROW(
-      dc::FemBody("cube", dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1}), kSoft, {}, bad),
-      std::invalid_argument);
-  EXPECT_THROW(dc::FemBody("cube", dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1}),
-                           dc::LinearElasticMaterial{1e6, 0.5, 1000}, {}, {}),
+  EXPECT_THROW(dc::Body("cube", dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1}), kSoft, {}, bad),
+               std::invalid_argument);
+  EXPECT_THROW(dc::Body("cube", dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1}),
+                        dc::LinearElasticMaterial{1e6, 0.5, 1000}, {}, {}),
                std::invalid_argument);
 }
 
-TEST(FemBody, ThreadCountChangesNoBit) {
+TEST(Body, ThreadCountChangesNoBit) {
   // More than one chunk of nodes for the dot products and more rows than threads.
   const auto run = [](int threads) {
     dc::SolverSettings solver;
@@ -225,8 +224,8 @@ TEST(FemBody, ThreadCountChangesNoBit) {
     solver.tolerance = 1e-10;
     dc::BodyEffects effects;
     effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-    dc::FemBody body("beam", dc::makeBoxMesh({0, -0.1, -0.1}, {1.0, 0.1, 0.1}, {20, 4, 4}), kSoft,
-                     effects, solver);
+    dc::Body body("beam", dc::makeBoxMesh({0, -0.1, -0.1}, {1.0, 0.1, 0.1}, {20, 4, 4}), kSoft,
+                  effects, solver);
     body.fixNodes(clampedEnd(body));
     for (int s = 0; s < 15; ++s) EXPECT_TRUE(body.step(0.01).solve.converged);
     return Eigen::VectorXd(body.positions() - body.restPositions());
@@ -240,12 +239,12 @@ TEST(FemBody, ThreadCountChangesNoBit) {
   EXPECT_GT(two.norm(), 1e-3);  // the beam really sagged
 }
 
-TEST(FemBody, ExtrapolatedWarmStartSavesIterationsNotAccuracy) {
+TEST(Body, ExtrapolatedWarmStartSavesIterationsNotAccuracy) {
   // A swinging cantilever: the same motion to the solver's tolerance, in far fewer iterations.
   const auto swing = [](dc::SolverSettings::WarmStart warm_start, int& total_iterations) {
     dc::SolverSettings solver;
     solver.warm_start = warm_start;
-    dc::FemBody body = makeBeam(true, Eigen::Vector3d(0, 0, -9.81), solver);
+    dc::Body body = makeBeam(true, Eigen::Vector3d(0, 0, -9.81), solver);
     body.fixNodes(clampedEnd(body));
     total_iterations = 0;
     for (int s = 0; s < 100; ++s) total_iterations += body.step(0.01).solve.iterations;
@@ -260,11 +259,11 @@ TEST(FemBody, ExtrapolatedWarmStartSavesIterationsNotAccuracy) {
   EXPECT_LT((a - b).norm(), 1e-4 * b.norm());
 }
 
-TEST(FemBody, ANewStateStartsANewVelocityHistory) {
+TEST(Body, ANewStateStartsANewVelocityHistory) {
   dc::SolverSettings solver;
   solver.coarse_refresh_interval = 1;  // so that only the velocity history can tell them apart
-  dc::FemBody used = makeBeam(true, Eigen::Vector3d(0, 0, -9.81), solver);
-  dc::FemBody fresh = makeBeam(true, Eigen::Vector3d(0, 0, -9.81), solver);
+  dc::Body used = makeBeam(true, Eigen::Vector3d(0, 0, -9.81), solver);
+  dc::Body fresh = makeBeam(true, Eigen::Vector3d(0, 0, -9.81), solver);
   used.fixNodes(clampedEnd(used));
   fresh.fixNodes(clampedEnd(fresh));
   for (int s = 0; s < 10; ++s) used.step(0.01);

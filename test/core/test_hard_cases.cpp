@@ -66,7 +66,7 @@ dc::Simulation build(const dc::SceneSpec& spec) {
   return dc::Simulation(spec, std::move(meshes));
 }
 
-bool finite(const dc::FemBody& body) {
+bool finite(const dc::Body& body) {
   return body.positions().allFinite() && body.velocities().allFinite();
 }
 
@@ -74,7 +74,7 @@ Eigen::Vector3d node(const Eigen::VectorXd& stacked, int i) { return stacked.seg
 
 /// Largest distance of a node from the best-fit rigid motion of the rest shape, m: zero for any
 /// rigidly moved rest shape.
-double distanceFromRestShape(const dc::FemBody& body) {
+double distanceFromRestShape(const dc::Body& body) {
   const dc::RigidFrame frame =
       dc::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses());
   double largest = 0.0;
@@ -87,7 +87,7 @@ double distanceFromRestShape(const dc::FemBody& body) {
 }
 
 /// Largest distance of a node from its rest position, m.
-double distanceFromRest(const dc::FemBody& body) {
+double distanceFromRest(const dc::Body& body) {
   double largest = 0.0;
   for (int i = 0; i < body.numNodes(); ++i) {
     largest = std::max(largest, (node(body.positions(), i) - node(body.restPositions(), i)).norm());
@@ -95,13 +95,13 @@ double distanceFromRest(const dc::FemBody& body) {
   return largest;
 }
 
-double largestStrain(const dc::FemBody& body) {
+double largestStrain(const dc::Body& body) {
   std::vector<double> strain;
   dc::nodalStrain(body, strain);
   return *std::max_element(strain.begin(), strain.end());
 }
 
-double smallestVolume(const dc::FemBody& body) {
+double smallestVolume(const dc::Body& body) {
   std::vector<Eigen::Vector3d> x(body.numNodes());
   for (int i = 0; i < body.numNodes(); ++i) x[i] = node(body.positions(), i);
   double smallest = INFINITY;
@@ -110,32 +110,32 @@ double smallestVolume(const dc::FemBody& body) {
   return smallest;
 }
 
-double currentVolume(const dc::FemBody& body) {
+double currentVolume(const dc::Body& body) {
   dc::Mesh deformed = body.mesh();
   for (int i = 0; i < body.numNodes(); ++i) deformed.positions[i] = node(body.positions(), i);
   return dc::totalVolume(deformed);
 }
 
-double mass(const dc::FemBody& body) {
+double mass(const dc::Body& body) {
   double total = 0.0;
   for (double m : body.nodalMasses()) total += m;
   return total;
 }
 
-Eigen::Vector3d centreOfMass(const dc::FemBody& body) {
+Eigen::Vector3d centreOfMass(const dc::Body& body) {
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (int i = 0; i < body.numNodes(); ++i) c += body.nodalMasses()[i] * node(body.positions(), i);
   return c / mass(body);
 }
 
-Eigen::Vector3d linearMomentum(const dc::FemBody& body) {
+Eigen::Vector3d linearMomentum(const dc::Body& body) {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   for (int i = 0; i < body.numNodes(); ++i) p += body.nodalMasses()[i] * node(body.velocities(), i);
   return p;
 }
 
 /// About the centre of mass, kg m^2/s.
-Eigen::Vector3d angularMomentum(const dc::FemBody& body) {
+Eigen::Vector3d angularMomentum(const dc::Body& body) {
   const Eigen::Vector3d c = centreOfMass(body);
   Eigen::Vector3d l = Eigen::Vector3d::Zero();
   for (int i = 0; i < body.numNodes(); ++i) {
@@ -144,21 +144,21 @@ Eigen::Vector3d angularMomentum(const dc::FemBody& body) {
   return l;
 }
 
-/// Kinetic + elastic + gravitational energy relative to the rest state, J. FemBody's
+/// Kinetic + elastic + gravitational energy relative to the rest state, J. Body's
 /// elasticEnergy() uses the rotations of the last step's start, which lag a spinning body by a
 /// step and would count that lag as strain; the meter takes the rotations of the positions it
 /// measures.
 class EnergyMeter {
  public:
-  explicit EnergyMeter(const dc::FemBody& body)
+  explicit EnergyMeter(const dc::Body& body)
       : elasticity_(body.mesh(), body.material()), gravity_(body.effects().gravity) {}
 
-  double elastic(const dc::FemBody& body) {
+  double elastic(const dc::Body& body) {
     elasticity_.updateRotations(body.positions());
     return elasticity_.elasticEnergy(body.positions());
   }
 
-  double total(const dc::FemBody& body) {
+  double total(const dc::Body& body) {
     double energy = body.kineticEnergy() + elastic(body);
     if (gravity_) {
       for (int i = 0; i < body.numNodes(); ++i) {
@@ -175,7 +175,7 @@ class EnergyMeter {
 };
 
 /// Work of the nodal forces f (constant over the step) from x_before to the body's positions, J.
-double work(const Eigen::VectorXd& f, const Eigen::VectorXd& x_before, const dc::FemBody& body) {
+double work(const Eigen::VectorXd& f, const Eigen::VectorXd& x_before, const dc::Body& body) {
   return f.dot(body.positions() - x_before);
 }
 
@@ -227,7 +227,7 @@ SpinRun spin() {
   spec.bodies.push_back(
       boxBody("spinner", {-0.1, -0.05, -0.025}, {0.1, 0.05, 0.025}, {8, 4, 2}, kRubber));
   dc::Simulation sim = build(spec);
-  dc::FemBody& body = sim.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   const Eigen::Vector3d omega(0.0, 0.0, 20.0), drift(0.1, -0.05, 0.0);
   Eigen::VectorXd v(body.restPositions().size());
   for (int i = 0; i < body.numNodes(); ++i)
@@ -314,7 +314,7 @@ TwistRun twist() {
   beam.fixed.push_back(faceAtX(0.0));
   spec.bodies.push_back(beam);
   dc::Simulation sim = build(spec);
-  dc::FemBody& body = sim.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   const std::vector<int> end = dc::selectNodes(body.mesh(), faceAtX(0.5));
   EnergyMeter meter(body);
   std::vector<dc::StepReport> reports;
@@ -389,7 +389,7 @@ TEST(HardCases, BlockPushedThroughItselfRecovers) {
   block.fixed.push_back(boxSelection({-1, -1, -1e-9}, {1, 1, 1e-9}));
   spec.bodies.push_back(block);
   dc::Simulation sim = build(spec);
-  dc::FemBody& body = sim.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   const std::vector<int> top =
       dc::selectNodes(body.mesh(), boxSelection({-1, -1, 0.1 - 1e-9}, {1, 1, 0.1 + 1e-9}));
   const double rest_volume = dc::totalVolume(body.mesh());
@@ -446,8 +446,8 @@ TEST(HardCases, NearlyIncompressibleCantileverSagsToItsStaticState) {
   dc::Simulation sim = build(spec);
   dc::Simulation statics = build(spec);
   ASSERT_TRUE(statics.solveStatic()[0].converged);
-  const dc::FemBody& reference = statics.bodies()[0];
-  dc::FemBody& body = sim.bodies()[0];
+  const dc::Body& reference = statics.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   EnergyMeter meter(body);
 
   std::vector<dc::StepReport> reports;
@@ -496,7 +496,7 @@ TEST(HardCases, VerySoftAndVeryStiffBodiesTogether) {
   for (int s = 0; s < 1000; ++s) {
     ASSERT_NO_FATAL_FAILURE(stepChecked(sim, reports, s));
     for (int b = 0; b < 2; ++b) {
-      const dc::FemBody& body = sim.bodies()[b];
+      const dc::Body& body = sim.bodies()[b];
       EXPECT_TRUE(reports[b].solve.converged) << body.name() << " step " << s;
       const double energy = meters[b].total(body);
       EXPECT_LE(energy, previous[b] + 1e-9) << body.name() << " step " << s;
@@ -505,7 +505,7 @@ TEST(HardCases, VerySoftAndVeryStiffBodiesTogether) {
     }
   }
   for (int b = 0; b < 2; ++b) {
-    const dc::FemBody& body = sim.bodies()[b];
+    const dc::Body& body = sim.bodies()[b];
     std::printf("[ measured ] %s: tip sag %.4g m, kinetic energy %.3g J of a peak %.3g J\n",
                 body.name().c_str(), distanceFromRest(body), body.kineticEnergy(), peak_kinetic[b]);
     EXPECT_LT(body.kineticEnergy(), 1e-6 * peak_kinetic[b]) << body.name();
@@ -523,7 +523,7 @@ namespace {
 
 /// The largest stable step of an explicit (central-difference) integrator for the body at rest:
 /// 2 / omega_max, omega_max^2 the largest eigenvalue of K v = omega^2 M v, s.
-double explicitStableStep(const dc::FemBody& body) {
+double explicitStableStep(const dc::Body& body) {
   dc::CorotationalElasticity elasticity(body.mesh(), body.material());
   elasticity.update(body.restPositions(), false);
   const int n = static_cast<int>(body.restPositions().size());
@@ -560,7 +560,7 @@ SteelRun steel(double spin) {
   spec.bodies.push_back(
       boxBody("steel", {0, 0, 0}, {0.02, 0.02, 0.02}, {3, 3, 3}, {2.0e11, 0.3, 7850.0}));
   dc::Simulation sim = build(spec);
-  dc::FemBody& body = sim.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   run.critical_dt = explicitStableStep(body);
   run.ratio = spec.dt / run.critical_dt;
   Eigen::VectorXd x = body.restPositions(), v(x.size());
@@ -641,7 +641,7 @@ ImpulseRun impulse() {
   beam.fixed.push_back(faceAtX(0.0));
   spec.bodies.push_back(beam);
   dc::Simulation sim = build(spec);
-  dc::FemBody& body = sim.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   const std::vector<int> end = dc::selectNodes(body.mesh(), faceAtX(0.5));
   const double weight = mass(body) * 9.81;
   std::vector<Eigen::Vector3d> points, forces;
@@ -723,7 +723,7 @@ void teleport(bool check_energy) {
   beam.fixed.push_back(faceAtX(0.0));
   spec.bodies.push_back(beam);
   dc::Simulation sim = build(spec);
-  dc::FemBody& body = sim.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   const std::vector<int> end = dc::selectNodes(body.mesh(), faceAtX(0.5));
   body.fixNodes(end);
   std::vector<Eigen::Vector3d> targets;
@@ -771,7 +771,7 @@ TEST(HardCases, AllNodesFixedMakesTheStepANoOp) {
   spec.effects.gravity = kGravity;
   spec.bodies.push_back(boxBody("held", {0, 0, 0}, {0.2, 0.1, 0.1}, {4, 2, 2}, kRubber));
   dc::Simulation sim = build(spec);
-  dc::FemBody& body = sim.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   // Held in a bent shape, so that K' x + f0' and gravity both push on every node.
   Eigen::VectorXd x = body.restPositions();
   for (int i = 0; i < body.numNodes(); ++i) x[3 * i + 2] += 0.5 * x[3 * i] * x[3 * i];
@@ -800,7 +800,7 @@ TEST(HardCases, FreeFallIsImplicitEulersExactly) {
   spec.effects.gravity = kGravity;
   spec.bodies.push_back(boxBody("falling", {0, 0, 0}, {0.2, 0.1, 0.1}, {4, 2, 2}, kRubber));
   dc::Simulation sim = build(spec);
-  dc::FemBody& body = sim.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   const Eigen::Vector3d c0 = centreOfMass(body);
   const double h = spec.dt, g = -kGravity.z();
   std::vector<dc::StepReport> reports;
@@ -845,7 +845,7 @@ TEST(HardCases, SingleFreeTetrahedronComesBackToItsShape) {
   tet.material = kRubber;
   spec.bodies.push_back(tet);
   dc::Simulation sim(spec, {oneTetrahedron()});
-  dc::FemBody& body = sim.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   // Squashed to a fifth of its height and pulled apart sideways, at rest.
   Eigen::VectorXd x = body.restPositions();
   x[3 * 3 + 2] = 0.02;
@@ -892,7 +892,7 @@ void hangingTetrahedron(bool check_energy) {
   tet.fixed.push_back(pivot);
   spec.bodies.push_back(tet);
   dc::Simulation sim(spec, {oneTetrahedron()});
-  dc::FemBody& body = sim.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   EnergyMeter meter(body);
   EnergyLog log;
   log.start(0.0);
@@ -966,7 +966,7 @@ TEST(HardCases, SliverElementsAreReportedAndSimulatedStably) {
   dc::Simulation sim(spec, {mesh});
   dc::Simulation statics(spec, {mesh});
   ASSERT_TRUE(statics.solveStatic()[0].converged);
-  dc::FemBody& body = sim.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   EnergyMeter meter(body);
   EnergyLog log;
   log.start(0.0);

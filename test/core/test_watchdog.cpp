@@ -25,7 +25,7 @@ TEST(Watchdog, UndoesANonFiniteStepAndTheBodyCarriesOn) {
   dc::Simulation sim = makeDefault();
   std::vector<dc::StepReport> reports;
   for (int s = 0; s < 20; ++s) sim.step(reports);
-  dc::FemBody& body = sim.bodies()[0];
+  dc::Body& body = sim.bodies()[0];
   ASSERT_GT(body.velocities().norm(), 0.0);  // sagging: a moving state to be rescued
   const Eigen::VectorXd before = body.positions();
 

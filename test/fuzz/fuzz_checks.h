@@ -36,7 +36,7 @@ inline void require(bool condition, const std::string& what) {
 
 /// Positions, velocities, applied and reaction forces of every body are finite.
 inline void requireFinite(const core::Simulation& simulation, const std::string& when) {
-  for (const core::FemBody& body : simulation.bodies()) {
+  for (const core::Body& body : simulation.bodies()) {
     const std::string where = when + ", body '" + body.name() + "': ";
     require(body.positions().allFinite(), where + "non-finite position");
     require(body.velocities().allFinite(), where + "non-finite velocity");

@@ -260,7 +260,7 @@ struct Snapshot {
       : obstacles(session.simulation().obstacles().size()),
         dt(session.simulation().dt()),
         episode(session.episode()) {
-    for (const core::FemBody& body : session.simulation().bodies()) {
+    for (const core::Body& body : session.simulation().bodies()) {
       positions.push_back(body.positions());
       velocities.push_back(body.velocities());
       forces.push_back(body.externalForces());

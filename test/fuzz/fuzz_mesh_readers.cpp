@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "deformable_sim/core/body.h"
 #include "deformable_sim/core/cell.h"
-#include "deformable_sim/core/fem_body.h"
 #include "deformable_sim/core/mesh.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "fuzz_checks.h"

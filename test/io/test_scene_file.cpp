@@ -91,7 +91,7 @@ TEST(SceneFile, EffectsNotNamedAreOff) {
 TEST(SceneFile, BuildsTheSimulationWithLoadsAndConstraints) {
   dc::Simulation sim = dio::buildSimulation(dio::parseScene(kScene, "test.yaml", "."), nullptr);
   ASSERT_EQ(sim.bodies().size(), 1u);
-  const dc::FemBody& beam = sim.body("beam");
+  const dc::Body& beam = sim.body("beam");
   EXPECT_EQ(beam.numConstrained(), 9 + 1);  // the 3x3 clamped face and node 13
   const Eigen::Vector3d load = beam.externalForces().reshaped(3, beam.numNodes()).rowwise().sum();
   EXPECT_NEAR((load - Eigen::Vector3d(0, 0, -0.035)).norm(), 0.0, 1e-15);
@@ -140,8 +140,8 @@ TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
   EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: cg, threads: 0")),
             "test.yaml:4: solver.threads: must be >= 1");
   EXPECT_EQ(errorOf(replaced(kScene, "dt: 0.005", "dt: -1")), "test.yaml:2: dt: must be > 0");
-  EXPECT_EQ(errorOf(replaced(kScene, "model: fem", "model: rigid")),
-            "test.yaml:9: bodies[0].model: 'rigid' is not supported (fem)");
+  EXPECT_EQ(errorOf(replaced(kScene, "model: fem", "model: soft")),
+            "test.yaml:9: bodies[0].model: 'soft' is not one of: fem, pseudo_rigid, rigid");
   EXPECT_EQ(errorOf(replaced(kScene, "traction: [0, 0, -2.5]", "pressure: 3")),
             "test.yaml:13: bodies[0].loads[0].pressure: unknown key (expected one of: box, "
             "nodes, sphere, total_force, traction, wrench)");
@@ -206,7 +206,7 @@ TEST(SceneFile, GroupsAndWrenchLoads) {
   EXPECT_EQ(spec.bodies[0].wrench_radius, 0.2);
   ASSERT_EQ(spec.bodies[0].loads[0].kind, dc::LoadSpec::Kind::kWrench);
   dc::Simulation sim = dio::buildSimulation(spec, nullptr);
-  const dc::FemBody& body = sim.bodies()[0];
+  const dc::Body& body = sim.bodies()[0];
   EXPECT_EQ(body.groups().at("tip").size(), 9u);
   EXPECT_EQ(body.groups().at("one").size(), 1u);
   EXPECT_EQ(sim.wrenchRadius(0), 0.2);
@@ -219,4 +219,33 @@ TEST(SceneFile, GroupsAndWrenchLoads) {
                              "one: {sphere: {center: [5, 5, 5], radius: 0.1}}"),
                     true),
             "bodies[0].groups.one: selects no node");
+}
+
+TEST(SceneFile, BodiesChooseTheirModelAndChangeTheScenesEffects) {
+  const std::string yaml = replaced(kScene, "    model: fem\n", R"(    model: rigid
+    effects: {gravity: off, damping: {mass: 2.0}, reactions: false}
+)");
+  const dc::SceneSpec spec = dio::parseScene(yaml, "test.yaml", ".");
+  const dc::BodySpec& body = spec.bodies[0];
+  EXPECT_EQ(body.model, dc::BodyModel::kRigid);
+  ASSERT_TRUE(body.effects.has_value());
+  EXPECT_FALSE(body.effects->gravity.has_value());
+  ASSERT_TRUE(body.effects->damping.has_value());
+  EXPECT_EQ(body.effects->damping->mass, 2.0);
+  EXPECT_EQ(body.effects->damping->stiffness, 0.0);
+  EXPECT_FALSE(body.effects->reactions);
+  EXPECT_TRUE(body.effects->warping);  // not named: the scene's
+  EXPECT_TRUE(spec.effects.gravity.has_value());
+  EXPECT_EQ(dio::parseScene(replaced(kScene, "model: fem", "model: pseudo_rigid"), "t", ".")
+                .bodies[0]
+                .model,
+            dc::BodyModel::kPseudoRigid);
+  EXPECT_EQ(errorOf(replaced(kScene, "    model: fem\n", "    effects: {contact: {}}\n")),
+            "test.yaml:9: bodies[0].effects.contact: unknown key (expected one of: damping, "
+            "gravity, plasticity, reactions, stress_colouring, warping)");
+  EXPECT_EQ(errorOf(replaced(kScene, "    model: fem\n",
+                             "    model: rigid\n    effects: {plasticity: {yield: 0.1}}\n"),
+                    true),
+            "bodies[0]: body 'beam': plasticity needs a finite-element body (rigid bodies deform "
+            "homogeneously or not at all)");
 }

@@ -20,6 +20,7 @@ class SimClient:
         self.node = node
         self._lock = threading.Lock()
         self._state = None
+        self._states = {}  # the newest state of each body (a scene's bodies publish in turn)
         self._stats = None
         rospy.Subscriber(node + '/state', BodyState, self._on_state, queue_size=10)
         rospy.Subscriber(node + '/stats', Stats, self._on_stats, queue_size=10)
@@ -33,19 +34,23 @@ class SimClient:
     def _on_state(self, message):
         with self._lock:
             self._state = message
+            self._states[message.body] = message
 
     def _on_stats(self, message):
         with self._lock:
             self._stats = message
 
-    def wait(self, what, predicate=lambda m: True, timeout=10.0):
-        """The newest state or stats message published after this call for which predicate
-        holds."""
+    def wait(self, what, predicate=lambda m: True, timeout=10.0, body=None):
+        """The newest state (of `body`, if given) or stats message published after this call
+        for which predicate holds."""
         since = rospy.Time.now()
         deadline = time.time() + timeout
         while time.time() < deadline and not rospy.is_shutdown():
             with self._lock:
-                message = self._state if what == 'state' else self._stats
+                if what == 'state':
+                    message = self._state if body is None else self._states.get(body)
+                else:
+                    message = self._stats
             if message is not None and message.header.stamp >= since and predicate(message):
                 return message
             time.sleep(0.02)

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/fem_body.h"
+#include "deformable_sim/core/body.h"
 
 namespace deformable_sim::bench {
 
@@ -32,7 +32,7 @@ struct CaseRun {
   std::size_t memory_bytes = 0;  ///< heap held by the body and its solver after the run
 
   /// Takes `substeps` steps of dt / substeps, timing them together as one tick.
-  void timeTick(core::FemBody& body, double dt, int substeps);
+  void timeTick(core::Body& body, double dt, int substeps);
 };
 
 }  // namespace deformable_sim::bench

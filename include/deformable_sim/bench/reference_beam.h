@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/fem_body.h"
+#include "deformable_sim/core/body.h"
 #include "deformable_sim/core/material.h"
 #include "deformable_sim/core/mesh.h"
 
@@ -33,15 +33,14 @@ class ReferenceBeam {
   const core::Mesh& mesh() const { return mesh_; }
 
   /// A body on this mesh with the reference material, its clamp fixed.
-  core::FemBody makeBody(const core::BodyEffects& effects,
-                         const core::SolverSettings& solver) const;
+  core::Body makeBody(const core::BodyEffects& effects, const core::SolverSettings& solver) const;
 
   /// Sets the body's external forces to a total tip load of `load_n` newtons in -z, spread over
   /// the tip nodes by the reference's consistent shares (nodal force = -P weight).
-  void applyTipLoad(core::FemBody& body, double load_n) const;
+  void applyTipLoad(core::Body& body, double load_n) const;
 
   /// Area-weighted mean displacement of the tip face (the reference's tip_*_mean_area), m.
-  Eigen::Vector3d tipDisplacement(const core::FemBody& body) const;
+  Eigen::Vector3d tipDisplacement(const core::Body& body) const;
 
  private:
   std::string id_;

@@ -1,4 +1,4 @@
-// The static reference cases, solved with FemBody::solveStatic: A (linear cantilever, P = 0.025 N)
+// The static reference cases, solved with Body::solveStatic: A (linear cantilever, P = 0.025 N)
 // and B (large deflection, P = alpha E I / L^2, ramped in 4 load steps).
 #pragma once
 

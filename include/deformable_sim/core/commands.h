@@ -136,7 +136,7 @@ class CommandProcessor {
 
  private:
   int findBody(const std::string& name, const NodeTarget& nodes) const;
-  std::vector<int> resolve(const FemBody& body, const NodeTarget& nodes) const;
+  std::vector<int> resolve(const Body& body, const NodeTarget& nodes) const;
   void updateExternalForces(int body);
 
   Simulation& simulation_;

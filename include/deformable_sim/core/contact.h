@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "deformable_sim/core/fem_body.h"
+#include "deformable_sim/core/body.h"
 #include "deformable_sim/core/shape.h"
 
 namespace deformable_sim::core {
@@ -26,13 +26,13 @@ class ContactState {
       : normal_(num_nodes, Eigen::Vector3d::Zero()), held_(num_nodes, 0) {}
 
   /// Before a step: holds the free nodes that touch an obstacle.
-  void hold(FemBody& body);
+  void hold(Body& body);
   /// After the step: lets the held nodes go, keeping as touching those whose constraint force
   /// pushes them out of the obstacle within the friction cone.
-  void release(FemBody& body, const ContactSettings& settings);
+  void release(Body& body, const ContactSettings& settings);
   /// Projects the free nodes out of every obstacle and records them as touching. Returns the
   /// number of nodes touching an obstacle.
-  int project(FemBody& body, const std::vector<PlacedShape>& obstacles,
+  int project(Body& body, const std::vector<PlacedShape>& obstacles,
               const ContactSettings& settings);
 
  private:

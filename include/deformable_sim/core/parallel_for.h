@@ -6,8 +6,8 @@
 namespace deformable_sim::core {
 
 /// body(i) for i in [begin, end), in static chunks over `threads` threads.
-template <typename Body>
-void parallelFor(int threads, int begin, int end, Body&& body) {
+template <typename Function>
+void parallelFor(int threads, int begin, int end, Function&& body) {
   if (threads > 1) {
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (int i = begin; i < end; ++i) body(i);
@@ -17,8 +17,8 @@ void parallelFor(int threads, int begin, int end, Body&& body) {
 }
 
 /// The sum of body(i) for i in [begin, end) (any order of summation over threads).
-template <typename Body>
-int parallelCount(int threads, int begin, int end, Body&& body) {
+template <typename Function>
+int parallelCount(int threads, int begin, int end, Function&& body) {
   int count = 0;
   if (threads > 1) {
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : count)

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "deformable_sim/core/body.h"
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/contact.h"
-#include "deformable_sim/core/fem_body.h"
 #include "deformable_sim/core/linear_solver.h"
 #include "deformable_sim/core/material.h"
 #include "deformable_sim/core/selection.h"
@@ -42,6 +42,9 @@ struct BoxMeshSpec {
 
 struct BodySpec {
   std::string name;
+  BodyModel model = BodyModel::kFiniteElement;
+  /// The body's own effects instead of the scene's (key `effects` of the body).
+  std::optional<BodyEffects> effects;
   std::string mesh;                     ///< path of the mesh file, or empty with box_mesh
   std::optional<BoxMeshSpec> box_mesh;  ///< generated mesh, when there is no mesh file
   LinearElasticMaterial material;

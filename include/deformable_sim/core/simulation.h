@@ -2,10 +2,11 @@
 // together.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/fem_body.h"
+#include "deformable_sim/core/body.h"
 #include "deformable_sim/core/mesh.h"
 #include "deformable_sim/core/scene.h"
 
@@ -23,10 +24,10 @@ class Simulation {
   long stepCount() const { return step_count_; }
   double time() const { return time_; }  ///< s, simulated since the start
 
-  std::vector<FemBody>& bodies() { return bodies_; }
-  const std::vector<FemBody>& bodies() const { return bodies_; }
+  std::vector<Body>& bodies() { return bodies_; }
+  const std::vector<Body>& bodies() const { return bodies_; }
   /// Throws std::out_of_range naming the body if there is none of that name.
-  FemBody& body(const std::string& name);
+  Body& body(const std::string& name);
   /// Index of the body of that name in bodies(), or -1.
   int bodyIndex(const std::string& name) const;
   /// The scene's wrench_radius of bodies()[index], m.
@@ -45,6 +46,8 @@ class Simulation {
   std::vector<PlacedShape>& obstacles() { return obstacles_; }
   const std::vector<PlacedShape>& obstacles() const { return obstacles_; }
   const std::optional<ContactSettings>& contact() const { return contact_; }
+  /// Body steps that ran the contact effect (zero without it): its counter, as Body's.
+  long contactSteps() const { return contact_steps_; }
 
   /// Quasi-static equilibrium of every body.
   std::vector<StaticReport> solveStatic();
@@ -54,14 +57,14 @@ class Simulation {
   StaticSettings statics_;
   long step_count_ = 0;
   double time_ = 0.0;
-  std::vector<FemBody> bodies_;
+  std::vector<Body> bodies_;
   std::vector<double> wrench_radii_;
   std::optional<ContactSettings> contact_;
-  std::vector<ContactState> contact_states_;  ///< per body, with the contact effect
+  /// Per body, with the contact effect and a finite-element model.
+  std::vector<std::optional<ContactState>> contact_states_;
+  long contact_steps_ = 0;
   std::vector<PlacedShape> obstacles_;
-  /// Per body: the state before the step (the watchdog's last good state), and its recoveries.
-  std::vector<Eigen::VectorXd> last_good_positions_;
-  std::vector<long> recoveries_;
+  std::vector<long> recoveries_;  ///< per body: steps the watchdog undid
 };
 
 }  // namespace deformable_sim::core

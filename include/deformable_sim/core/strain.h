@@ -4,13 +4,13 @@
 
 #include <vector>
 
-#include "deformable_sim/core/fem_body.h"
+#include "deformable_sim/core/body.h"
 
 namespace deformable_sim::core {
 
 /// For each node, the largest over its elements of ‖sym(Rᵀ F) − I‖ (Frobenius; R the polar
 /// rotation of F): the corotated small strain, dimensionless, 0 at rest and for rigid motions.
 /// `strain` is resized to the number of nodes.
-void nodalStrain(const FemBody& body, std::vector<double>& strain);
+void nodalStrain(const Body& body, std::vector<double>& strain);
 
 }  // namespace deformable_sim::core

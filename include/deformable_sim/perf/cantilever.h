@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "deformable_sim/core/fem_body.h"
+#include "deformable_sim/core/body.h"
 
 namespace deformable_sim::perf {
 
@@ -23,6 +23,6 @@ struct Cantilever {
 Cantilever makeCantilever(const Eigen::Vector3i& cells);
 
 /// A body of the cantilever with its clamp applied, at rest.
-core::FemBody makeBody(const Cantilever& cantilever);
+core::Body makeBody(const Cantilever& cantilever);
 
 }  // namespace deformable_sim::perf

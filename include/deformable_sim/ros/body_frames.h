@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/fem_body.h"
+#include "deformable_sim/core/body.h"
 
 namespace deformable_sim::ros_layer {
 
 /// world_frame -> <prefix><body> for every body and world_frame -> <prefix><body>/<group> for
 /// every node group, stamped `stamp`.
-std::vector<geometry_msgs::TransformStamped> bodyFrames(const std::vector<core::FemBody>& bodies,
+std::vector<geometry_msgs::TransformStamped> bodyFrames(const std::vector<core::Body>& bodies,
                                                         const std::string& world_frame,
                                                         const std::string& prefix,
                                                         const ros::Time& stamp);

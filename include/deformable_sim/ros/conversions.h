@@ -11,8 +11,8 @@
 #include "deformable_sim/BodyState.h"
 #include "deformable_sim/FixedNodes.h"
 #include "deformable_sim/NodeWrench.h"
+#include "deformable_sim/core/body.h"
 #include "deformable_sim/core/commands.h"
-#include "deformable_sim/core/fem_body.h"
 #include "deformable_sim/core/rigid_frame.h"
 
 namespace deformable_sim::ros_layer {
@@ -34,6 +34,6 @@ core::WrenchCommand toCommand(const NodeWrench& message, const Eigen::Isometry3d
 core::FixCommand toCommand(const FixedNodes& message, const Eigen::Isometry3d& frame_in_world);
 
 /// Fills `message` (kept between calls so its arrays are reused) with the body's state.
-void fillState(const core::FemBody& body, BodyState& message);
+void fillState(const core::Body& body, BodyState& message);
 
 }  // namespace deformable_sim::ros_layer

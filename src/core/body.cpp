@@ -1,5 +1,6 @@
-#include "deformable_sim/core/fem_body.h"
+#include "deformable_sim/core/body.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -76,9 +77,21 @@ const Mesh& validated(const std::string& name, const Mesh& mesh) {
 
 }  // namespace
 
-FemBody::FemBody(std::string name, Mesh mesh, const LinearElasticMaterial& material,
-                 const BodyEffects& effects, const SolverSettings& solver)
+std::vector<std::string> effectNames(const BodyEffects& effects, BodyModel model) {
+  std::vector<std::string> names;
+  if (effects.warping && model != BodyModel::kRigid) names.emplace_back("warping");
+  if (effects.gravity) names.emplace_back("gravity");
+  if (effects.damping) names.emplace_back("damping");
+  if (effects.plasticity) names.emplace_back("plasticity");
+  if (effects.stress_colouring) names.emplace_back("stress_colouring");
+  if (effects.reactions) names.emplace_back("reactions");
+  return names;
+}
+
+Body::Body(std::string name, Mesh mesh, const LinearElasticMaterial& material,
+           const BodyEffects& effects, const SolverSettings& solver, BodyModel model)
     : name_(std::move(name)),
+      model_(model),
       mesh_(std::move(mesh)),
       material_(material),
       effects_(effects),
@@ -86,25 +99,42 @@ FemBody::FemBody(std::string name, Mesh mesh, const LinearElasticMaterial& mater
       x0_(stack(validated(name_, mesh_).positions)),
       x_(x0_),
       v_(Eigen::VectorXd::Zero(x0_.size())),
+      remembered_positions_(x0_),
       mass_(lumpedMasses(mesh_, material.density)),
-      elasticity_(mesh_, material),
       constrained_(mesh_.numNodes(), 0),
       targets_(x0_),
       external_forces_(Eigen::VectorXd::Zero(x0_.size())),
-      reaction_(Eigen::VectorXd::Zero(x0_.size())),
-      rhs_(x0_.size()),
-      next_(x0_.size()),
-      scratch_(x0_.size()),
-      v_history_{Eigen::VectorXd::Zero(x0_.size()), Eigen::VectorXd::Zero(x0_.size()),
-                 Eigen::VectorXd::Zero(x0_.size())} {
+      reaction_(Eigen::VectorXd::Zero(x0_.size())) {
+  try {
+    validate(material);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("body '" + name_ + "': " + e.what());
+  }
   setSolverLimits(solver.tolerance, solver.max_iterations);
   setDamping(effects.damping);
   if (solver.threads < 1 || solver.coarse_refresh_interval < 1) {
     throw std::invalid_argument("body '" + name_ +
                                 "': solver threads and coarse_refresh_interval must be >= 1");
   }
+  if (model != BodyModel::kFiniteElement) {
+    if (effects.plasticity) {
+      throw std::invalid_argument("body '" + name_ + "': plasticity needs a finite-element body (" +
+                                  modelName(model) + " bodies deform homogeneously or not at all)");
+    }
+    try {
+      reduced_.emplace(model, massProperties(mesh_, material.density), material, effects.warping);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("body '" + name_ + "': " + e.what());
+    }
+    return;
+  }
+  elasticity_.emplace(mesh_, material);
+  rhs_.resize(x0_.size());
+  next_.resize(x0_.size());
+  scratch_.resize(x0_.size());
+  for (Eigen::VectorXd& v : v_history_) v = Eigen::VectorXd::Zero(x0_.size());
   if (solver.method == SolverSettings::Method::kDirect) direct_ = std::make_unique<DirectSolver>();
-  elasticity_.setThreads(solver.threads);
+  elasticity_->setThreads(solver.threads);
   if (effects.plasticity) {
     try {
       plasticity_.emplace(mesh_, *effects.plasticity);
@@ -115,20 +145,21 @@ FemBody::FemBody(std::string name, Mesh mesh, const LinearElasticMaterial& mater
   }
 }
 
-void FemBody::setMaterial(const LinearElasticMaterial& material) {
+void Body::setMaterial(const LinearElasticMaterial& material) {
   try {
     validate(material);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("body '" + name_ + "': " + e.what());
   }
+  if (reduced_) reduced_->setMaterial(massProperties(mesh_, material.density), material);
   material_ = material;
-  elasticity_.setMaterial(material);
+  if (elasticity_) elasticity_->setMaterial(material);
   mass_ = lumpedMasses(mesh_, material.density);
   stiffness_assembled_ = false;
   matrix_changed_ = true;
 }
 
-void FemBody::setDamping(const std::optional<RayleighDamping>& damping) {
+void Body::setDamping(const std::optional<RayleighDamping>& damping) {
   if (damping && !(damping->mass >= 0.0 && damping->stiffness >= 0.0 &&
                    std::isfinite(damping->mass) && std::isfinite(damping->stiffness))) {
     throw std::invalid_argument("body '" + name_ +
@@ -137,7 +168,7 @@ void FemBody::setDamping(const std::optional<RayleighDamping>& damping) {
   effects_.damping = damping;
 }
 
-void FemBody::setSolverLimits(double tolerance, int max_iterations) {
+void Body::setSolverLimits(double tolerance, int max_iterations) {
   if (!(tolerance > 0.0) || !std::isfinite(tolerance) || max_iterations < 1) {
     throw std::invalid_argument("body '" + name_ +
                                 "': solver tolerance must be finite and > 0, max_iterations >= 1");
@@ -146,7 +177,7 @@ void FemBody::setSolverLimits(double tolerance, int max_iterations) {
   solver_settings_.max_iterations = max_iterations;
 }
 
-void FemBody::addGroup(const std::string& name, std::vector<int> nodes) {
+void Body::addGroup(const std::string& name, std::vector<int> nodes) {
   for (int i : nodes) {
     if (i < 0 || i >= numNodes()) {
       throw std::invalid_argument("body '" + name_ + "': group '" + name + "' has node index " +
@@ -156,23 +187,106 @@ void FemBody::addGroup(const std::string& name, std::vector<int> nodes) {
   groups_[name] = std::move(nodes);
 }
 
-void FemBody::setState(const Eigen::VectorXd& positions, const Eigen::VectorXd& velocities) {
+void Body::setState(const Eigen::VectorXd& positions, const Eigen::VectorXd& velocities) {
   if (positions.size() != x_.size() || velocities.size() != v_.size()) {
     throw std::invalid_argument("body '" + name_ + "': state of the wrong size");
+  }
+  if (reduced_) {
+    // The model's motion nearest to the given one: x_i = c + A a_i fitted by least squares
+    // (weighted by the nodal masses, so c is the centre of mass), and likewise the velocities.
+    const Eigen::Vector3d rest_centre = reduced_->massProperties().centre;
+    Eigen::Matrix3d second = Eigen::Matrix3d::Zero(), spread = Eigen::Matrix3d::Zero(),
+                    rate = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero();
+    double total = 0.0;
+    for (int i = 0; i < numNodes(); ++i) {
+      total += mass_[i];
+      centre += mass_[i] * positions.segment<3>(3 * i);
+      velocity += mass_[i] * velocities.segment<3>(3 * i);
+    }
+    centre /= total;
+    velocity /= total;
+    for (int i = 0; i < numNodes(); ++i) {
+      const Eigen::Vector3d arm = x0_.segment<3>(3 * i) - rest_centre;
+      second += mass_[i] * arm * arm.transpose();
+      spread += mass_[i] * (positions.segment<3>(3 * i) - centre) * arm.transpose();
+      rate += mass_[i] * (velocities.segment<3>(3 * i) - velocity) * arm.transpose();
+    }
+    const Eigen::Matrix3d inverse = second.inverse();
+    reduced_->setState(centre, spread * inverse, velocity, rate * inverse);
+    nodes_stale_ = true;
+    return;
   }
   x_ = positions;
   v_ = velocities;
   history_size_ = 0;
 }
 
-void FemBody::fixNodes(const std::vector<int>& nodes) {
+Eigen::VectorXd& Body::mutablePositions() {
+  if (reduced_) throw std::logic_error("body '" + name_ + "': its nodes follow its model");
+  return x_;
+}
+
+Eigen::VectorXd& Body::mutableVelocities() {
+  if (reduced_) throw std::logic_error("body '" + name_ + "': its nodes follow its model");
+  return v_;
+}
+
+void Body::rememberState() {
+  if (reduced_) {
+    reduced_->remember();  // its few coordinates, not its nodes
+  } else {
+    remembered_positions_ = x_;
+  }
+}
+
+bool Body::stateIsFinite() const {
+  return reduced_ ? reduced_->finite() : x_.allFinite() && v_.allFinite();
+}
+
+void Body::returnToRememberedState() {
+  if (reduced_) {
+    reduced_->returnToRemembered();
+    nodes_stale_ = true;
+    return;
+  }
+  x_ = remembered_positions_;
+  v_.setZero();
+  history_size_ = 0;
+}
+
+const CorotationalElasticity& Body::elasticity() const {
+  if (!elasticity_) {
+    throw std::logic_error("body '" + name_ + "' is " + modelName(model_) + ": it has no elements");
+  }
+  return *elasticity_;
+}
+
+void Body::updateNodes() const {
+  const Eigen::Vector3d rest_centre = reduced_->massProperties().centre;
+  const Eigen::Matrix3d& gradient = reduced_->gradient();
+  const Eigen::Matrix3d rate = reduced_->gradientRate();
+  for (int i = 0; i < numNodes(); ++i) {
+    const Eigen::Vector3d arm = x0_.segment<3>(3 * i) - rest_centre;
+    x_.segment<3>(3 * i) = reduced_->centre() + gradient * arm;
+    v_.segment<3>(3 * i) = reduced_->linearVelocity() + rate * arm;
+  }
+  nodes_stale_ = false;
+  ++node_updates_;
+}
+
+NodeConstraints Body::nodeConstraints() const {
+  return NodeConstraints{&constrained_nodes_, &x0_, &targets_};
+}
+
+void Body::fixNodes(const std::vector<int>& nodes) {
   std::vector<Eigen::Vector3d> here;
-  for (int i : nodes) here.emplace_back(x_.segment<3>(3 * i));
+  for (int i : nodes) here.emplace_back(positions().segment<3>(3 * i));
   setNodeTargets(nodes, here);
 }
 
-void FemBody::setNodeTargets(const std::vector<int>& nodes,
-                             const std::vector<Eigen::Vector3d>& targets) {
+void Body::setNodeTargets(const std::vector<int>& nodes,
+                          const std::vector<Eigen::Vector3d>& targets) {
   if (nodes.size() != targets.size()) {
     throw std::invalid_argument("body '" + name_ + "': " + std::to_string(nodes.size()) +
                                 " nodes but " + std::to_string(targets.size()) + " targets");
@@ -188,50 +302,75 @@ void FemBody::setNodeTargets(const std::vector<int>& nodes,
     }
   }
   for (size_t k = 0; k < nodes.size(); ++k) {
-    if (!constrained_[nodes[k]]) matrix_changed_ = true;
+    if (!constrained_[nodes[k]]) {
+      matrix_changed_ = true;
+      if (reduced_) {
+        constrained_nodes_.insert(
+            std::lower_bound(constrained_nodes_.begin(), constrained_nodes_.end(), nodes[k]),
+            nodes[k]);
+      }
+    }
     constrained_[nodes[k]] = 1;
     targets_.segment<3>(3 * nodes[k]) = targets[k];
   }
 }
 
-void FemBody::releaseNodes(const std::vector<int>& nodes) {
+void Body::releaseNodes(const std::vector<int>& nodes) {
   for (int i : nodes) {
     if (i < 0 || i >= numNodes()) {
       throw std::invalid_argument("body '" + name_ + "': node index " + std::to_string(i) +
                                   " out of range");
     }
-    if (constrained_[i]) matrix_changed_ = true;
+    if (constrained_[i]) {
+      matrix_changed_ = true;
+      if (reduced_) {
+        constrained_nodes_.erase(
+            std::lower_bound(constrained_nodes_.begin(), constrained_nodes_.end(), i));
+      }
+    }
     constrained_[i] = 0;
     reaction_.segment<3>(3 * i).setZero();
   }
 }
 
-void FemBody::holdNode(int node) {
+void Body::holdNode(int node) {
+  if (reduced_) {  // contact acts on finite-element bodies only; keep the general path
+    setNodeTargets({node}, {positions().segment<3>(3 * node)});
+    return;
+  }
   if (!constrained_[node]) matrix_changed_ = true;
   constrained_[node] = 1;
   targets_.segment<3>(3 * node) = x_.segment<3>(3 * node);
 }
 
-void FemBody::releaseNode(int node) {
+void Body::releaseNode(int node) {
+  if (reduced_) {
+    releaseNodes({node});
+    return;
+  }
   if (constrained_[node]) matrix_changed_ = true;
   constrained_[node] = 0;
   reaction_.segment<3>(3 * node).setZero();
 }
 
-int FemBody::numConstrained() const {
+int Body::numConstrained() const {
   int count = 0;
   for (std::uint8_t c : constrained_) count += c;
   return count;
 }
 
-int FemBody::updateStiffness(StepTimes* times) {
+int Body::updateStiffness(StepTimes* times) {
   if (stiffness_assembled_ && !effects_.warping) return 0;  // linear FEM: K is constant
   stiffness_assembled_ = true;
   matrix_changed_ = true;
   const auto start = Clock::now();
-  const int inverted = effects_.warping ? elasticity_.updateRotations(x_) : 0;
+  int inverted = 0;
+  if (effects_.warping) {
+    inverted = elasticity_->updateRotations(x_);
+    ++counters_.warping;
+  }
   const auto rotated = Clock::now();
-  elasticity_.assemble();
+  elasticity_->assemble();
   if (times) {
     times->rotations += seconds(rotated - start);
     times->assembly += seconds(Clock::now() - rotated);
@@ -239,9 +378,9 @@ int FemBody::updateStiffness(StepTimes* times) {
   return inverted;
 }
 
-SystemMatrix FemBody::systemMatrix(double mass_coefficient, double stiffness_coefficient) const {
+SystemMatrix Body::systemMatrix(double mass_coefficient, double stiffness_coefficient) const {
   SystemMatrix a;
-  a.stiffness = &elasticity_.stiffness();
+  a.stiffness = &elasticity_->stiffness();
   a.nodal_mass = &mass_;
   a.mass_coefficient = mass_coefficient;
   a.stiffness_coefficient = stiffness_coefficient;
@@ -250,7 +389,7 @@ SystemMatrix FemBody::systemMatrix(double mass_coefficient, double stiffness_coe
   return a;
 }
 
-SolveReport FemBody::solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+SolveReport Body::solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   if (a.mass_coefficient != last_mass_coefficient_ ||
       a.stiffness_coefficient != last_stiffness_coefficient_) {
     matrix_changed_ = true;
@@ -267,7 +406,7 @@ SolveReport FemBody::solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eige
   return report;
 }
 
-void FemBody::predictVelocity(Eigen::VectorXd& guess) const {
+void Body::predictVelocity(Eigen::VectorXd& guess) const {
   const int order =
       solver_settings_.warm_start == SolverSettings::WarmStart::kExtrapolated ? history_size_ : 0;
   // Polynomial extrapolation through the last velocities (backward differences of order 0-3).
@@ -287,18 +426,24 @@ void FemBody::predictVelocity(Eigen::VectorXd& guess) const {
   }
 }
 
-StepReport FemBody::step(double dt) {
+StepReport Body::step(double dt) {
+  if (reduced_) return stepReduced(dt);
   StepReport report;
   const auto start = Clock::now();
   report.inverted_elements = updateStiffness(&report.times);
   const double h = dt;
-  if (plasticity_) plasticity_->step(mesh_, elasticity_, x_, h, plastic_forces_);
+  if (plasticity_) {
+    plasticity_->step(mesh_, *elasticity_, x_, h, plastic_forces_);
+    ++counters_.plasticity;
+  }
   const RayleighDamping damping = effects_.damping.value_or(RayleighDamping{});
+  if (effects_.damping) ++counters_.damping;
+  if (effects_.gravity) ++counters_.gravity;
   const SystemMatrix a = systemMatrix(1.0 + h * damping.mass, h * damping.stiffness + h * h);
 
   // b = M v - h (K' x + f0' - f_ext - M g)
-  elasticity_.stiffness().multiply(x_, scratch_);
-  const Eigen::VectorXd& f0 = elasticity_.forceOffset();
+  elasticity_->stiffness().multiply(x_, scratch_);
+  const Eigen::VectorXd& f0 = elasticity_->forceOffset();
   for (int i = 0; i < numNodes(); ++i) {
     Eigen::Vector3d load = external_forces_.segment<3>(3 * i);
     if (effects_.gravity) load += mass_[i] * *effects_.gravity;
@@ -318,11 +463,15 @@ StepReport FemBody::step(double dt) {
   report.times.solve = seconds(Clock::now() - solve_start);
 
   // A v+ - b = h (M (v+ - v) / h - f_ext - f_elastic - f_damping): h times the constraint force.
-  a.multiply(next_, scratch_);
-  for (int i = 0; i < numNodes(); ++i) {
-    reaction_.segment<3>(3 * i) =
-        constrained_[i] ? Eigen::Vector3d((scratch_.segment<3>(3 * i) - rhs_.segment<3>(3 * i)) / h)
-                        : Eigen::Vector3d::Zero();
+  if (effects_.reactions) {
+    a.multiply(next_, scratch_);
+    for (int i = 0; i < numNodes(); ++i) {
+      reaction_.segment<3>(3 * i) =
+          constrained_[i]
+              ? Eigen::Vector3d((scratch_.segment<3>(3 * i) - rhs_.segment<3>(3 * i)) / h)
+              : Eigen::Vector3d::Zero();
+    }
+    ++counters_.reactions;
   }
   x_ += h * next_;
   // History for the next prediction: shift by swapping, so nothing is copied or allocated.
@@ -336,12 +485,13 @@ StepReport FemBody::step(double dt) {
   return report;
 }
 
-StaticReport FemBody::solveStatic(const StaticSettings& settings) {
+StaticReport Body::solveStatic(const StaticSettings& settings) {
   if (settings.load_steps < 1 || settings.max_iterations < 1 || !(settings.tolerance > 0.0)) {
     throw std::invalid_argument("body '" + name_ +
                                 "': static settings need load_steps >= 1, max_iterations >= 1 "
                                 "and tolerance > 0");
   }
+  if (reduced_) return solveStaticReduced(settings);
   StaticReport report;
   const SystemMatrix a = systemMatrix(0.0, 1.0);
   Eigen::VectorXd load = external_forces_;
@@ -359,8 +509,8 @@ StaticReport FemBody::solveStatic(const StaticSettings& settings) {
       // Solve K' dx = f - f0' - K' x for the change dx, so that CG's relative tolerance is
       // measured against the out-of-balance force, not against K' x (for a stiff body far larger
       // than the load: CG then stopped at once with no displacement at all).
-      elasticity_.stiffness().multiply(x_, scratch_);
-      rhs_ = fraction * load - elasticity_.forceOffset() - scratch_;
+      elasticity_->stiffness().multiply(x_, scratch_);
+      rhs_ = fraction * load - elasticity_->forceOffset() - scratch_;
       next_.setZero();
       for (int i = 0; i < numNodes(); ++i) {
         if (constrained_[i]) {
@@ -396,24 +546,69 @@ StaticReport FemBody::solveStatic(const StaticSettings& settings) {
   history_size_ = 0;
   // Reactions at equilibrium, with the stiffness of the final configuration.
   updateStiffness();
-  elasticity_.stiffness().multiply(x_, scratch_);
+  elasticity_->stiffness().multiply(x_, scratch_);
   for (int i = 0; i < numNodes(); ++i) {
     reaction_.segment<3>(3 * i) =
         constrained_[i]
             ? Eigen::Vector3d(scratch_.segment<3>(3 * i) +
-                              elasticity_.forceOffset().segment<3>(3 * i) - load.segment<3>(3 * i))
+                              elasticity_->forceOffset().segment<3>(3 * i) - load.segment<3>(3 * i))
             : Eigen::Vector3d::Zero();
   }
   return report;
 }
 
-double FemBody::kineticEnergy() const {
+StepReport Body::stepReduced(double dt) {
+  StepReport report;
+  const auto start = Clock::now();
+  sumLoads();
+  const RayleighDamping damping = effects_.damping.value_or(RayleighDamping{});
+  if (effects_.damping) ++counters_.damping;
+  if (effects_.gravity) ++counters_.gravity;
+  if (effects_.warping && model_ == BodyModel::kPseudoRigid) ++counters_.warping;
+  if (effects_.reactions && !constrained_nodes_.empty()) ++counters_.reactions;
+  reduced_->step(dt, load_resultant_, effects_.gravity, damping.mass, damping.stiffness,
+                 nodeConstraints(), effects_.reactions ? &reaction_ : nullptr);
+  nodes_stale_ = true;
+  report.times.total = report.times.solve = seconds(Clock::now() - start);
+  return report;
+}
+
+StaticReport Body::solveStaticReduced(const StaticSettings& settings) {
+  sumLoads();
+  StaticReport report;
+  const int iterations =
+      reduced_->solveStatic(load_resultant_, effects_.gravity, nodeConstraints(),
+                            settings.max_iterations, settings.tolerance, reaction_);
+  report.iterations = std::abs(iterations);
+  report.converged = iterations > 0;
+  nodes_stale_ = true;
+  return report;
+}
+
+void Body::sumLoads() {
+  if (!loads_stale_) return;
+  // Summed when they change, not every step: the step's cost does not depend on the mesh.
+  const Eigen::Vector3d rest_centre = reduced_->massProperties().centre;
+  load_resultant_ = LoadResultant{};
+  for (int i = 0; i < numNodes(); ++i) {
+    const Eigen::Vector3d f = external_forces_.segment<3>(3 * i);
+    load_resultant_.force += f;
+    load_resultant_.moment += f * (x0_.segment<3>(3 * i) - rest_centre).transpose();
+  }
+  loads_stale_ = false;
+  ++load_sums_;
+}
+
+double Body::kineticEnergy() const {
+  if (reduced_) return reduced_->kineticEnergy();
   double energy = 0.0;
   for (int i = 0; i < numNodes(); ++i)
     energy += 0.5 * mass_[i] * v_.segment<3>(3 * i).squaredNorm();
   return energy;
 }
 
-double FemBody::elasticEnergy() const { return elasticity_.elasticEnergy(x_); }
+double Body::elasticEnergy() const {
+  return reduced_ ? reduced_->elasticEnergy() : elasticity_->elasticEnergy(x_);
+}
 
 }  // namespace deformable_sim::core

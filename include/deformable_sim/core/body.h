@@ -1,5 +1,7 @@
-// A deformable body discretised with linear tetrahedra and warped-stiffness elasticity: its state,
-// constraints and loads, the linearly implicit Euler step and the quasi-static solve.
+// A body of a scene: its mesh, state, constraints and loads, the linearly implicit Euler step and
+// the quasi-static solve. Its model decides how the mesh moves: finite elements (warped-stiffness
+// elasticity, every node free), or a rigid or pseudo-rigid body whose nodes follow a few
+// coordinates (core/reduced_dynamics.h) and are computed only when asked for.
 #pragma once
 
 #include <Eigen/Core>
@@ -10,11 +12,13 @@
 #include <string>
 #include <vector>
 
+#include "deformable_sim/core/body_model.h"
 #include "deformable_sim/core/corotational_elasticity.h"
 #include "deformable_sim/core/linear_solver.h"
 #include "deformable_sim/core/material.h"
 #include "deformable_sim/core/mesh.h"
 #include "deformable_sim/core/plasticity.h"
+#include "deformable_sim/core/reduced_dynamics.h"
 
 namespace deformable_sim::core {
 
@@ -31,7 +35,23 @@ struct BodyEffects {
   std::optional<RayleighDamping> damping;
   std::optional<PlasticitySettings> plasticity;  ///< dynamic steps only (not the static solve)
   bool stress_colouring = false;  ///< the surface marker is coloured by strain (ROS layer)
+  /// The force each constraint exerts (reactionForces()); grasps and contact friction read it.
+  bool reactions = true;
 };
+
+/// How often each effect's code ran: a step counts once per effect it computed. An effect that is
+/// off keeps its count at zero.
+struct EffectCounters {
+  long warping = 0;     ///< element (or body) rotations updated
+  long gravity = 0;     ///< gravity added to the loads
+  long damping = 0;     ///< Rayleigh damping in the step's matrix
+  long plasticity = 0;  ///< plastic flow and its forces
+  long reactions = 0;   ///< constraint forces computed
+};
+
+/// Names of the effects a body of `model` simulates with `effects`, in the scene file's words
+/// (warping, gravity, damping, plasticity, stress_colouring, reactions); contact is the scene's.
+std::vector<std::string> effectNames(const BodyEffects& effects, BodyModel model);
 
 /// Quasi-static solve: load ramp and, with warping, the corotational fixed-point iteration.
 struct StaticSettings {
@@ -66,12 +86,24 @@ struct StaticReport {
   SolveReport last_solve;
 };
 
-class FemBody {
+class Body {
  public:
-  /// Validates the material and the mesh (std::invalid_argument), precomputes every element and
-  /// builds the sparsity pattern once.
-  FemBody(std::string name, Mesh mesh, const LinearElasticMaterial& material,
-          const BodyEffects& effects, const SolverSettings& solver);
+  /// Validates the material and the mesh (std::invalid_argument). A finite-element body
+  /// precomputes every element and builds the sparsity pattern once; a rigid or pseudo-rigid one
+  /// integrates its mass properties and allocates nothing per element.
+  Body(std::string name, Mesh mesh, const LinearElasticMaterial& material,
+       const BodyEffects& effects, const SolverSettings& solver,
+       BodyModel model = BodyModel::kFiniteElement);
+
+  BodyModel model() const { return model_; }
+  /// The rigid or pseudo-rigid coordinates, or null for a finite-element body.
+  const ReducedDynamics* reduced() const { return reduced_ ? &*reduced_ : nullptr; }
+  const EffectCounters& effectCounters() const { return counters_; }
+  /// Rigid and pseudo-rigid bodies: how often the nodes were computed from the model, and the
+  /// nodal forces summed into a resultant. Neither happens in a step, only when asked for or
+  /// changed, so a step's work does not depend on the mesh.
+  long nodeUpdates() const { return node_updates_; }
+  long loadSums() const { return load_sums_; }
 
   const std::string& name() const { return name_; }
   const Mesh& mesh() const { return mesh_; }
@@ -92,16 +124,31 @@ class FemBody {
   const std::map<std::string, std::vector<int>>& groups() const { return groups_; }
   int numNodes() const { return mesh_.numNodes(); }
 
-  /// Stacked 3n vectors: positions (m), velocities (m/s), rest positions (m).
-  const Eigen::VectorXd& positions() const { return x_; }
-  const Eigen::VectorXd& velocities() const { return v_; }
+  /// Stacked 3n vectors: positions (m), velocities (m/s), rest positions (m). A rigid or
+  /// pseudo-rigid body computes its nodes here, on the first call after a step.
+  const Eigen::VectorXd& positions() const {
+    if (nodes_stale_) updateNodes();
+    return x_;
+  }
+  const Eigen::VectorXd& velocities() const {
+    if (nodes_stale_) updateNodes();
+    return v_;
+  }
   const Eigen::VectorXd& restPositions() const { return x0_; }
   const std::vector<double>& nodalMasses() const { return mass_; }  ///< kg
-  /// Direct access for effects applied after a step (contact projection); keep sizes.
-  Eigen::VectorXd& mutablePositions() { return x_; }
-  Eigen::VectorXd& mutableVelocities() { return v_; }
-  /// Replaces the state (sizes must match); e.g. to start from a given deformation.
+  /// Direct access for effects applied after a step (contact projection); keep sizes. Finite-
+  /// element bodies only (std::logic_error otherwise).
+  Eigen::VectorXd& mutablePositions();
+  Eigen::VectorXd& mutableVelocities();
+  /// Replaces the state (sizes must match); e.g. to start from a given deformation. A rigid or
+  /// pseudo-rigid body takes the motion of its model that fits them best (least squares).
   void setState(const Eigen::VectorXd& positions, const Eigen::VectorXd& velocities);
+
+  /// For Simulation's watchdog: keeps the present positions, tells whether the state is finite,
+  /// and returns to the kept positions at rest.
+  void rememberState();
+  bool stateIsFinite() const;
+  void returnToRememberedState();
 
   /// Holds the nodes where they are now (v = 0).
   void fixNodes(const std::vector<int>& nodes);
@@ -118,7 +165,10 @@ class FemBody {
   int numConstrained() const;
 
   /// Applied nodal forces (3n, N); they persist from step to step until changed.
-  Eigen::VectorXd& externalForces() { return external_forces_; }
+  Eigen::VectorXd& externalForces() {
+    loads_stale_ = true;  // a rigid or pseudo-rigid body sums them again before its next step
+    return external_forces_;
+  }
   const Eigen::VectorXd& externalForces() const { return external_forces_; }
 
   /// One linearly implicit Euler step of length dt (s):
@@ -137,7 +187,8 @@ class FemBody {
   double kineticEnergy() const;  ///< J
   double elasticEnergy() const;  ///< J, with the rotations of the last step
 
-  const CorotationalElasticity& elasticity() const { return elasticity_; }
+  /// The elements' elasticity (finite-element bodies; std::logic_error otherwise).
+  const CorotationalElasticity& elasticity() const;
   /// The plasticity effect's state, or null when the body has none.
   const Plasticity* plasticity() const { return plasticity_ ? &*plasticity_ : nullptr; }
 
@@ -150,17 +201,35 @@ class FemBody {
   SystemMatrix systemMatrix(double mass_coefficient, double stiffness_coefficient) const;
   /// The solver's initial guess for the next velocity (SolverSettings::warm_start).
   void predictVelocity(Eigen::VectorXd& guess) const;
+  StepReport stepReduced(double dt);
+  StaticReport solveStaticReduced(const StaticSettings& settings);
+  /// Sums the external forces into load_resultant_ if they may have changed.
+  void sumLoads();
+  /// Rigid and pseudo-rigid bodies: node positions and velocities from the coordinates.
+  void updateNodes() const;
+  NodeConstraints nodeConstraints() const;
 
   std::string name_;
+  BodyModel model_;
   Mesh mesh_;
   std::map<std::string, std::vector<int>> groups_;
   LinearElasticMaterial material_;
   BodyEffects effects_;
   SolverSettings solver_settings_;
 
-  Eigen::VectorXd x0_, x_, v_;
+  Eigen::VectorXd x0_;
+  mutable Eigen::VectorXd x_, v_;  ///< of a rigid or pseudo-rigid body: computed when asked for
+  mutable bool nodes_stale_ = false;
+  mutable long node_updates_ = 0;
+  long load_sums_ = 0;
+  Eigen::VectorXd remembered_positions_;
   std::vector<double> mass_;
-  CorotationalElasticity elasticity_;
+  EffectCounters counters_;
+  std::optional<CorotationalElasticity> elasticity_;  ///< finite-element bodies
+  std::optional<ReducedDynamics> reduced_;            ///< rigid and pseudo-rigid bodies
+  LoadResultant load_resultant_;  ///< external forces summed for reduced_, when they change
+  bool loads_stale_ = true;
+  std::vector<int> constrained_nodes_;    ///< reduced_ only: the constrained nodes, ascending
   std::optional<Plasticity> plasticity_;  ///< only with the effect; then also its forces
   Eigen::VectorXd plastic_forces_;
   bool stiffness_assembled_ = false;
