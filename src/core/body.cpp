@@ -245,6 +245,7 @@ bool Body::stateIsFinite() const {
 }
 
 void Body::returnToRememberedState() {
+  reaction_.setZero();  // of the undone step
   if (reduced_) {
     reduced_->returnToRemembered();
     nodes_stale_ = true;

@@ -34,6 +34,9 @@ int CommandProcessor::findBody(const std::string& name, const NodeTarget& nodes)
   }
   if (bodies.size() == 1) return 0;
   if (!nodes.sphere) throw CommandError("no body named and the scene has several bodies");
+  if (!nodes.sphere->center.allFinite()) {
+    throw CommandError("the sphere's centre has a non-finite coordinate");
+  }
   // The body with a node nearest to the centre.
   int best = -1;
   double best_distance = std::numeric_limits<double>::infinity();
@@ -44,6 +47,8 @@ int CommandProcessor::findBody(const std::string& name, const NodeTarget& nodes)
       if (d < best_distance) best_distance = d, best = static_cast<int>(b);
     }
   }
+  // Every distance overflowed (a centre near the largest double).
+  if (best < 0) throw CommandError("the sphere's centre is too far from every body");
   return best;
 }
 
@@ -174,6 +179,20 @@ int CommandProcessor::apply(const WrenchCommand& command) {
   } catch (const std::invalid_argument& e) {
     throw CommandError("wrench from '" + command.source + "' on body '" + body.name() +
                        "': " + e.what());
+  }
+  // A wrench about a point far away, or many large ones on one node, can overflow: refuse it
+  // before it reaches the body.
+  Eigen::VectorXd applied = base_forces_[b];
+  for (const auto& [source, wrench] : wrenches_) {
+    if (wrench.body != b || source == command.source) continue;
+    for (size_t k = 0; k < wrench.nodes.size(); ++k)
+      applied.segment<3>(3 * wrench.nodes[k]) += wrench.forces[k];
+  }
+  for (size_t k = 0; k < active.nodes.size(); ++k)
+    applied.segment<3>(3 * active.nodes[k]) += active.forces[k];
+  if (!applied.allFinite()) {
+    throw CommandError("wrench from '" + command.source + "' on body '" + body.name() +
+                       "': its nodal forces overflow (a point of application too far away?)");
   }
   const auto previous = wrenches_.find(command.source);
   const int previous_body = previous == wrenches_.end() ? -1 : previous->second.body;

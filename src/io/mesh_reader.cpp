@@ -246,6 +246,11 @@ MeshReadResult finalizeMesh(const RawMesh& raw) {
       core::Tetrahedron tet;
       for (int k = 0; k < 4; ++k) tet[k] = new_index[raw_corners[e][k]];
       const double volume = core::signedVolume(mesh.positions, tet);
+      if (!std::isfinite(volume)) {
+        std::ostringstream what;
+        what << "has a volume that overflows (longest edge " << longest_edge << " m)";
+        throw MeshError(describe(what.str()));
+      }
       if (std::abs(6.0 * volume) <= negligible) {
         std::ostringstream what;
         what << "has zero volume (" << volume << " m^3, longest edge " << longest_edge

@@ -16,6 +16,15 @@
 // found stable (1.5k tets: 20 blow up, 22 do not; 9k: 32 blow up, 36 do not). One Newton
 // iteration a Bullet step (Bullet's default five repeat the solve: see bullet_peer.h). Counters:
 // Bullet steps and CG iterations per 0.01 s.
+//
+// EffectCost/<effect>: what each effect adds to a step on the 9k mesh. The base is linear FEM with
+// no effect, swinging under a 50 N tip load (so that every variant moves); each variant turns on
+// one effect (1 warping, 2 gravity, 3 damping, 4 plasticity, 5 reactions, 6 contact with a floor
+// 1 cm under the beam, 7 strain colouring: one nodalStrain of the mesh, as the node does per
+// marker update; 8 all of them). An effect changes the motion too, so compare the CG iterations.
+//
+// ModelStep/<model>/<mesh>: a step of a free rigid (0) or pseudo-rigid (1) body of the cantilever's
+// mesh under gravity and the tip load, on 1.5k and 98k tetrahedra: the same cost for both.
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -25,6 +34,9 @@
 #include <utility>
 
 #include "deformable_sim/bench/heap_usage.h"
+#include "deformable_sim/core/contact.h"
+#include "deformable_sim/core/loads.h"
+#include "deformable_sim/core/strain.h"
 #include "deformable_sim/perf/bullet_peer.h"
 #include "deformable_sim/perf/cantilever.h"
 
@@ -137,6 +149,84 @@ void BulletStep(benchmark::State& state) {
   if (!tip.allFinite() || tip.norm() > 10.0) state.SkipWithError("the peer blew up");
 }
 
+enum Effect {
+  kNoEffect,
+  kWarping,
+  kGravity,
+  kDamping,
+  kPlasticity,
+  kReactions,
+  kContact,
+  kStrainColouring,
+  kAllEffects
+};
+
+// The cantilever with a 50 N tip load and only the effects asked for.
+perf::Cantilever loadedCantilever(int mesh, Effect effect) {
+  perf::Cantilever c = perf::makeCantilever(kCells[mesh]);
+  const bool all = effect == kAllEffects;
+  c.effects = core::BodyEffects{};
+  c.effects.reactions = all || effect == kReactions;
+  c.effects.warping = all || effect == kWarping;
+  if (all || effect == kGravity) c.effects.gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
+  if (all || effect == kDamping) c.effects.damping = core::RayleighDamping{1.0, 0.002};
+  if (all || effect == kPlasticity)
+    c.effects.plasticity = core::PlasticitySettings{1e-3, 10.0, 0.1};
+  c.effects.stress_colouring = all || effect == kStrainColouring;
+  return c;
+}
+
+void addTipLoad(core::Body& body) {
+  std::vector<int> tip;
+  for (int i = 0; i < body.numNodes(); ++i) {
+    if (body.mesh().positions[i].x() > 0.6 - 1e-9) tip.push_back(i);
+  }
+  core::addTotalForce(tip, {0.0, 0.0, -50.0}, body.externalForces());
+}
+
+void EffectCost(benchmark::State& state) {
+  const auto effect = static_cast<Effect>(state.range(0));
+  const perf::Cantilever c = loadedCantilever(1, effect);
+  core::Body body("cantilever", c.mesh, c.material, c.effects, c.solver);
+  body.fixNodes(c.clamped);
+  addTipLoad(body);
+  const bool contact = effect == kContact || effect == kAllEffects;
+  core::ContactState contacts(body.numNodes());
+  const core::ContactSettings friction;
+  core::PlacedShape floor;
+  floor.shape.size = Eigen::Vector3d(4.0, 4.0, 0.2);
+  floor.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.21);  // top at z = -0.11
+  const std::vector<core::PlacedShape> obstacles = {floor};
+  std::vector<double> strain;
+  double iterations = 0.0;
+  int touching = 0;
+  const auto step = [&] {
+    if (contact) contacts.hold(body);
+    const core::StepReport report = body.step(c.dt);
+    if (contact) {
+      contacts.release(body, friction);
+      touching = contacts.project(body, obstacles, friction);
+    }
+    if (body.effects().stress_colouring) core::nodalStrain(body, strain);
+    return report;
+  };
+  for (int k = 0; k < kWarmUpSteps; ++k) step();
+  for (auto _ : state) iterations += step().solve.iterations;
+  state.counters["cg_iterations"] = iterations / static_cast<double>(state.iterations());
+  state.counters["contacts"] = touching;
+}
+
+void ModelStep(benchmark::State& state) {
+  const auto model = state.range(0) == 0 ? core::BodyModel::kRigid : core::BodyModel::kPseudoRigid;
+  const int mesh = static_cast<int>(state.range(1));
+  perf::Cantilever c = perf::makeCantilever(kCells[mesh]);
+  core::Body body("cantilever", c.mesh, c.material, c.effects, c.solver, model);
+  addTipLoad(body);
+  for (auto _ : state) body.step(c.dt);
+  state.counters["tets"] = body.mesh().numTetrahedra();
+  benchmark::DoNotOptimize(body.reduced()->centre().data());
+}
+
 void meshSizes(benchmark::internal::Benchmark* b, bool with_preconditioners) {
   for (int mesh = 0; mesh < static_cast<int>(kCells.size()); ++mesh) {
     if (!with_preconditioners) {
@@ -161,6 +251,19 @@ BENCHMARK(BulletStep)
     ->Args({1, 1})
     ->ArgNames({"mesh", "corotated_force"})
     ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(EffectCost)
+    ->DenseRange(kNoEffect, kAllEffects)
+    ->ArgNames({"effect"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(ModelStep)
+    ->Args({0, 0})
+    ->Args({0, 3})
+    ->Args({1, 0})
+    ->Args({1, 3})
+    ->ArgNames({"model", "mesh"})
+    ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
 BENCHMARK(MatVec)
     ->Apply([](benchmark::internal::Benchmark* b) { meshSizes(b, false); })

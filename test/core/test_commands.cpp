@@ -361,3 +361,26 @@ TEST(Grasps, RefusesEmptyRegionsAndNodesHeldElsewhere) {
   }
   EXPECT_EQ(sim.bodies()[0].numConstrained(), 8);
 }
+
+TEST(Commands, SphereWithANonFiniteCentreIsRefusedInAMultiBodyScene) {
+  // With several bodies and none named, the sphere's centre picks the body: a NaN picks none.
+  dc::SceneSpec spec = dc::defaultScene();
+  spec.bodies.push_back(spec.bodies[0]);
+  spec.bodies[1].name = "other";
+  std::vector<dc::Mesh> meshes;
+  for (const dc::BodySpec& b : spec.bodies) {
+    meshes.push_back(dc::makeBoxMesh(b.box_mesh->min, b.box_mesh->max, b.box_mesh->cells));
+  }
+  dc::Simulation sim(spec, std::move(meshes));
+  dc::CommandProcessor commands(sim);
+  dc::FixCommand fix;
+  fix.nodes.sphere = dc::Sphere{Eigen::Vector3d(std::nan(""), 0, 0), 0.1};
+  try {
+    commands.apply(fix);
+    FAIL() << "accepted";
+  } catch (const dc::CommandError& e) {
+    EXPECT_STREQ(e.what(), "the sphere's centre has a non-finite coordinate");
+  }
+  EXPECT_EQ(sim.bodies()[0].numConstrained(), 25);
+  EXPECT_EQ(sim.bodies()[1].numConstrained(), 25);
+}
