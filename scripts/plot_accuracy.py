@@ -36,7 +36,8 @@ CASES = {
     "T_trajectory": "T: tip path after a sudden alpha = 1 load, 1 s\n"
                     "error = RMS |u - u_conv| / max |u_conv| (converged run, same mesh); time per tick",
 }
-MESHES = ["tetU_L1", "tetU_L2", "tetU_L3", "tetU_L4", "tetS_L1", "tetS_L2", "tetS_L3", "tetS_L4"]
+MESHES = ["tetU_L1", "tetU_L2", "tetU_L3", "tetU_L4", "tetS_L1", "tetS_L2", "tetS_L3", "tetS_L4",
+          "hex_L1", "hex_L2", "hex_L3", "hex_L4"]
 ERROR_FLOOR = 1e-9  # errors below this are drawn at it (a log axis has no zero)
 
 
@@ -48,7 +49,7 @@ def read_rows(path):
                         "same_mesh_value", "reference_value", "dt", "tolerance", "iterations_mean",
                         "ms_per_30hz_tick"):
                 row[key] = float(row[key]) if row.get(key) else math.nan
-            for key in ("tets", "substeps", "max_iterations", "memory_bytes", "warping", "converged"):
+            for key in ("elements", "substeps", "max_iterations", "memory_bytes", "warping", "converged"):
                 row[key] = int(row[key]) if row.get(key) else 0
             row["h"] = row["dt"] / row["substeps"] if row["substeps"] else math.nan
             # Static: the whole solve. Dynamic: per 1/30 s simulated, so that every dt compares.
@@ -89,8 +90,8 @@ def pareto_front(rows):
 
 
 def mesh_style(mesh):
-    colours = plt.get_cmap("tab10")
-    return colours(MESHES.index(mesh) if mesh in MESHES else 9)
+    colours = plt.get_cmap("tab20")
+    return colours(MESHES.index(mesh) if mesh in MESHES else 19)
 
 
 def marker(row):
@@ -252,7 +253,7 @@ def advice(rows, budgets=(0.05, 0.1, 0.3, 1, 3, 10, 30, 100)):
                 continue
             previous = pick
             own = mesh_error.get(mesh, math.nan)
-            lines.append(f"| {mesh} ({pick['tets']}) | {budget:g} | {label(pick, False)} | "
+            lines.append(f"| {mesh} ({pick['elements']} elements) | {budget:g} | {label(pick, False)} | "
                          f"{pick['cost']:.3g} | {100 * pick['error']:.2g} % | "
                          f"{100 * own:.2g} % |")
     return "\n".join(lines) + "\n"

@@ -21,7 +21,7 @@ std::string number(double value, int digits = 7) {
 }  // namespace
 
 void writeCsvHeader(std::ostream& out) {
-  out << "case,mesh,tets,warping,dt,substeps,solver,tolerance,max_iterations,error,"
+  out << "case,mesh,elements,warping,dt,substeps,solver,tolerance,max_iterations,error,"
          "error_definition,ms_per_step_median,iterations_mean,memory_bytes,error_same_mesh,value,"
          "reference_value,same_mesh_value,theory_value,ms_per_30hz_tick,nodes,linear_solves,"
          "converged,"
@@ -33,7 +33,7 @@ void writeCsvRow(const BenchRow& row, std::ostream& out) {
   const Comparison& c = row.comparison;
   const bool dynamic = s.dt_s > 0.0;
   const bool cg = s.solver.method == core::SolverSettings::Method::kConjugateGradient;
-  out << c.case_name << "," << s.mesh << "," << row.tetrahedra << "," << (s.warping ? 1 : 0) << ","
+  out << c.case_name << "," << s.mesh << "," << row.elements << "," << (s.warping ? 1 : 0) << ","
       << (dynamic ? number(s.dt_s, 10) : "") << "," << (dynamic ? std::to_string(s.substeps) : "")
       << "," << solverName(s.solver) << "," << (cg ? number(s.solver.tolerance, 3) : "") << ","
       << (cg ? std::to_string(s.solver.max_iterations) : "") << "," << number(c.error) << ","

@@ -108,11 +108,13 @@ std::vector<BenchSetting> shortPlan() {
 
 std::vector<BenchSetting> fullPlan() {
   std::vector<BenchSetting> plan;
-  addStatic(
-      {"tetU_L1", "tetU_L2", "tetU_L3", "tetU_L4", "tetS_L1", "tetS_L2", "tetS_L3", "tetS_L4"},
-      // tetS_L4 takes minutes at large deflection and adds nothing tetU_L4 does not show
-      {"tetU_L1", "tetU_L2", "tetU_L3", "tetU_L4", "tetS_L1", "tetS_L2", "tetS_L3"},
-      {1e-1, 1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10}, "tetU_L3", {10, 30, 100, 300, 1000}, true, plan);
+  addStatic({"tetU_L1", "tetU_L2", "tetU_L3", "tetU_L4", "tetS_L1", "tetS_L2", "tetS_L3", "tetS_L4",
+             "hex_L1", "hex_L2", "hex_L3", "hex_L4"},
+            // tetS_L4 takes minutes at large deflection and adds nothing tetU_L4 does not show
+            {"tetU_L1", "tetU_L2", "tetU_L3", "tetU_L4", "tetS_L1", "tetS_L2", "tetS_L3", "hex_L1",
+             "hex_L2", "hex_L3", "hex_L4"},
+            {1e-1, 1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10}, "tetU_L3", {10, 30, 100, 300, 1000}, true,
+            plan);
   const std::vector<double> tolerances = {1e-1, 1e-2, 1e-3, 1e-4, 1e-6, 1e-8};
   // C2 on tetU only: the split first-mode pair of the tetS meshes beats. On tetU_L4 a warped
   // direct step refactorises 26k tetrahedra (about 1 s): linear FEM (factorised once) and CG there.

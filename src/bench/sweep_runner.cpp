@@ -55,7 +55,7 @@ std::vector<BenchRow> runSetting(const BenchSetting& setting, BenchContext& cont
     row.setting = setting;
     row.comparison = comparison;
     row.nodes = mesh.numNodes();
-    row.tetrahedra = mesh.numTetrahedra();
+    row.elements = mesh.numElements();
     row.ms_per_step_median = median(step_ms);
     row.ms_per_30hz_tick =
         setting.dt_s > 0.0 ? row.ms_per_step_median / (30.0 * setting.dt_s) : std::nan("");

@@ -113,7 +113,7 @@ const std::vector<std::string> kShortMeshes = {"tetU_L1", "tetU_L2", "tetS_L1", 
 TEST_F(ShortBench, WritesTheDocumentedColumnsAndAFiniteErrorForEverySetting) {
   const std::vector<std::string> leading = {"case",
                                             "mesh",
-                                            "tets",
+                                            "elements",
                                             "warping",
                                             "dt",
                                             "substeps",

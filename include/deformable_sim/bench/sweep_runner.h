@@ -15,7 +15,7 @@ struct BenchRow {
   BenchSetting setting;
   Comparison comparison;
   int nodes = 0;
-  int tetrahedra = 0;
+  int elements = 0;  ///< of the mesh, all types
   /// Median over every timed tick of every repeat (dynamic cases; a tick is dt_s, all substeps),
   /// or over the repeats' whole static solves (static cases), ms.
   double ms_per_step_median = 0.0;
