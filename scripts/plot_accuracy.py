@@ -234,7 +234,7 @@ def advice(rows, budgets=(0.05, 0.1, 0.3, 1, 3, 10, 30, 100)):
     """For each mesh of the trajectory case and each budget, the most accurate setting in budget."""
     mesh_error = {r["mesh"]: r["error"] for r in rows
                   if r["case"] == "B_alpha1" and r["warping"] and r["solver"] == "direct"}
-    lines = ["| mesh (tetrahedra) | budget, ms per 30 Hz tick | pick | measured ms per 30 Hz tick | "
+    lines = ["| mesh (elements) | budget, ms per 30 Hz tick | pick | measured ms per 30 Hz tick | "
              "trajectory error (vs converged run, same mesh) | the mesh's own error (case B, alpha = 1, "
              "vs converged 3D) |",
              "|---|---|---|---|---|---|"]

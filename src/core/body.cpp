@@ -1,5 +1,7 @@
 #include "deformable_sim/core/body.h"
 
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
@@ -9,6 +11,7 @@
 #include <utility>
 
 #include "deformable_sim/core/cell.h"
+#include "deformable_sim/core/rotation.h"
 
 namespace deformable_sim::core {
 
@@ -151,7 +154,10 @@ void Body::setMaterial(const LinearElasticMaterial& material) {
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("body '" + name_ + "': " + e.what());
   }
-  if (reduced_) reduced_->setMaterial(massProperties(mesh_, material.density), material);
+  if (reduced_) {
+    reduced_->setMaterial(massProperties(mesh_, material.density), material);
+    nodes_stale_ = true;
+  }
   material_ = material;
   if (elasticity_) elasticity_->setMaterial(material);
   mass_ = lumpedMasses(mesh_, material.density);
@@ -212,8 +218,25 @@ void Body::setState(const Eigen::VectorXd& positions, const Eigen::VectorXd& vel
       spread += mass_[i] * (positions.segment<3>(3 * i) - centre) * arm.transpose();
       rate += mass_[i] * (velocities.segment<3>(3 * i) - velocity) * arm.transpose();
     }
-    const Eigen::Matrix3d inverse = second.inverse();
-    reduced_->setState(centre, spread * inverse, velocity, rate * inverse);
+    if (model_ == BodyModel::kRigid) {
+      // The rotation nearest to the nodes (the rotation factor of the spread, Procrustes), and
+      // the angular velocity that fits their velocities best: sum m r x (v - omega x r) = 0.
+      Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
+      Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+      for (int i = 0; i < numNodes(); ++i) {
+        const Eigen::Vector3d r = positions.segment<3>(3 * i) - centre;
+        momentum += mass_[i] * r.cross(velocities.segment<3>(3 * i) - velocity);
+        inertia += mass_[i] * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+      }
+      const Eigen::Matrix3d rotation = extractRotation(spread);
+      const Eigen::Vector3d omega = inertia.ldlt().solve(momentum);
+      Eigen::Matrix3d spin;
+      spin << 0.0, -omega.z(), omega.y(), omega.z(), 0.0, -omega.x(), -omega.y(), omega.x(), 0.0;
+      reduced_->setState(centre, rotation, velocity, spin * rotation);
+    } else {
+      const Eigen::Matrix3d inverse = second.inverse();
+      reduced_->setState(centre, spread * inverse, velocity, rate * inverse);
+    }
     nodes_stale_ = true;
     return;
   }
@@ -566,7 +589,7 @@ StepReport Body::stepReduced(double dt) {
   if (effects_.damping) ++counters_.damping;
   if (effects_.gravity) ++counters_.gravity;
   if (effects_.warping && model_ == BodyModel::kPseudoRigid) ++counters_.warping;
-  if (effects_.reactions && !constrained_nodes_.empty()) ++counters_.reactions;
+  if (effects_.reactions) ++counters_.reactions;
   reduced_->step(dt, load_resultant_, effects_.gravity, damping.mass, damping.stiffness,
                  nodeConstraints(), effects_.reactions ? &reaction_ : nullptr);
   nodes_stale_ = true;
@@ -594,7 +617,7 @@ void Body::sumLoads() {
   for (int i = 0; i < numNodes(); ++i) {
     const Eigen::Vector3d f = external_forces_.segment<3>(3 * i);
     load_resultant_.force += f;
-    load_resultant_.moment += f * (x0_.segment<3>(3 * i) - rest_centre).transpose();
+    load_resultant_.first_moment += f * (x0_.segment<3>(3 * i) - rest_centre).transpose();
   }
   loads_stale_ = false;
   ++load_sums_;

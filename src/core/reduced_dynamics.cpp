@@ -115,7 +115,10 @@ void ReducedDynamics::setMaterial(const MassProperties& mass,
   if (!(mass.mass > 0.0) || !mass.second_moment.allFinite()) {
     throw std::invalid_argument("mesh has no positive volume");
   }
-  // Keep momentum, not velocity, when the mass changes: a change of material is not an impulse.
+  // Velocities are kept (those of the nodes do not jump): a rigid body's angular momentum is
+  // recomputed with the new inertia.
+  const Eigen::Vector3d omega =
+      model_ == BodyModel::kRigid && mass_.mass > 0.0 ? angularVelocity() : Eigen::Vector3d::Zero();
   mass_ = mass;
   lambda_ = lameLambda(material);
   mu_ = lameMu(material);
@@ -130,6 +133,7 @@ void ReducedDynamics::setMaterial(const MassProperties& mass,
                           eigen.eigenvalues()[k];
     }
   }
+  angular_momentum_ = gradient_ * inertia * gradient_.transpose() * omega;
 }
 
 Eigen::Vector3d ReducedDynamics::angularVelocity() const {
@@ -167,9 +171,9 @@ void ReducedDynamics::setState(const Eigen::Vector3d& centre, const Eigen::Matri
   }
 }
 
-Eigen::Vector3d ReducedDynamics::torque(const Eigen::Matrix3d& moment) const {
+Eigen::Vector3d ReducedDynamics::torque(const Eigen::Matrix3d& first_moment) const {
   // sum (R a_i) x f_i = the cross of sum (R a_i) f_i^T = R B^T.
-  return crossOfOuter(gradient_ * moment.transpose());
+  return crossOfOuter(gradient_ * first_moment.transpose());
 }
 
 void ReducedDynamics::elasticForce(Eigen::Matrix3d& force,
@@ -177,17 +181,18 @@ void ReducedDynamics::elasticForce(Eigen::Matrix3d& force,
   const Eigen::Matrix3d r = warping_ ? extractRotation(gradient_) : Eigen::Matrix3d::Identity();
   const double volume = mass_.volume;
   // P = R C[sym(R^T F) - I]: linear in F while R is held (warped stiffness, as the elements').
-  const auto stress = [&](const Eigen::Matrix3d& g, bool minus_identity) {
-    Eigen::Matrix3d strain = 0.5 * (r.transpose() * g + g.transpose() * r);
-    if (minus_identity) strain -= Eigen::Matrix3d::Identity();
+  const auto unrotated_symmetric = [&](const Eigen::Matrix3d& g) {
+    return Eigen::Matrix3d(0.5 * (r.transpose() * g + g.transpose() * r));
+  };
+  const auto rotated_stress = [&](const Eigen::Matrix3d& strain) {
     return Eigen::Matrix3d(
         r * (2.0 * mu_ * strain + lambda_ * strain.trace() * Eigen::Matrix3d::Identity()));
   };
-  force = volume * stress(gradient_, true);
+  force = volume * rotated_stress(unrotated_symmetric(gradient_) - Eigen::Matrix3d::Identity());
   for (int k = 0; k < 9; ++k) {
     Vector9d unit = Vector9d::Zero();
     unit[k] = 1.0;
-    stiffness.col(k) = volume * vec(stress(unvec(unit), false));
+    stiffness.col(k) = volume * vec(rotated_stress(unrotated_symmetric(unvec(unit))));
   }
 }
 
@@ -214,7 +219,7 @@ void ReducedDynamics::step(double h, const LoadResultant& loads,
     const Eigen::Matrix3d inverse = r * inverse_inertia_ * r.transpose();
     // Momentum form: (1 + h alpha) M u+ = M u + h Q, with M u = (m v, L).
     Vector<6> rhs;
-    rhs << m * velocity_ + h * force, angular_momentum_ + h * torque(loads.moment);
+    rhs << m * velocity_ + h * force, angular_momentum_ + h * torque(loads.first_moment);
     Vector<6> u;
     u << rhs.head<3>() / (damping * m), inverse * rhs.tail<3>() / damping;
     if (constrained) {
@@ -232,9 +237,9 @@ void ReducedDynamics::step(double h, const LoadResultant& loads,
       u = constrainedSolve<6>(a, rhs, jtj, jtb);
       if (reactions) {
         // The generalized constraint force, shared among the nodes with the least norm.
-        const Vector<6> basis = pseudoSolve<6>(jtj, (a * u - rhs) / h, kConstraintRank);
+        const Vector<6> multiplier = pseudoSolve<6>(jtj, (a * u - rhs) / h, kConstraintRank);
         for (int node : *constraints.nodes) {
-          reactions->segment<3>(3 * node) = rigidRows(r * arm_of(node)) * basis;
+          reactions->segment<3>(3 * node) = rigidRows(r * arm_of(node)) * multiplier;
         }
       }
     }
@@ -251,9 +256,10 @@ void ReducedDynamics::step(double h, const LoadResultant& loads,
     }
     gradient_ = Eigen::Quaterniond(rotationOf(h * omega) * r).normalized().toRotationMatrix();
     centre_ += h * velocity_;
-    if (constrained) {
-      // The velocities meet the constraints to first order; the turn leaves the nodes about
-      // h^2 omega^2 r / 2 off their targets. A mass-weighted projection onto them takes it back.
+    // The velocities meet the constraints to first order; the turn leaves the nodes about
+    // h^2 omega^2 r / 2 off their targets. Mass-weighted projections onto them take it back (each
+    // is linearized in the rotation: three bring the gap to round-off).
+    for (int projection = 0; constrained && projection < 3; ++projection) {
       Matrix<6> a = Matrix<6>::Zero();
       a.topLeftCorner<3, 3>() = m * Eigen::Matrix3d::Identity();
       a.bottomRightCorner<3, 3>() = gradient_ * mass_.inertia() * gradient_.transpose();
@@ -292,7 +298,7 @@ void ReducedDynamics::step(double h, const LoadResultant& loads,
   u << velocity_, vec(gradient_rate_);
   Vector<12> rhs = mass_matrix * u;
   rhs.head<3>() += h * force;
-  rhs.tail<9>() += h * (vec(loads.moment) - vec(elastic));
+  rhs.tail<9>() += h * (vec(loads.first_moment) - vec(elastic));
   Matrix<12> jtj = Matrix<12>::Zero();
   Vector<12> jtb = Vector<12>::Zero();
   if (constrained) {
@@ -305,9 +311,9 @@ void ReducedDynamics::step(double h, const LoadResultant& loads,
   }
   u = constrainedSolve<12>(a, rhs, jtj, jtb);
   if (constrained && reactions) {
-    const Vector<12> basis = pseudoSolve<12>(jtj, (a * u - rhs) / h, kConstraintRank);
+    const Vector<12> multiplier = pseudoSolve<12>(jtj, (a * u - rhs) / h, kConstraintRank);
     for (int node : *constraints.nodes) {
-      reactions->segment<3>(3 * node) = pseudoRigidRows(arm_of(node)) * basis;
+      reactions->segment<3>(3 * node) = pseudoRigidRows(arm_of(node)) * multiplier;
     }
   }
   velocity_ = u.head<3>();
@@ -362,7 +368,7 @@ int ReducedDynamics::solveStatic(const LoadResultant& loads,
       displacement = std::hypot((centre_ - mass_.centre).norm(),
                                 radius * (gradient_ - Eigen::Matrix3d::Identity()).norm());
       generalized.head<3>() = force;
-      generalized.segment<3>(3) = torque(loads.moment);
+      generalized.segment<3>(3) = torque(loads.first_moment);
       jtj.topLeftCorner<6, 6>() = jtj6;
     } else {
       Eigen::Matrix3d elastic;
@@ -371,7 +377,7 @@ int ReducedDynamics::solveStatic(const LoadResultant& loads,
       Matrix<12> a = Matrix<12>::Zero();
       a.bottomRightCorner<9, 9>() = k;
       Vector<12> rhs;
-      rhs << force, vec(loads.moment) - vec(elastic);
+      rhs << force, vec(loads.first_moment) - vec(elastic);
       Vector<12> jtb = Vector<12>::Zero();
       if (constrained) {
         for (int node : *constraints.nodes) {
@@ -388,22 +394,32 @@ int ReducedDynamics::solveStatic(const LoadResultant& loads,
       displacement = std::hypot((centre_ - mass_.centre).norm(),
                                 radius * (gradient_ - Eigen::Matrix3d::Identity()).norm());
       elasticForce(elastic, k);
-      generalized << force, vec(loads.moment) - vec(elastic);
+      generalized << force, vec(loads.first_moment) - vec(elastic);
     }
     converged = change <= tolerance * std::max(displacement, 1e-12 * radius);
+  }
+  // What neither stiffness nor constraints took up: the part of the leftover generalized force
+  // outside the constraints' range (torques and first moments per radius of gyration, N).
+  const int size = model_ == BodyModel::kRigid ? 6 : 12;
+  const Vector<12> balanced = jtj * pseudoSolve<12>(jtj, generalized, kConstraintRank);
+  const Vector<12> unbalanced = generalized - balanced;
+  const double load = std::hypot(force.norm(), loads.first_moment.norm() / radius);
+  if (std::hypot(unbalanced.head<3>().norm(), unbalanced.segment(3, size - 3).norm() / radius) >
+      1e-8 * load) {
+    converged = false;
   }
   // Reactions: the constraints balance what loads and elasticity leave over, where they can.
   if (constrained) {
     if (model_ == BodyModel::kRigid) {
-      const Vector<6> basis =
+      const Vector<6> multiplier =
           pseudoSolve<6>(jtj.topLeftCorner<6, 6>(), -generalized.head<6>(), kConstraintRank);
       for (int node : *constraints.nodes) {
-        reactions.segment<3>(3 * node) = rigidRows(gradient_ * arm_of(node)) * basis;
+        reactions.segment<3>(3 * node) = rigidRows(gradient_ * arm_of(node)) * multiplier;
       }
     } else {
-      const Vector<12> basis = pseudoSolve<12>(jtj, -generalized, kConstraintRank);
+      const Vector<12> multiplier = pseudoSolve<12>(jtj, -generalized, kConstraintRank);
       for (int node : *constraints.nodes) {
-        reactions.segment<3>(3 * node) = pseudoRigidRows(arm_of(node)) * basis;
+        reactions.segment<3>(3 * node) = pseudoRigidRows(arm_of(node)) * multiplier;
       }
     }
   }

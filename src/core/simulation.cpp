@@ -69,8 +69,15 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
     const BodySpec& body_spec = spec.bodies[b];
     const std::string key = "bodies[" + std::to_string(b) + "]";
     try {
-      bodies_.emplace_back(body_spec.name, std::move(meshes[b]), body_spec.material,
-                           body_spec.effects.value_or(spec.effects), spec.solver, body_spec.model);
+      BodyEffects effects = body_spec.effects.value_or(spec.effects);
+      if (body_spec.model != BodyModel::kFiniteElement) {
+        // Inherited from the scene, plasticity is for its finite-element bodies only.
+        if (!body_spec.effects) effects.plasticity.reset();
+      } else if (contact_) {
+        effects.reactions = true;  // contact decides stick or slip from the constraint forces
+      }
+      bodies_.emplace_back(body_spec.name, std::move(meshes[b]), body_spec.material, effects,
+                           spec.solver, body_spec.model);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(key + ": " + e.what());
     }

@@ -331,6 +331,8 @@ class SceneParser {
     }
     if (const YAML::Node effects = node["effects"]) {
       body.effects = scene_effects;
+      // The scene's plasticity is for its finite-element bodies; a body names it to get it.
+      if (body.model != core::BodyModel::kFiniteElement) body.effects->plasticity.reset();
       parseEffects(effects, key + ".effects", *body.effects);
     }
     if (!node["material"]) fail(node, key + ".material", "missing");

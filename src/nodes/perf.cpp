@@ -166,7 +166,7 @@ perf::Cantilever loadedCantilever(int mesh, Effect effect) {
   perf::Cantilever c = perf::makeCantilever(kCells[mesh]);
   const bool all = effect == kAllEffects;
   c.effects = core::BodyEffects{};
-  c.effects.reactions = all || effect == kReactions;
+  c.effects.reactions = all || effect == kReactions || effect == kContact;  // contact needs them
   c.effects.warping = all || effect == kWarping;
   if (all || effect == kGravity) c.effects.gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
   if (all || effect == kDamping) c.effects.damping = core::RayleighDamping{1.0, 0.002};

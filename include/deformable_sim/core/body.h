@@ -158,13 +158,16 @@ class Body {
   /// Returns the nodes to free motion.
   void releaseNodes(const std::vector<int>& nodes);
   /// Holds one valid node where it is for the next step, or lets it go; for effects inside the
-  /// step loop (contact), so they allocate nothing and do not check the index.
+  /// step loop (contact), so they allocate nothing (finite-element bodies) and do not check the
+  /// index.
   void holdNode(int node);
   void releaseNode(int node);
   bool isConstrained(int node) const { return constrained_[node] != 0; }
   int numConstrained() const;
 
-  /// Applied nodal forces (3n, N); they persist from step to step until changed.
+  /// Applied nodal forces (3n, N); they persist from step to step until changed. Write them
+  /// through the reference before the next step: a rigid or pseudo-rigid body sums them then (do
+  /// not keep the reference across steps).
   Eigen::VectorXd& externalForces() {
     loads_stale_ = true;  // a rigid or pseudo-rigid body sums them again before its next step
     return external_forces_;

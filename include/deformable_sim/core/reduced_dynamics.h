@@ -17,8 +17,8 @@ namespace deformable_sim::core {
 
 /// Nodal forces f_i at rest arms a_i = X_i - Xc, summed once whenever they change.
 struct LoadResultant {
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();   ///< sum f_i, N
-  Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();  ///< sum f_i a_i^T, N m
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();         ///< sum f_i, N
+  Eigen::Matrix3d first_moment = Eigen::Matrix3d::Zero();  ///< sum f_i a_i^T, N m
 };
 
 /// Nodes held at targets: nodes[k] (rest position rest.segment<3>(3 nodes[k])) must be at
@@ -71,9 +71,10 @@ class ReducedDynamics {
             Eigen::VectorXd* reactions);
 
   /// Equilibrium with the constraints: Newton iterations on the coordinates until the update is
-  /// below `tolerance` (relative). A rigid body only moves onto its constraints; load that no
-  /// constraint or stiffness resists is left unbalanced (then converged = false). Leaves it at
-  /// rest. Returns the iterations taken, negative when not converged.
+  /// below `tolerance` (relative). A rigid body only moves onto its constraints. Load that no
+  /// constraint or stiffness resists (a free body under gravity) leaves it out of balance: then
+  /// it is not converged. Leaves it at rest. Returns the iterations taken, negative when not
+  /// converged.
   int solveStatic(const LoadResultant& loads, const std::optional<Eigen::Vector3d>& gravity,
                   const NodeConstraints& constraints, int max_iterations, double tolerance,
                   Eigen::VectorXd& reactions);
@@ -86,7 +87,7 @@ class ReducedDynamics {
   void returnToRemembered();
 
  private:
-  Eigen::Vector3d torque(const Eigen::Matrix3d& moment) const;
+  Eigen::Vector3d torque(const Eigen::Matrix3d& first_moment) const;
   /// Pseudo-rigid: the first Piola stress times the volume, and its derivative (9x9, column-major
   /// vec(F)), with the rotation of F when warping.
   void elasticForce(Eigen::Matrix3d& force, Eigen::Matrix<double, 9, 9>& stiffness) const;
