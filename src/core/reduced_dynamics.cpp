@@ -245,7 +245,9 @@ void ReducedDynamics::step(double h, const LoadResultant& loads,
     }
     velocity_ = u.head<3>();
     Eigen::Vector3d omega = u.tail<3>();
-    angular_momentum_ = inertia * omega;
+    // Unconstrained, the momentum is the update itself: exactly conserved without torque.
+    angular_momentum_ =
+        constrained ? Eigen::Vector3d(inertia * omega) : Eigen::Vector3d(rhs.tail<3>() / damping);
     if (!constrained) {
       // Implicit midpoint for the rotation: omega from the inertia at the half-step attitude,
       // which keeps the energy of a free spin (the explicit update gains energy every step).
