@@ -34,16 +34,18 @@ int CommandProcessor::findBody(const std::string& name, const NodeTarget& nodes)
   }
   if (bodies.size() == 1) return 0;
   if (!nodes.sphere) throw CommandError("no body named and the scene has several bodies");
-  if (!nodes.sphere->center.allFinite()) {
+  if (!nodes.sphere->center.allFinite() || !nodes.region_pose.matrix().allFinite()) {
     throw CommandError("the sphere's centre has a non-finite coordinate");
   }
-  // The body with a node nearest to the centre.
+  // The body with a node nearest to the centre, in the world (the sphere is in region_pose, as
+  // resolving its nodes takes it).
+  const Eigen::Vector3d center = nodes.region_pose * nodes.sphere->center;
   int best = -1;
   double best_distance = std::numeric_limits<double>::infinity();
   for (size_t b = 0; b < bodies.size(); ++b) {
     const Eigen::VectorXd& x = bodies[b].positions();
     for (int i = 0; i < bodies[b].numNodes(); ++i) {
-      const double d = (x.segment<3>(3 * i) - nodes.sphere->center).norm();
+      const double d = (x.segment<3>(3 * i) - center).norm();
       if (d < best_distance) best_distance = d, best = static_cast<int>(b);
     }
   }

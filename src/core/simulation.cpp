@@ -158,7 +158,9 @@ void Simulation::step(std::vector<StepReport>& reports) {
       reports[b].contacts = contacts.project(body, obstacles_, *contact_);
       ++contact_steps_;
     }
-    if (!std::isfinite(reports[b].solve.relative_residual) || !body.stateIsFinite()) {
+    // Constraint forces too: a tiny dt (1e-320 s) divides a finite solve into infinite forces.
+    if (!std::isfinite(reports[b].solve.relative_residual) || !body.stateIsFinite() ||
+        !body.reactionForces().allFinite()) {
       body.returnToRememberedState();
       reports[b].recovered = true;
       ++recoveries_[b];

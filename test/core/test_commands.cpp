@@ -383,4 +383,16 @@ TEST(Commands, SphereWithANonFiniteCentreIsRefusedInAMultiBodyScene) {
   }
   EXPECT_EQ(sim.bodies()[0].numConstrained(), 25);
   EXPECT_EQ(sim.bodies()[1].numConstrained(), 25);
+  fix.nodes.sphere->center = Eigen::Vector3d(1e300, 0, 0);  // every distance overflows
+  EXPECT_THROW(commands.apply(fix), dc::CommandError);
+
+  // The centre is taken in the sphere's frame: 2 m along y, the second body's tip is nearest.
+  sim.bodies()[1].setState(sim.bodies()[1].positions() +
+                               Eigen::Vector3d(0, 2, 0).replicate(sim.bodies()[1].numNodes(), 1),
+                           sim.bodies()[1].velocities());
+  fix.nodes.sphere = dc::Sphere{Eigen::Vector3d(0.5, 0, 0), 0.01};
+  fix.nodes.region_pose = Eigen::Isometry3d(Eigen::Translation3d(0, 2, 0));
+  EXPECT_EQ(commands.apply(fix), 1);
+  EXPECT_EQ(sim.bodies()[1].numConstrained(), 26);
+  EXPECT_EQ(sim.bodies()[0].numConstrained(), 25);
 }

@@ -34,10 +34,10 @@ class Simulation {
   double wrenchRadius(int index) const { return wrench_radii_[index]; }
 
   /// One step of every body; reports[i] belongs to bodies()[i]. `reports` is resized once.
-  /// The watchdog: a body whose step leaves a non-finite position or velocity or whose solve
-  /// saw a non-finite residual (absurd input that got past validation, an overflow) gets its
-  /// positions from before the step back and stops (velocities zero: infinite damping for that
-  /// step), and its report says `recovered`.
+  /// The watchdog: a body whose step leaves a non-finite position, velocity or constraint force
+  /// or whose solve saw a non-finite residual (absurd input that got past validation, an
+  /// overflow) gets its positions from before the step back and stops (velocities zero: infinite
+  /// damping for that step; constraint forces zero), and its report says `recovered`.
   void step(std::vector<StepReport>& reports);
   /// Steps of bodies()[index] that the watchdog undid, since construction.
   long recoveries(int index) const { return recoveries_[index]; }
