@@ -181,6 +181,7 @@ void SimNode::buildSimulation() {
 void SimNode::clearTickState() {
   wrench_times_.clear();
   grasp_frames_.clear();
+  grasp_wrench_pubs_.clear();
   sim_time_samples_.clear();
   reports_.assign(sim().bodies().size(), core::StepReport{});
 }
@@ -420,6 +421,7 @@ std::string SimNode::applyGrasp(const Grasp& message, uint32_t& nodes) {
     nodes = static_cast<uint32_t>(found->second.nodes.size());
     apply(core::ReleaseGraspCommand{message.name});
     grasp_frames_.erase(message.name);
+    grasp_wrench_pubs_.erase(message.name);  // its topic goes with it: names do not pile up
     return "";
   }
   if (message.action != Grasp::ATTACH) {

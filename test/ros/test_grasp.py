@@ -3,6 +3,7 @@
 is its weight about its centre of mass, a release lets it fall from where it was, and bad grasps
 are refused with a clear message."""
 import math
+import time
 import unittest
 
 import numpy as np
@@ -127,6 +128,12 @@ class GraspTest(unittest.TestCase):
         self.sim.step(10)
         fallen = positions(self.sim.state_at(1510))
         self.assertLess(max(p[2] for p in fallen), max(p[2] for p in positions(state)) - 1e-3)
+        # The released grasp's wrench topic is closed: names used once do not pile up.
+        topic = '/deformable_sim/grasps/hand/wrench'
+        deadline = time.time() + 5.0
+        while time.time() < deadline and topic in dict(rospy.get_published_topics()):
+            time.sleep(0.05)
+        self.assertNotIn(topic, dict(rospy.get_published_topics()))
 
     def test_bad_grasps_are_refused_with_a_clear_message(self):
         empty = Grasp(name='hand', action=Grasp.ATTACH, region=Grasp.REGION_SPHERE,
