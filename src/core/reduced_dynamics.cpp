@@ -98,6 +98,18 @@ Eigen::Matrix<double, 3, 12> pseudoRigidRows(const Eigen::Vector3d& arm) {
 
 bool hasConstraints(const NodeConstraints& c) { return c.nodes && !c.nodes->empty(); }
 
+// Adds J_k^T J_k and J_k^T b_k of every constrained node k: rows(k) gives its 3 x D rows J_k,
+// rhs(k) what they must equal.
+template <int D, typename Rows, typename Rhs>
+void addConstraintRows(const NodeConstraints& constraints, const Rows& rows, const Rhs& rhs,
+                       Matrix<D>& jtj, Vector<D>& jtb) {
+  for (int node : *constraints.nodes) {
+    const Eigen::Matrix<double, 3, D> j = rows(node);
+    jtj += j.transpose() * j;
+    jtb += j.transpose() * rhs(node);
+  }
+}
+
 }  // namespace
 
 ReducedDynamics::ReducedDynamics(BodyModel model, const MassProperties& mass,
@@ -205,12 +217,15 @@ void ReducedDynamics::step(double h, const LoadResultant& loads,
   const double m = mass_.mass;
   const double damping = 1.0 + h * mass_damping;
   const bool constrained = hasConstraints(constraints);
-  // Each constrained node moves to its target in this step: J_i u = (target - x_i) / h.
-  const auto target_velocity = [&](int node, const Eigen::Vector3d& arm) {
-    return Eigen::Vector3d((constraints.targets->segment<3>(3 * node) - position(arm)) / h);
-  };
   const auto arm_of = [&](int node) {
     return Eigen::Vector3d(constraints.rest->segment<3>(3 * node) - mass_.centre);
+  };
+  const auto gap = [&](int node, const Eigen::Vector3d& arm) {
+    return Eigen::Vector3d(constraints.targets->segment<3>(3 * node) - position(arm));
+  };
+  // Each constrained node moves to its target in this step: J_i u = (target - x_i) / h.
+  const auto target_velocity = [&](int node, const Eigen::Vector3d& arm) {
+    return Eigen::Vector3d(gap(node, arm) / h);
   };
 
   if (model_ == BodyModel::kRigid) {
@@ -228,12 +243,9 @@ void ReducedDynamics::step(double h, const LoadResultant& loads,
       a.bottomRightCorner<3, 3>() = damping * inertia;
       Matrix<6> jtj = Matrix<6>::Zero();
       Vector<6> jtb = Vector<6>::Zero();
-      for (int node : *constraints.nodes) {
-        const Eigen::Vector3d arm = arm_of(node);
-        const Eigen::Matrix<double, 3, 6> j = rigidRows(r * arm);
-        jtj += j.transpose() * j;
-        jtb += j.transpose() * target_velocity(node, arm);
-      }
+      addConstraintRows<6>(
+          constraints, [&](int node) { return rigidRows(r * arm_of(node)); },
+          [&](int node) { return target_velocity(node, arm_of(node)); }, jtj, jtb);
       u = constrainedSolve<6>(a, rhs, jtj, jtb);
       if (reactions) {
         // The generalized constraint force, shared among the nodes with the least norm.
@@ -267,12 +279,9 @@ void ReducedDynamics::step(double h, const LoadResultant& loads,
       a.bottomRightCorner<3, 3>() = gradient_ * mass_.inertia() * gradient_.transpose();
       Matrix<6> jtj = Matrix<6>::Zero();
       Vector<6> jtb = Vector<6>::Zero();
-      for (int node : *constraints.nodes) {
-        const Eigen::Vector3d arm = arm_of(node);
-        const Eigen::Matrix<double, 3, 6> j = rigidRows(gradient_ * arm);
-        jtj += j.transpose() * j;
-        jtb += j.transpose() * (constraints.targets->segment<3>(3 * node) - position(arm));
-      }
+      addConstraintRows<6>(
+          constraints, [&](int node) { return rigidRows(gradient_ * arm_of(node)); },
+          [&](int node) { return gap(node, arm_of(node)); }, jtj, jtb);
       const Vector<6> delta = constrainedSolve<6>(a, Vector<6>::Zero(), jtj, jtb);
       centre_ += delta.head<3>();
       gradient_ = Eigen::Quaterniond(rotationOf(delta.tail<3>()) * gradient_)
@@ -304,12 +313,9 @@ void ReducedDynamics::step(double h, const LoadResultant& loads,
   Matrix<12> jtj = Matrix<12>::Zero();
   Vector<12> jtb = Vector<12>::Zero();
   if (constrained) {
-    for (int node : *constraints.nodes) {
-      const Eigen::Vector3d arm = arm_of(node);
-      const Eigen::Matrix<double, 3, 12> j = pseudoRigidRows(arm);
-      jtj += j.transpose() * j;
-      jtb += j.transpose() * target_velocity(node, arm);
-    }
+    addConstraintRows<12>(
+        constraints, [&](int node) { return pseudoRigidRows(arm_of(node)); },
+        [&](int node) { return target_velocity(node, arm_of(node)); }, jtj, jtb);
   }
   u = constrainedSolve<12>(a, rhs, jtj, jtb);
   if (constrained && reactions) {
@@ -354,12 +360,9 @@ int ReducedDynamics::solveStatic(const LoadResultant& loads,
       Matrix<6> jtj6 = Matrix<6>::Zero();
       Vector<6> jtb = Vector<6>::Zero();
       if (constrained) {
-        for (int node : *constraints.nodes) {
-          const Eigen::Vector3d arm = arm_of(node);
-          const Eigen::Matrix<double, 3, 6> j = rigidRows(gradient_ * arm);
-          jtj6 += j.transpose() * j;
-          jtb += j.transpose() * gap(node, arm);
-        }
+        addConstraintRows<6>(
+            constraints, [&](int node) { return rigidRows(gradient_ * arm_of(node)); },
+            [&](int node) { return gap(node, arm_of(node)); }, jtj6, jtb);
       }
       const Vector<6> delta = constrainedSolve<6>(Matrix<6>::Zero(), Vector<6>::Zero(), jtj6, jtb);
       centre_ += delta.head<3>();
@@ -382,12 +385,9 @@ int ReducedDynamics::solveStatic(const LoadResultant& loads,
       rhs << force, vec(loads.first_moment) - vec(elastic);
       Vector<12> jtb = Vector<12>::Zero();
       if (constrained) {
-        for (int node : *constraints.nodes) {
-          const Eigen::Vector3d arm = arm_of(node);
-          const Eigen::Matrix<double, 3, 12> j = pseudoRigidRows(arm);
-          jtj += j.transpose() * j;
-          jtb += j.transpose() * gap(node, arm);
-        }
+        addConstraintRows<12>(
+            constraints, [&](int node) { return pseudoRigidRows(arm_of(node)); },
+            [&](int node) { return gap(node, arm_of(node)); }, jtj, jtb);
       }
       const Vector<12> delta = constrainedSolve<12>(a, rhs, jtj, jtb);
       centre_ += delta.head<3>();
