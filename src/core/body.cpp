@@ -161,7 +161,7 @@ void Body::setMaterial(const LinearElasticMaterial& material) {
   material_ = material;
   if (elasticity_) elasticity_->setMaterial(material);
   mass_ = lumpedMasses(mesh_, material.density);
-  stiffness_assembled_ = false;
+  stiffness_current_ = false;
   matrix_changed_ = true;
 }
 
@@ -243,10 +243,12 @@ void Body::setState(const Eigen::VectorXd& positions, const Eigen::VectorXd& vel
   x_ = positions;
   v_ = velocities;
   history_size_ = 0;
+  rotations_current_ = false;
 }
 
 Eigen::VectorXd& Body::mutablePositions() {
   if (reduced_) throw std::logic_error("body '" + name_ + "': its nodes follow its model");
+  rotations_current_ = false;  // the caller may move nodes
   return x_;
 }
 
@@ -277,6 +279,7 @@ void Body::returnToRememberedState() {
   x_ = remembered_positions_;
   v_.setZero();
   history_size_ = 0;
+  rotations_current_ = false;
 }
 
 const CorotationalElasticity& Body::elasticity() const {
@@ -384,22 +387,25 @@ int Body::numConstrained() const {
 }
 
 int Body::updateStiffness(StepTimes* times) {
-  if (stiffness_assembled_ && !effects_.warping) return 0;  // linear FEM: K is constant
-  stiffness_assembled_ = true;
-  matrix_changed_ = true;
   const auto start = Clock::now();
-  int inverted = 0;
-  if (effects_.warping) {
-    inverted = elasticity_->updateRotations(x_);
-    ++counters_.warping;
+  if (effects_.warping && !rotations_current_) {
+    const CorotationalElasticity::RotationUpdate update = elasticity_->updateRotations(x_);
+    inverted_elements_ = update.inverted;
+    elastic_energy_ = update.energy;
+    rotations_current_ = true;
+    stiffness_current_ = false;
   }
   const auto rotated = Clock::now();
-  elasticity_->assemble();
+  if (!stiffness_current_) {  // without warping: once, and after a change of material
+    elasticity_->assemble();
+    stiffness_current_ = true;
+    matrix_changed_ = true;
+  }
   if (times) {
     times->rotations += seconds(rotated - start);
     times->assembly += seconds(Clock::now() - rotated);
   }
-  return inverted;
+  return inverted_elements_;
 }
 
 SystemMatrix Body::systemMatrix(double mass_coefficient, double stiffness_coefficient) const {
@@ -450,21 +456,7 @@ void Body::predictVelocity(Eigen::VectorXd& guess) const {
   }
 }
 
-StepReport Body::step(double dt) {
-  if (reduced_) return stepReduced(dt);
-  StepReport report;
-  const auto start = Clock::now();
-  report.inverted_elements = updateStiffness(&report.times);
-  const double h = dt;
-  if (plasticity_) {
-    plasticity_->step(mesh_, *elasticity_, x_, h, plastic_forces_);
-    ++counters_.plasticity;
-  }
-  const RayleighDamping damping = effects_.damping.value_or(RayleighDamping{});
-  if (effects_.damping) ++counters_.damping;
-  if (effects_.gravity) ++counters_.gravity;
-  const SystemMatrix a = systemMatrix(1.0 + h * damping.mass, h * damping.stiffness + h * h);
-
+void Body::setStepRightHandSide(double h) {
   // b = M v - h (K' x + f0' - f_ext - M g)
   elasticity_->stiffness().multiply(x_, scratch_);
   const Eigen::VectorXd& f0 = elasticity_->forceOffset();
@@ -475,29 +467,121 @@ StepReport Body::step(double dt) {
     rhs_.segment<3>(3 * i) = mass_[i] * v_.segment<3>(3 * i) -
                              h * (scratch_.segment<3>(3 * i) + f0.segment<3>(3 * i) - load);
   }
-  // Warm start; constrained nodes move to their targets in this step.
+}
+
+StepReport Body::step(double dt) {
+  if (reduced_) return stepReduced(dt);
+  StepReport report;
+  const auto start = Clock::now();
+  report.inverted_elements = updateStiffness(&report.times);
+  if (plasticity_) {
+    plasticity_->step(mesh_, *elasticity_, x_, dt, plastic_forces_);
+    ++counters_.plasticity;
+  }
+  if (effects_.damping) ++counters_.damping;
+  if (effects_.gravity) ++counters_.gravity;
+  if (effects_.warping) ++counters_.warping;
+  if (effects_.reactions) ++counters_.reactions;
+  // Constrained nodes reach their targets at the end of the step (at an even pace if it is split).
+  prescribed_velocity_.resize(x_.size());
+  for (int i = 0; i < numNodes(); ++i) {
+    prescribed_velocity_.segment<3>(3 * i) =
+        constrained_[i] ? Eigen::Vector3d((targets_.segment<3>(3 * i) - x_.segment<3>(3 * i)) / dt)
+                        : Eigen::Vector3d::Zero();
+  }
+  advance(dt, 0, report);
+  report.times.total = seconds(Clock::now() - start);
+  return report;
+}
+
+void Body::advance(double h, int depth, StepReport& report) {
+  updateStiffness(&report.times);  // nothing to do unless a split step begins here
+  const RayleighDamping damping = effects_.damping.value_or(RayleighDamping{});
+  const SystemMatrix a = systemMatrix(1.0 + h * damping.mass, h * damping.stiffness + h * h);
   if (h != history_dt_) history_size_ = 0;  // the history is of another step size
   predictVelocity(next_);
   for (int i = 0; i < numNodes(); ++i) {
-    if (constrained_[i])
-      next_.segment<3>(3 * i) = (targets_.segment<3>(3 * i) - x_.segment<3>(3 * i)) / h;
+    if (constrained_[i]) next_.segment<3>(3 * i) = prescribed_velocity_.segment<3>(3 * i);
   }
-  const auto solve_start = Clock::now();
-  report.solve = solve(a, rhs_, next_);
-  report.times.solve = seconds(Clock::now() - solve_start);
+  // Solved with the rotations at the start. With warping, the rotations at the end (which the
+  // next step starts from) are then compared with them: the solve was backward Euler for the
+  // energy with the solve's rotations, which loses energy; when the change of rotations gains
+  // more than that, the step is solved again with the newer rotations, warm-started from the
+  // last solution (a fixed point of backward Euler with the exact corotational force). Where
+  // that does not settle (elements turning by radians within the step), the step is split in
+  // two halves, each solved the same way.
+  const double start_energy = elastic_energy_;  // at x with its own rotations
+  double solve_start_energy = start_energy;     // at x with the rotations of the solve
+  bool product_is_current = false;              // scratch_ = A v+ for the last solve
+  for (int solves = 1;; ++solves) {
+    setStepRightHandSide(h);
+    const auto solve_start = Clock::now();
+    const SolveReport solved = solve(a, rhs_, next_);
+    report.times.solve += seconds(Clock::now() - solve_start);
+    report.solve.iterations += solved.iterations;
+    report.solve.relative_residual = solved.relative_residual;
+    report.solve.converged = solved.converged;
+    ++report.solves;
+    if (!effects_.warping) break;
+    end_positions_ = x_ + h * next_;
+    const auto rotations_start = Clock::now();
+    const CorotationalElasticity::RotationUpdate end = elasticity_->updateRotations(end_positions_);
+    report.times.rotations += seconds(Clock::now() - rotations_start);
+    end_inverted_elements_ = end.inverted;
+    elastic_energy_ = end.energy;
+    report.largest_rotation_change = end.largest_change;
+    if (solver_settings_.max_rotation_updates == 0) break;
+    // What the step dissipates: 1/2 dv^T M dv + 1/2 h^2 v+^T K' v+ (+ damping's h v+^T C v+,
+    // left out), against what the change of rotations adds at its start and end.
+    a.multiply(next_, scratch_);
+    product_is_current = true;
+    double velocity_change2 = 0.0, kinetic2 = 0.0;
+    for (int i = 0; i < numNodes(); ++i) {
+      velocity_change2 += mass_[i] * (next_.segment<3>(3 * i) - v_.segment<3>(3 * i)).squaredNorm();
+      kinetic2 += mass_[i] * next_.segment<3>(3 * i).squaredNorm();
+    }
+    const double dissipated =
+        0.5 * velocity_change2 + 0.5 * (next_.dot(scratch_) - a.mass_coefficient * kinetic2);
+    const double gained = (end.energy - end.energy_before) + (solve_start_energy - start_energy);
+    const double roundoff = 1e-12 * (start_energy + end.energy + kineticEnergy() + 0.5 * kinetic2);
+    if (!(gained > dissipated + roundoff)) break;
+    if (solves > solver_settings_.max_rotation_updates) {
+      if (depth >= kMaxSplits) break;  // keep the last solution
+      // Start again from x in two halves; the rotations now are those of a discarded end.
+      rotations_current_ = false;
+      elastic_energy_ = start_energy;
+      ++report.splits;
+      advance(0.5 * h, depth + 1, report);
+      advance(0.5 * h, depth + 1, report);
+      return;
+    }
+    const auto assembly_start = Clock::now();
+    elasticity_->assemble();
+    matrix_changed_ = true;
+    product_is_current = false;
+    solve_start_energy = elasticity_->elasticEnergy(x_);
+    report.times.assembly += seconds(Clock::now() - assembly_start);
+  }
 
   // A v+ - b = h (M (v+ - v) / h - f_ext - f_elastic - f_damping): h times the constraint force.
   if (effects_.reactions) {
-    a.multiply(next_, scratch_);
+    if (!product_is_current) a.multiply(next_, scratch_);
     for (int i = 0; i < numNodes(); ++i) {
       reaction_.segment<3>(3 * i) =
           constrained_[i]
               ? Eigen::Vector3d((scratch_.segment<3>(3 * i) - rhs_.segment<3>(3 * i)) / h)
               : Eigen::Vector3d::Zero();
     }
-    ++counters_.reactions;
   }
-  x_ += h * next_;
+  if (effects_.warping) {
+    // x+ is end_positions_ (bit for bit: the same sum); its rotations are already computed.
+    std::swap(x_, end_positions_);
+    rotations_current_ = true;
+    stiffness_current_ = false;
+    inverted_elements_ = end_inverted_elements_;
+  } else {
+    x_ += h * next_;
+  }
   // History for the next prediction: shift by swapping, so nothing is copied or allocated.
   std::swap(v_history_[2], v_history_[1]);
   std::swap(v_history_[1], v_history_[0]);
@@ -505,8 +589,6 @@ StepReport Body::step(double dt) {
   v_ = next_;
   history_size_ = std::min(history_size_ + 1, 3);
   history_dt_ = h;
-  report.times.total = seconds(Clock::now() - start);
-  return report;
 }
 
 StaticReport Body::solveStatic(const StaticSettings& settings) {
@@ -517,6 +599,7 @@ StaticReport Body::solveStatic(const StaticSettings& settings) {
   }
   if (reduced_) return solveStaticReduced(settings);
   StaticReport report;
+  if (effects_.warping) ++counters_.warping;
   const SystemMatrix a = systemMatrix(0.0, 1.0);
   Eigen::VectorXd load = external_forces_;
   if (effects_.gravity) {
@@ -561,6 +644,7 @@ StaticReport Body::solveStatic(const StaticSettings& settings) {
                 : Eigen::Vector3d(x_.segment<3>(3 * i) +
                                   relaxation * (next_.segment<3>(3 * i) - x_.segment<3>(3 * i)));
       }
+      rotations_current_ = false;
       if (!effects_.warping || report.last_change <= settings.tolerance) break;
     }
     report.converged = report.last_solve.converged &&
@@ -593,6 +677,7 @@ StepReport Body::stepReduced(double dt) {
   reduced_->step(dt, load_resultant_, effects_.gravity, damping.mass, damping.stiffness,
                  nodeConstraints(), effects_.reactions ? &reaction_ : nullptr);
   nodes_stale_ = true;
+  report.solves = 1;
   report.times.total = report.times.solve = seconds(Clock::now() - start);
   return report;
 }
@@ -632,7 +717,9 @@ double Body::kineticEnergy() const {
 }
 
 double Body::elasticEnergy() const {
-  return reduced_ ? reduced_->elasticEnergy() : elasticity_->elasticEnergy(x_);
+  if (reduced_) return reduced_->elasticEnergy();
+  if (effects_.warping && rotations_current_) return elastic_energy_;  // computed with them
+  return elasticity_->elasticEnergy(x_);
 }
 
 }  // namespace deformable_sim::core

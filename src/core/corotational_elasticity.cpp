@@ -10,6 +10,10 @@
 
 namespace deformable_sim::core {
 
+namespace {
+constexpr int kChunkElements = 256;  ///< elements per partial sum
+}  // namespace
+
 CorotationalElasticity::CorotationalElasticity(const Mesh& mesh,
                                                const LinearElasticMaterial& material)
     : tetrahedra_(mesh.tetrahedra),
@@ -47,6 +51,10 @@ CorotationalElasticity::CorotationalElasticity(const Mesh& mesh,
     cells_.push_back(std::move(cell));
   }
   setCellStiffness();
+  // Sized here so that no step allocates them.
+  const size_t chunks = (tetrahedra_.size() + cells_.size() + kChunkElements - 1) / kChunkElements;
+  partial_sums_.resize(chunks);
+  partial_energies_.resize(chunks);
 }
 
 void CorotationalElasticity::setCellStiffness() {
@@ -113,7 +121,7 @@ void CorotationalElasticity::setRestForces() {
 }
 
 int CorotationalElasticity::update(const Eigen::VectorXd& x, bool warping) {
-  const int inverted = warping ? updateRotations(x) : 0;
+  const int inverted = warping ? updateRotations(x).inverted : 0;
   if (!warping) {
     for (Eigen::Matrix3d& r : rotations_) r.setIdentity();
   }
@@ -121,24 +129,84 @@ int CorotationalElasticity::update(const Eigen::VectorXd& x, bool warping) {
   return inverted;
 }
 
-int CorotationalElasticity::updateRotations(const Eigen::VectorXd& x) {
+namespace {
+
+/// Linear elasticity's energy density for a displacement gradient h, J/m^3.
+double energyDensity(const Eigen::Matrix3d& h, double lambda, double mu) {
+  const double trace = h.trace();
+  return mu * (0.5 * (h + h.transpose())).squaredNorm() + 0.5 * lambda * trace * trace;
+}
+
+}  // namespace
+
+CorotationalElasticity::ElementSums& CorotationalElasticity::ElementSums::operator+=(
+    const ElementSums& other) {
+  inverted += other.inverted;
+  largest_change2 = std::max(largest_change2, other.largest_change2);
+  energy += other.energy;
+  energy_before += other.energy_before;
+  return *this;
+}
+
+double CorotationalElasticity::tetrahedronEnergy(int e, const Eigen::Matrix3d& r,
+                                                 const Eigen::Matrix3d& f) const {
+  return rest_[e].volume *
+         energyDensity(r.transpose() * f - Eigen::Matrix3d::Identity(), lambda_, mu_);
+}
+
+double CorotationalElasticity::cellEnergy(const CellElement& cell, const Eigen::Matrix3d& r,
+                                          const Eigen::VectorXd& x) const {
+  using CellVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kMaxCellNodes, 1>;
+  const int n = cell.cell.size();
+  CellVector u(3 * n), ku(3 * n);  // fixed capacity: no heap
+  for (int i = 0; i < n; ++i) {
+    const int node = cell.cell.nodes[i];
+    u.segment<3>(3 * i) =
+        r.transpose() * x.segment<3>(3 * node) - rest_positions_.segment<3>(3 * node);
+  }
+  ku.noalias() = cell.stiffness * u;
+  return 0.5 * u.dot(ku);
+}
+
+CorotationalElasticity::RotationUpdate CorotationalElasticity::updateRotations(
+    const Eigen::VectorXd& x) {
+  // Each element's new rotation, how far it turned, and its energy with the new and the old one.
   const int num_tetrahedra = static_cast<int>(tetrahedra_.size());
-  const int inverted = parallelCount(threads_, 0, num_tetrahedra, [&](int e) {
-    const Tetrahedron& t = tetrahedra_[e];
-    const Eigen::Matrix3d f =
-        deformationGradient(rest_[e], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
-                            x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
-    rotations_[e] = extractRotation(f);
-    return f.determinant() > 0.0 ? 0 : 1;
-  });
-  // Other cells take their rotation from F at the centre.
-  return inverted + parallelCount(threads_, 0, static_cast<int>(cells_.size()), [&](int c) {
-           const CellElement& cell = cells_[c];
-           const Eigen::Matrix3d f =
-               cellDeformationGradient(cell.rest, cell.cell.size(), currentCorners(cell.cell, x));
-           rotations_[num_tetrahedra + c] = extractRotation(f);
-           return f.determinant() > 0.0 ? 0 : 1;
-         });
+  const int num_cells = static_cast<int>(cells_.size());
+  const ElementSums sums = parallelChunkedSum(
+      threads_, 0, num_tetrahedra + num_cells, kChunkElements, partial_sums_, [&](int e) {
+        ElementSums one;
+        if (e < num_tetrahedra) {
+          const Tetrahedron& t = tetrahedra_[e];
+          const Eigen::Matrix3d f =
+              deformationGradient(rest_[e], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
+                                  x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
+          const Eigen::Matrix3d r = extractRotation(f);
+          one.inverted = f.determinant() > 0.0 ? 0 : 1;
+          one.energy = tetrahedronEnergy(e, r, f);
+          one.energy_before = tetrahedronEnergy(e, rotations_[e], f);
+          one.largest_change2 = (r - rotations_[e]).squaredNorm();
+          rotations_[e] = r;
+        } else {
+          // Other cells take their rotation from F at the centre.
+          const CellElement& cell = cells_[e - num_tetrahedra];
+          const Eigen::Matrix3d f =
+              cellDeformationGradient(cell.rest, cell.cell.size(), currentCorners(cell.cell, x));
+          const Eigen::Matrix3d r = extractRotation(f);
+          one.inverted = f.determinant() > 0.0 ? 0 : 1;
+          one.energy = cellEnergy(cell, r, x);
+          one.energy_before = cellEnergy(cell, rotations_[e], x);
+          one.largest_change2 = (r - rotations_[e]).squaredNorm();
+          rotations_[e] = r;
+        }
+        return one;
+      });
+  RotationUpdate update;
+  update.inverted = sums.inverted;
+  update.largest_change = 2.0 * std::asin(std::min(1.0, std::sqrt(sums.largest_change2 / 8.0)));
+  update.energy = sums.energy;
+  update.energy_before = sums.energy_before;
+  return update;
 }
 
 CorotationalElasticity::WarpedElement CorotationalElasticity::warp(int e) const {
@@ -223,36 +291,17 @@ void CorotationalElasticity::addElasticForces(const Eigen::VectorXd& x, Eigen::V
 }
 
 double CorotationalElasticity::elasticEnergy(const Eigen::VectorXd& x) const {
-  double energy = 0.0;
-  for (size_t e = 0; e < tetrahedra_.size(); ++e) {
-    const Tetrahedron& t = tetrahedra_[e];
-    Eigen::Matrix<double, 12, 1> u;
-    for (int i = 0; i < 4; ++i) {
-      u.segment<3>(3 * i) =
-          rotations_[e].transpose() * x.segment<3>(3 * t[i]) - rest_positions_.segment<3>(3 * t[i]);
-    }
-    const TetrahedronRest& rest = rest_[e];
-    for (int i = 0; i < 4; ++i) {
-      for (int j = 0; j < 4; ++j) {
-        const Eigen::Matrix3d k_ij = stiffnessBlock(lambda_ * rest.volume, mu_ * rest.volume,
-                                                    rest.gradients[i], rest.gradients[j]);
-        energy += 0.5 * u.segment<3>(3 * i).dot(k_ij * u.segment<3>(3 * j));
-      }
-    }
-  }
   const int num_tetrahedra = static_cast<int>(tetrahedra_.size());
-  for (size_t c = 0; c < cells_.size(); ++c) {
-    const CellElement& cell = cells_[c];
-    const int n = cell.cell.size();
-    Eigen::VectorXd u(3 * n);
-    for (int i = 0; i < n; ++i) {
-      const int node = cell.cell.nodes[i];
-      u.segment<3>(3 * i) = rotations_[num_tetrahedra + c].transpose() * x.segment<3>(3 * node) -
-                            rest_positions_.segment<3>(3 * node);
-    }
-    energy += 0.5 * u.dot(cell.stiffness * u);
-  }
-  return energy;
+  const int num_cells = static_cast<int>(cells_.size());
+  return parallelChunkedSum(
+      threads_, 0, num_tetrahedra + num_cells, kChunkElements, partial_energies_, [&](int e) {
+        if (e >= num_tetrahedra) return cellEnergy(cells_[e - num_tetrahedra], rotations_[e], x);
+        const Tetrahedron& t = tetrahedra_[e];
+        return tetrahedronEnergy(
+            e, rotations_[e],
+            deformationGradient(rest_[e], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
+                                x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3])));
+      });
 }
 
 }  // namespace deformable_sim::core

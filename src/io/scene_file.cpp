@@ -237,7 +237,7 @@ class SceneParser {
     expectMap(node, "solver");
     checkKeys(node, "solver",
               {"method", "preconditioner", "tolerance", "max_iterations", "coarse_refresh_interval",
-               "threads", "warm_start"});
+               "threads", "warm_start", "max_rotation_updates"});
     if (node["method"]) {
       const std::string method = text(node["method"], "solver.method");
       if (method == "cg") {
@@ -279,6 +279,12 @@ class SceneParser {
     if (node["threads"]) {
       solver.threads = static_cast<int>(integer(node["threads"], "solver.threads"));
       if (solver.threads < 1) fail(node["threads"], "solver.threads", "must be >= 1");
+    }
+    if (node["max_rotation_updates"]) {
+      solver.max_rotation_updates =
+          static_cast<int>(integer(node["max_rotation_updates"], "solver.max_rotation_updates"));
+      if (solver.max_rotation_updates < 0)
+        fail(node["max_rotation_updates"], "solver.max_rotation_updates", "must be >= 0");
     }
     if (node["tolerance"]) solver.tolerance = positive(node["tolerance"], "solver.tolerance");
     if (node["max_iterations"]) {

@@ -559,6 +559,8 @@ void SimNode::publishStats() {
       s.effects.emplace_back("contact");
     }
     s.solver_iterations = static_cast<uint32_t>(reports_[b].solve.iterations);
+    s.solves = static_cast<uint32_t>(reports_[b].solves);
+    s.splits = static_cast<uint32_t>(reports_[b].splits);
     s.solver_residual = reports_[b].solve.relative_residual;
     s.solver_converged = reports_[b].solve.converged;
     s.kinetic_energy = body.kineticEnergy();

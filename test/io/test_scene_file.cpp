@@ -109,8 +109,9 @@ TEST(SceneFile, ChoosesThePreconditionerAndItsRefresh) {
   const dc::SceneSpec spec = dio::parseScene(
       replaced(kScene, "method: direct",
                "method: cg, preconditioner: block_jacobi, coarse_refresh_interval: 3, threads: 2, "
-               "warm_start: last_velocity"),
+               "warm_start: last_velocity, max_rotation_updates: 0"),
       "test.yaml", ".");
+  EXPECT_EQ(spec.solver.max_rotation_updates, 0);
   EXPECT_EQ(spec.solver.preconditioner, dc::SolverSettings::Preconditioner::kBlockJacobi);
   EXPECT_EQ(spec.solver.coarse_refresh_interval, 3);
   EXPECT_EQ(spec.solver.threads, 2);

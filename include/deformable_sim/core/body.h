@@ -1,4 +1,4 @@
-// A body of a scene: its mesh, state, constraints and loads, the linearly implicit Euler step and
+// A body of a scene: its mesh, state, constraints and loads, the implicit Euler step and
 // the quasi-static solve. Its model decides how the mesh moves: finite elements (warped-stiffness
 // elasticity, every node free), or a rigid or pseudo-rigid body whose nodes follow a few
 // coordinates (core/reduced_dynamics.h) and are computed only when asked for.
@@ -69,7 +69,15 @@ struct StepTimes {
 };
 
 struct StepReport {
-  SolveReport solve;
+  SolveReport solve;  ///< of the last solve; iterations summed over all of the step's solves
+  /// Solves of the step: one, or more when the change of rotations within it would have gained
+  /// energy (SolverSettings::max_rotation_updates).
+  int solves = 0;
+  /// Times the step (or a part of it) was split in two halves because those solves did not
+  /// settle; at most Body::kMaxSplits deep.
+  int splits = 0;
+  /// Largest angle an element turned from the last solve's rotations to the step's end, rad.
+  double largest_rotation_change = 0.0;
   int inverted_elements = 0;  ///< elements with det F <= 0 at the start of the step
   int contacts = 0;           ///< nodes put back on an obstacle's surface after the step
   /// The step left a non-finite value and was undone by Simulation's watchdog: the body is back
@@ -174,9 +182,14 @@ class Body {
   }
   const Eigen::VectorXd& externalForces() const { return external_forces_; }
 
-  /// One linearly implicit Euler step of length dt (s):
-  ///   (M + h C + h^2 K') v+ = M v - h (K' x + f0' - f_ext),  x+ = x + h v+.
-  /// Allocates nothing after the first step with the conjugate gradient solver.
+  /// How often a step may be halved (recursively) when its rotations do not settle: 64 parts.
+  static constexpr int kMaxSplits = 6;
+
+  /// One implicit Euler step of length dt (s):
+  ///   (M + h C + h^2 K') v+ = M v - h (K' x + f0' - f_ext),  x+ = x + h v+,
+  /// with K' and f0' of the rotations at x; solved again with those at x+ while the change of
+  /// rotations would gain more energy than the step dissipates. Allocates nothing after the first
+  /// step with the conjugate gradient solver.
   StepReport step(double dt);
 
   /// Equilibrium under the external forces and gravity: K' x = f_ext - f0', iterated with warping
@@ -188,7 +201,9 @@ class Body {
   const Eigen::VectorXd& reactionForces() const { return reaction_; }
 
   double kineticEnergy() const;  ///< J
-  double elasticEnergy() const;  ///< J, with the rotations of the last step
+  /// J, with the element rotations of the present positions (after a step, or a static solve;
+  /// positions moved through mutablePositions() keep the rotations they had).
+  double elasticEnergy() const;
 
   /// The elements' elasticity (finite-element bodies; std::logic_error otherwise).
   const CorotationalElasticity& elasticity() const;
@@ -197,8 +212,12 @@ class Body {
 
  private:
   /// Updates rotations, K' and f0' from the current positions when they can have changed;
-  /// adds the time of each half to `times` when given.
+  /// adds the time of each half to `times` when given. Returns the inverted elements at x_.
   int updateStiffness(StepTimes* times = nullptr);
+  /// rhs_ = M v - h (K' x + f0' - f_ext - M g - f_plastic), the step's right-hand side.
+  void setStepRightHandSide(double h);
+  /// Advances the state by h (a step, or a part of one split `depth` times).
+  void advance(double h, int depth, StepReport& report);
   /// x = A^-1 b with prescribed values already in x on constrained nodes.
   SolveReport solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x);
   SystemMatrix systemMatrix(double mass_coefficient, double stiffness_coefficient) const;
@@ -235,8 +254,15 @@ class Body {
   std::vector<int> constrained_nodes_;    ///< reduced_ only: the constrained nodes, ascending
   std::optional<Plasticity> plasticity_;  ///< only with the effect; then also its forces
   Eigen::VectorXd plastic_forces_;
-  bool stiffness_assembled_ = false;
-  bool matrix_changed_ = true;  ///< for the direct solver: refactorize on the next solve
+  /// The element rotations are those of x_ (warping); K' and f0' are those of the rotations and
+  /// the material.
+  bool rotations_current_ = false, stiffness_current_ = false;
+  int inverted_elements_ = 0;            ///< at x_, when rotations_current_
+  double elastic_energy_ = 0.0;          ///< at x_ with its own rotations, when rotations_current_
+  int end_inverted_elements_ = 0;        ///< at the end of the step being taken
+  Eigen::VectorXd end_positions_;        ///< x + h v+ of the step being taken
+  Eigen::VectorXd prescribed_velocity_;  ///< of the constrained nodes in the step being taken
+  bool matrix_changed_ = true;           ///< for the direct solver: refactorize on the next solve
   double last_mass_coefficient_ = -1.0, last_stiffness_coefficient_ = -1.0;
 
   ConstraintMask constrained_;

@@ -32,9 +32,15 @@ class CorotationalElasticity {
   /// elements (det F <= 0). Allocates nothing.
   int update(const Eigen::VectorXd& x, bool warping);
 
-  /// The two halves of update(), for benchmarks: the rotations from x (returns the number of
-  /// inverted or flat elements), then K' and f0' from the rotations.
-  int updateRotations(const Eigen::VectorXd& x);
+  /// What updateRotations found at x.
+  struct RotationUpdate {
+    int inverted = 0;             ///< elements with det F <= 0
+    double largest_change = 0.0;  ///< largest angle by which an element's rotation changed, rad
+    double energy = 0.0;          ///< elastic energy at x with the new rotations (the true one), J
+    double energy_before = 0.0;   ///< elastic energy at x with the rotations before, J
+  };
+  /// The two halves of update(): the rotations from x, then K' and f0' from the rotations.
+  RotationUpdate updateRotations(const Eigen::VectorXd& x);
   void assemble();
 
   /// Threads for the element and row loops (1: none started). One thread adds element by element,
@@ -42,9 +48,9 @@ class CorotationalElasticity {
   /// results are identical.
   void setThreads(int threads);
 
-  double lambda() const { return lambda_; }  ///< Lame's first parameter, Pa
-  double mu() const { return mu_; }          ///< shear modulus, Pa
-  const BlockSparseMatrix& stiffness() const { return stiffness_; }     ///< K', N/m
+  double lambda() const { return lambda_; }                          ///< Lame's first parameter, Pa
+  double mu() const { return mu_; }                                  ///< shear modulus, Pa
+  const BlockSparseMatrix& stiffness() const { return stiffness_; }  ///< K', N/m
   const Eigen::VectorXd& forceOffset() const { return force_offset_; }  ///< f0', N
   /// Per element, the tetrahedra first, then the cells.
   const std::vector<Eigen::Matrix3d>& rotations() const { return rotations_; }
@@ -56,7 +62,7 @@ class CorotationalElasticity {
                         Eigen::VectorXd& scratch) const;
 
   /// Elastic energy with the rotations of the last update: sum_e 1/2 u_e^T Ke u_e with
-  /// u_e,i = Re^T x_i - x0_i, J.
+  /// u_e,i = Re^T x_i - x0_i, J. The same sum on any thread count.
   double elasticEnergy(const Eigen::VectorXd& x) const;
 
  private:
@@ -98,6 +104,19 @@ class CorotationalElasticity {
   /// Per element, for the row-by-row assembly on several threads.
   std::vector<WarpedElement> warped_;
   std::vector<Eigen::Matrix3d> rotations_;
+  /// Tetrahedra: the energy V psi(R^T F - I); cells: 1/2 u^T Ke u with u_i = R^T x_i - x0_i.
+  double tetrahedronEnergy(int e, const Eigen::Matrix3d& r, const Eigen::Matrix3d& f) const;
+  double cellEnergy(const CellElement& cell, const Eigen::Matrix3d& r,
+                    const Eigen::VectorXd& x) const;
+  /// Per element, the sums of the rotation update.
+  struct ElementSums {
+    int inverted = 0;
+    double largest_change2 = 0.0;  ///< |R_new - R_old|^2 (Frobenius) = 8 sin^2(angle / 2)
+    double energy = 0.0, energy_before = 0.0;
+    ElementSums& operator+=(const ElementSums& other);
+  };
+  mutable std::vector<ElementSums> partial_sums_;
+  mutable std::vector<double> partial_energies_;
   int threads_ = 1;
   BlockSparseMatrix stiffness_;
   Eigen::VectorXd force_offset_;

@@ -38,6 +38,13 @@ struct SolverSettings {
   /// iterations on a swinging cantilever).
   enum class WarmStart { kLastVelocity, kExtrapolated };
   WarmStart warm_start = WarmStart::kExtrapolated;
+  /// With warping, a step is solved with the element rotations at its start (one linear solve,
+  /// where a turn within the step costs no energy). When the rotations at its end would add more
+  /// elastic energy than the step dissipates (fast turns, stiff bodies), it is solved again with
+  /// the newer rotations, up to this many times: backward Euler with the exact corotational
+  /// force, which never gains energy. 0: always the single solve. A step that gains nothing
+  /// costs no more than one solve (its end rotations are the next step's start).
+  int max_rotation_updates = 8;
 };
 
 struct SolveReport {

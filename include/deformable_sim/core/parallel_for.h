@@ -3,6 +3,9 @@
 // a quarter of a small body's step).
 #pragma once
 
+#include <algorithm>
+#include <vector>
+
 namespace deformable_sim::core {
 
 /// body(i) for i in [begin, end), in static chunks over `threads` threads.
@@ -16,17 +19,23 @@ void parallelFor(int threads, int begin, int end, Function&& body) {
   }
 }
 
-/// The sum of body(i) for i in [begin, end) (any order of summation over threads).
-template <typename Function>
-int parallelCount(int threads, int begin, int end, Function&& body) {
-  int count = 0;
-  if (threads > 1) {
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : count)
-    for (int i = begin; i < end; ++i) count += body(i);
-  } else {
-    for (int i = begin; i < end; ++i) count += body(i);
-  }
-  return count;
+/// The sum of body(i) for i in [begin, end) (a Value with +=), taken in fixed chunks of `chunk`
+/// indices whose sums are added in chunk order: the same bits on any thread count. `partials`
+/// holds the chunk sums (resized on the first call only).
+template <typename Value, typename Function>
+Value parallelChunkedSum(int threads, int begin, int end, int chunk, std::vector<Value>& partials,
+                         Function&& body) {
+  const int num_chunks = (end - begin + chunk - 1) / chunk;
+  if (static_cast<int>(partials.size()) < num_chunks) partials.resize(num_chunks);
+  parallelFor(threads, 0, num_chunks, [&](int c) {
+    Value sum{};
+    const int last = std::min(end, begin + (c + 1) * chunk);
+    for (int i = begin + c * chunk; i < last; ++i) sum += body(i);
+    partials[c] = sum;
+  });
+  Value total{};
+  for (int c = 0; c < num_chunks; ++c) total += partials[c];
+  return total;
 }
 
 }  // namespace deformable_sim::core
