@@ -513,6 +513,7 @@ void Body::advance(double h, int depth, StepReport& report) {
   const double start_energy = elastic_energy_;  // at x with its own rotations
   double solve_start_energy = start_energy;     // at x with the rotations of the solve
   bool product_is_current = false;              // scratch_ = A v+ for the last solve
+  double last_excess = std::numeric_limits<double>::infinity();  // gained - dissipated
   for (int solves = 1;; ++solves) {
     setStepRightHandSide(h);
     const auto solve_start = Clock::now();
@@ -545,8 +546,13 @@ void Body::advance(double h, int depth, StepReport& report) {
     const double gained = (end.energy - end.energy_before) + (solve_start_energy - start_energy);
     const double roundoff = 1e-12 * (start_energy + end.energy + kineticEnergy() + 0.5 * kinetic2);
     if (!(gained > dissipated + roundoff)) break;
-    if (solves > solver_settings_.max_rotation_updates) {
-      if (depth >= kMaxSplits) break;  // keep the last solution
+    // Converging, the excess shrinks several times over from one solve to the next; where it
+    // does not, more solves will not settle it either.
+    const bool stalled = gained - dissipated > 0.5 * last_excess;
+    last_excess = gained - dissipated;
+    if (report.solves >= kMaxSolves) break;  // keep the last solution: a step's time is bounded
+    if (stalled || solves > solver_settings_.max_rotation_updates) {
+      if (depth >= kMaxSplits) break;
       // Start again from x in two halves; the rotations now are those of a discarded end.
       rotations_current_ = false;
       elastic_energy_ = start_energy;

@@ -638,6 +638,8 @@ struct ImpulseRun {
   double work = 0.0, after_kick = 0.0, kicked_distance = 0.0, largest_rise = 0.0;
   double final_distance = 0.0, final_energy = 0.0;
   long recoveries = 0;
+  int kick_solves = 0, kick_splits = 0;  ///< of the kicked step
+  int most_solves_later = 0;             ///< of a step after the kick
 };
 
 // 1e4 times the clamped beam's weight as a force, and 5 cm times that as a torque, on its free
@@ -668,6 +670,8 @@ ImpulseRun impulse() {
   const Eigen::VectorXd before = body.positions();
   stepChecked(sim, reports, 0);
   if (::testing::Test::HasFatalFailure()) return run;
+  run.kick_solves = reports[0].solves;
+  run.kick_splits = reports[0].splits;
   run.work = work(body.externalForces(), before, body);
   run.after_kick = meter.total(body);
   run.kicked_distance = distanceFromRest(body);
@@ -678,17 +682,18 @@ ImpulseRun impulse() {
     stepChecked(sim, reports, s);
     if (::testing::Test::HasFatalFailure()) return run;
     log.add(meter.total(body));
+    run.most_solves_later = std::max(run.most_solves_later, reports[0].solves);
   }
   run.largest_rise = log.largest_rise;
   run.final_distance = distanceFromRest(body);
   run.final_energy = meter.total(body);
   run.recoveries = sim.recoveries(0);
   std::printf(
-      "[ measured ] impulse: %.3g N for 10 ms moved the end %.3g m and did %.4g J of work; "
-      "energy after it %.4g J, largest rise later %.4g J; after 10 s %.3g m from rest, "
-      "%.3g J\n",
-      force.norm(), run.kicked_distance, run.work, run.after_kick, run.largest_rise,
-      run.final_distance, run.final_energy);
+      "[ measured ] impulse: %.3g N for 10 ms moved the end %.3g m (%d solves, %d splits) and "
+      "did %.4g J of work; energy after it %.4g J, largest rise later %.4g J (at most %d solves "
+      "a step); after 10 s %.3g m from rest, %.3g J\n",
+      force.norm(), run.kicked_distance, run.kick_solves, run.kick_splits, run.work, run.after_kick,
+      run.largest_rise, run.most_solves_later, run.final_distance, run.final_energy);
   return run;
 }
 
