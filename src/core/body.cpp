@@ -532,19 +532,22 @@ void Body::advance(double h, int depth, StepReport& report) {
     elastic_energy_ = end.energy;
     report.largest_rotation_change = end.largest_change;
     if (solver_settings_.max_rotation_updates == 0) break;
-    // What the step dissipates: 1/2 dv^T M dv + 1/2 h^2 v+^T K' v+ (+ damping's h v+^T C v+,
-    // left out), against what the change of rotations adds at its start and end.
-    a.multiply(next_, scratch_);
-    product_is_current = true;
+    // What the step dissipates, 1/2 dv^T M dv + 1/2 h^2 v+^T K' v+ (+ damping's h v+^T C v+, left
+    // out), against what the change of rotations adds at its start and end. The stiffness part
+    // costs a product with A: only when the mass part does not cover the gain already.
     double velocity_change2 = 0.0, kinetic2 = 0.0;
     for (int i = 0; i < numNodes(); ++i) {
       velocity_change2 += mass_[i] * (next_.segment<3>(3 * i) - v_.segment<3>(3 * i)).squaredNorm();
       kinetic2 += mass_[i] * next_.segment<3>(3 * i).squaredNorm();
     }
-    const double dissipated =
-        0.5 * velocity_change2 + 0.5 * (next_.dot(scratch_) - a.mass_coefficient * kinetic2);
     const double gained = (end.energy - end.energy_before) + (solve_start_energy - start_energy);
     const double roundoff = 1e-12 * (start_energy + end.energy + kineticEnergy() + 0.5 * kinetic2);
+    double dissipated = 0.5 * velocity_change2;
+    if (gained > dissipated + roundoff) {
+      a.multiply(next_, scratch_);
+      product_is_current = true;
+      dissipated += 0.5 * (next_.dot(scratch_) - a.mass_coefficient * kinetic2);
+    }
     if (!(gained > dissipated + roundoff)) break;
     // Converging, the excess shrinks several times over from one solve to the next; where it
     // does not, more solves will not settle it either.

@@ -62,7 +62,8 @@ class CorotationalElasticity {
                         Eigen::VectorXd& scratch) const;
 
   /// Elastic energy with the rotations of the last update: sum_e 1/2 u_e^T Ke u_e with
-  /// u_e,i = Re^T x_i - x0_i, J. The same sum on any thread count.
+  /// u_e,i = Re^T x_i - x0_i, J. The same sum on any thread count. Not for concurrent calls on
+  /// one object (it sums into a buffer of the object).
   double elasticEnergy(const Eigen::VectorXd& x) const;
 
  private:
