@@ -134,7 +134,10 @@ for target in "${targets[@]}"; do
   mkdir -p "$dir/corpus" "$dir/artifacts"
   cp "$repo/test/fuzz/corpus/$target/"* "$dir/corpus/"
   # -rss_limit_mb and -malloc_limit_mb: a reader must not allocate gigabytes for a tiny input.
-  options=(-max_total_time="$seconds" -max_len=4096 -timeout=10 -rss_limit_mb=1024
+  # -timeout: a step whose elements turn by radians may take up to Body::kMaxSolves solves, and
+  # the sanitizers make them ~50 times slower: an input of 64 commands and ticks can take 25 s
+  # (0.5 s in test_fuzz_corpus); a hang still shows.
+  options=(-max_total_time="$seconds" -max_len=4096 -timeout=60 -rss_limit_mb=1024
     -malloc_limit_mb=256 -print_final_stats=1 -artifact_prefix="$dir/artifacts/")
   if [ -e "$repo/test/fuzz/$target.dict" ]; then options+=(-dict="$repo/test/fuzz/$target.dict"); fi
   echo "== $target: $seconds s"
