@@ -58,6 +58,22 @@ void ConjugateGradientSolver::refreshPreconditioner(const SystemMatrix& a,
     if (a.mass_coefficient != 0.0) d.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
     inverse_diagonal_[i] = d.inverse();
   }
+  if (settings.preconditioner == SolverSettings::Preconditioner::kFactorization) {
+    const bool fresh = !factorization_;
+    if (fresh) factorization_ = std::make_unique<DirectSolver>();
+    if (fresh || ++solves_since_coarse_refresh_ >= settings.coarse_refresh_interval ||
+        a.mass_coefficient != coarse_mass_coefficient_ ||
+        a.stiffness_coefficient != coarse_stiffness_coefficient_ ||
+        constrained != factorized_constraints_) {
+      // A failed factorization (A not definite) leaves block-Jacobi to work alone.
+      if (!factorization_->factorize(a, constrained)) factorization_.reset();
+      factorized_constraints_ = constrained;
+      solves_since_coarse_refresh_ = 0;
+      coarse_mass_coefficient_ = a.mass_coefficient;
+      coarse_stiffness_coefficient_ = a.stiffness_coefficient;
+    }
+    return;
+  }
   // Without positions (no rigid modes to build) block-Jacobi works alone.
   if (settings.preconditioner != SolverSettings::Preconditioner::kTwoLevel || !a.positions) return;
   const bool fresh = !coarse_;
@@ -77,6 +93,10 @@ void ConjugateGradientSolver::refreshPreconditioner(const SystemMatrix& a,
 void ConjugateGradientSolver::precondition(const ConstraintMask& constrained,
                                            const Eigen::VectorXd& r, Eigen::VectorXd& z) {
   const int num_nodes = static_cast<int>(inverse_diagonal_.size());
+  if (factorization_) {
+    factorization_->applyInverse(r, z);
+    return;
+  }
   for (int i = 0; i < num_nodes; ++i) {
     z.segment<3>(3 * i).noalias() = inverse_diagonal_[i] * r.segment<3>(3 * i);
   }
@@ -96,6 +116,9 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
     partial_sums_.resize((num_nodes + kChunkNodes - 1) / kChunkNodes);
   }
   if (settings.preconditioner != SolverSettings::Preconditioner::kTwoLevel) coarse_.reset();
+  if (settings.preconditioner != SolverSettings::Preconditioner::kFactorization) {
+    factorization_.reset();
+  }
   refreshPreconditioner(a, constrained, settings);
 
   // Reference norm: the right-hand side of the free rows once the prescribed values are moved
@@ -157,6 +180,7 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
       }
       return partial;
     });
+    if (factorization_) factorization_->applyInverse(r_, z_);  // replaces block-Jacobi's z
     if (coarse_) coarse_->addCorrection(constrained, r_, z_, a.threads);
     const double rz_next = dot(r_, z_);
     const double beta = rz_next / rz;
@@ -199,31 +223,38 @@ void DirectSolver::buildPattern(const BlockSparseMatrix& k) {
   analysed_ = true;
 }
 
+bool DirectSolver::factorize(const SystemMatrix& a, const ConstraintMask& constrained) {
+  const BlockSparseMatrix& k = *a.stiffness;
+  if (!analysed_) buildPattern(k);
+  double* values = matrix_.valuePtr();
+  for (int i = 0; i < k.numBlockRows(); ++i) {
+    for (int s = k.rowStart()[i]; s < k.rowStart()[i + 1]; ++s) {
+      const int j = k.columns()[s];
+      const bool projected = constrained[i] || constrained[j];
+      Eigen::Matrix3d block = a.stiffness_coefficient * k.blocks()[s];
+      if (i == j && a.mass_coefficient != 0.0) {
+        block.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
+      }
+      // Constrained rows and columns become identity rows: x_c = prescribed value.
+      if (projected) {
+        block.setZero();
+        if (i == j) block.setIdentity();
+      }
+      for (int e = 0; e < 9; ++e) values[value_of_block_entry_[9 * s + e]] = block(e / 3, e % 3);
+    }
+  }
+  factorization_.factorize(matrix_);
+  return factorization_.info() == Eigen::Success;
+}
+
+void DirectSolver::applyInverse(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+  z = factorization_.solve(r);
+}
+
 SolveReport DirectSolver::solve(const SystemMatrix& a, const ConstraintMask& constrained,
                                 const Eigen::VectorXd& b, bool matrix_changed, Eigen::VectorXd& x) {
   const BlockSparseMatrix& k = *a.stiffness;
-  const bool refactor = matrix_changed || !analysed_;
-  if (!analysed_) buildPattern(k);
-  if (refactor) {
-    double* values = matrix_.valuePtr();
-    for (int i = 0; i < k.numBlockRows(); ++i) {
-      for (int s = k.rowStart()[i]; s < k.rowStart()[i + 1]; ++s) {
-        const int j = k.columns()[s];
-        const bool projected = constrained[i] || constrained[j];
-        Eigen::Matrix3d block = a.stiffness_coefficient * k.blocks()[s];
-        if (i == j && a.mass_coefficient != 0.0) {
-          block.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
-        }
-        // Constrained rows and columns become identity rows: x_c = prescribed value.
-        if (projected) {
-          block.setZero();
-          if (i == j) block.setIdentity();
-        }
-        for (int e = 0; e < 9; ++e) values[value_of_block_entry_[9 * s + e]] = block(e / 3, e % 3);
-      }
-    }
-    factorization_.factorize(matrix_);
-  }
+  if (matrix_changed || !analysed_) factorize(a, constrained);
   SolveReport report;
   if (factorization_.info() != Eigen::Success) {
     report.converged = false;

@@ -254,9 +254,11 @@ class SceneParser {
         solver.preconditioner = core::SolverSettings::Preconditioner::kTwoLevel;
       } else if (name == "block_jacobi") {
         solver.preconditioner = core::SolverSettings::Preconditioner::kBlockJacobi;
+      } else if (name == "factorization") {
+        solver.preconditioner = core::SolverSettings::Preconditioner::kFactorization;
       } else {
         fail(node["preconditioner"], "solver.preconditioner",
-             "'" + name + "' is not one of: two_level, block_jacobi");
+             "'" + name + "' is not one of: two_level, block_jacobi, factorization");
       }
     }
     if (node["warm_start"]) {

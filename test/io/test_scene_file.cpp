@@ -133,7 +133,8 @@ TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
   EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: magic")),
             "test.yaml:4: solver.method: 'magic' is not one of: cg, direct");
   EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: cg, preconditioner: ilu")),
-            "test.yaml:4: solver.preconditioner: 'ilu' is not one of: two_level, block_jacobi");
+            "test.yaml:4: solver.preconditioner: 'ilu' is not one of: two_level, block_jacobi, "
+            "factorization");
   EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: cg, coarse_refresh_interval: 0")),
             "test.yaml:4: solver.coarse_refresh_interval: must be >= 1");
   EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: cg, warm_start: zero")),

@@ -18,17 +18,19 @@ namespace deformable_sim::core {
 
 struct SolverSettings {
   enum class Method { kConjugateGradient, kDirect };
-  /// Conjugate gradient preconditioners: block-Jacobi alone, or block-Jacobi plus the coarse
+  /// Conjugate gradient preconditioners: block-Jacobi alone; block-Jacobi plus the coarse
   /// correction of RigidModeCoarseSpace (far fewer iterations on anything larger than a few
-  /// hundred nodes).
-  enum class Preconditioner { kBlockJacobi, kTwoLevel };
+  /// hundred nodes); or a sparse LDL^T factorization of A, refactorized every
+  /// coarse_refresh_interval solves (and when the constraints or coefficients change): a few
+  /// iterations, each with two triangular solves (it allocates when it refactorizes).
+  enum class Preconditioner { kBlockJacobi, kTwoLevel, kFactorization };
   Method method = Method::kConjugateGradient;
   Preconditioner preconditioner = Preconditioner::kTwoLevel;
   double tolerance = 1.0e-6;  ///< conjugate gradient: relative residual ||r|| / ||b_free||
   int max_iterations = 1000;  ///< conjugate gradient: iteration cap
-  /// Two-level: the coarse operator is rebuilt every this many solves (and whenever the mass or
-  /// stiffness coefficient changes); in between the last one still preconditions well, since
-  /// rotations change little from one step to the next.
+  /// Two-level and factorization: the coarse operator or the factorization is rebuilt every
+  /// this many solves (and whenever the mass or stiffness coefficient changes); in between the
+  /// last one still preconditions well, since rotations change little from one step to the next.
   int coarse_refresh_interval = 10;
   /// Threads for the element loops, products with A and CG's vector operations (1: none
   /// started). Every count sums in the same order: results are identical, bit for bit.
@@ -70,6 +72,8 @@ struct SystemMatrix {
 /// Which nodes are constrained (non-zero) for a solve.
 using ConstraintMask = std::vector<std::uint8_t>;
 
+class DirectSolver;
+
 /// Preconditioned conjugate gradients. `x` comes in with the prescribed values on constrained
 /// nodes and the initial guess elsewhere (a warm start), and leaves with the solution. Buffers and
 /// the coarse space are set up on the first call; later calls of the same size allocate nothing.
@@ -90,6 +94,8 @@ class ConjugateGradientSolver {
   Eigen::VectorXd r_, z_, p_, q_;
   std::vector<double> partial_sums_;
   std::unique_ptr<RigidModeCoarseSpace> coarse_;
+  std::unique_ptr<DirectSolver> factorization_;  ///< Preconditioner::kFactorization
+  ConstraintMask factorized_constraints_;
   int solves_since_coarse_refresh_ = 0;
   double coarse_mass_coefficient_ = 0.0, coarse_stiffness_coefficient_ = 0.0;
 };
@@ -101,6 +107,11 @@ class DirectSolver {
  public:
   SolveReport solve(const SystemMatrix& a, const ConstraintMask& constrained,
                     const Eigen::VectorXd& b, bool matrix_changed, Eigen::VectorXd& x);
+
+  /// Factorizes A with the constrained rows and columns made identity ones; false if it failed.
+  bool factorize(const SystemMatrix& a, const ConstraintMask& constrained);
+  /// z = A^-1 r with the last factorization (zero on constrained rows where r is).
+  void applyInverse(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
 
  private:
   void buildPattern(const BlockSparseMatrix& k);
