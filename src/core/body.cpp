@@ -535,13 +535,15 @@ void Body::advance(double h, int depth, StepReport& report) {
     // What the step dissipates, 1/2 dv^T M dv + 1/2 h^2 v+^T K' v+ (+ damping's h v+^T C v+, left
     // out), against what the change of rotations adds at its start and end. The stiffness part
     // costs a product with A: only when the mass part does not cover the gain already.
-    double velocity_change2 = 0.0, kinetic2 = 0.0;
+    double velocity_change2 = 0.0, kinetic2 = 0.0, start_kinetic2 = 0.0;  // sums of m |v|^2
     for (int i = 0; i < numNodes(); ++i) {
       velocity_change2 += mass_[i] * (next_.segment<3>(3 * i) - v_.segment<3>(3 * i)).squaredNorm();
       kinetic2 += mass_[i] * next_.segment<3>(3 * i).squaredNorm();
+      start_kinetic2 += mass_[i] * v_.segment<3>(3 * i).squaredNorm();
     }
     const double gained = (end.energy - end.energy_before) + (solve_start_energy - start_energy);
-    const double roundoff = 1e-12 * (start_energy + end.energy + kineticEnergy() + 0.5 * kinetic2);
+    const double roundoff =
+        1e-12 * (start_energy + end.energy + 0.5 * start_kinetic2 + 0.5 * kinetic2);
     double dissipated = 0.5 * velocity_change2;
     if (gained > dissipated + roundoff) {
       a.multiply(next_, scratch_);

@@ -168,37 +168,41 @@ double CorotationalElasticity::cellEnergy(const CellElement& cell, const Eigen::
   return 0.5 * u.dot(ku);
 }
 
+Eigen::Matrix3d CorotationalElasticity::elementDeformationGradient(int e,
+                                                                   const Eigen::VectorXd& x) const {
+  const int num_tetrahedra = static_cast<int>(tetrahedra_.size());
+  if (e < num_tetrahedra) {
+    const Tetrahedron& t = tetrahedra_[e];
+    return deformationGradient(rest_[e], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
+                               x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
+  }
+  // Other cells: F at the centre.
+  const CellElement& cell = cells_[e - num_tetrahedra];
+  return cellDeformationGradient(cell.rest, cell.cell.size(), currentCorners(cell.cell, x));
+}
+
+double CorotationalElasticity::elementEnergy(int e, const Eigen::Matrix3d& r,
+                                             const Eigen::Matrix3d& f,
+                                             const Eigen::VectorXd& x) const {
+  const int num_tetrahedra = static_cast<int>(tetrahedra_.size());
+  return e < num_tetrahedra ? tetrahedronEnergy(e, r, f)
+                            : cellEnergy(cells_[e - num_tetrahedra], r, x);
+}
+
 CorotationalElasticity::RotationUpdate CorotationalElasticity::updateRotations(
     const Eigen::VectorXd& x) {
   // Each element's new rotation, how far it turned, and its energy with the new and the old one.
-  const int num_tetrahedra = static_cast<int>(tetrahedra_.size());
-  const int num_cells = static_cast<int>(cells_.size());
-  const ElementSums sums = parallelChunkedSum(
-      threads_, 0, num_tetrahedra + num_cells, kChunkElements, partial_sums_, [&](int e) {
+  const int num_elements = static_cast<int>(rotations_.size());
+  const ElementSums sums =
+      parallelChunkedSum(threads_, 0, num_elements, kChunkElements, partial_sums_, [&](int e) {
+        const Eigen::Matrix3d f = elementDeformationGradient(e, x);
+        const Eigen::Matrix3d r = extractRotation(f);
         ElementSums one;
-        if (e < num_tetrahedra) {
-          const Tetrahedron& t = tetrahedra_[e];
-          const Eigen::Matrix3d f =
-              deformationGradient(rest_[e], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
-                                  x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
-          const Eigen::Matrix3d r = extractRotation(f);
-          one.inverted = f.determinant() > 0.0 ? 0 : 1;
-          one.energy = tetrahedronEnergy(e, r, f);
-          one.energy_before = tetrahedronEnergy(e, rotations_[e], f);
-          one.largest_change2 = (r - rotations_[e]).squaredNorm();
-          rotations_[e] = r;
-        } else {
-          // Other cells take their rotation from F at the centre.
-          const CellElement& cell = cells_[e - num_tetrahedra];
-          const Eigen::Matrix3d f =
-              cellDeformationGradient(cell.rest, cell.cell.size(), currentCorners(cell.cell, x));
-          const Eigen::Matrix3d r = extractRotation(f);
-          one.inverted = f.determinant() > 0.0 ? 0 : 1;
-          one.energy = cellEnergy(cell, r, x);
-          one.energy_before = cellEnergy(cell, rotations_[e], x);
-          one.largest_change2 = (r - rotations_[e]).squaredNorm();
-          rotations_[e] = r;
-        }
+        one.inverted = f.determinant() > 0.0 ? 0 : 1;
+        one.energy = elementEnergy(e, r, f, x);
+        one.energy_before = elementEnergy(e, rotations_[e], f, x);
+        one.largest_change2 = (r - rotations_[e]).squaredNorm();
+        rotations_[e] = r;
         return one;
       });
   RotationUpdate update;
@@ -291,17 +295,9 @@ void CorotationalElasticity::addElasticForces(const Eigen::VectorXd& x, Eigen::V
 }
 
 double CorotationalElasticity::elasticEnergy(const Eigen::VectorXd& x) const {
-  const int num_tetrahedra = static_cast<int>(tetrahedra_.size());
-  const int num_cells = static_cast<int>(cells_.size());
   return parallelChunkedSum(
-      threads_, 0, num_tetrahedra + num_cells, kChunkElements, partial_energies_, [&](int e) {
-        if (e >= num_tetrahedra) return cellEnergy(cells_[e - num_tetrahedra], rotations_[e], x);
-        const Tetrahedron& t = tetrahedra_[e];
-        return tetrahedronEnergy(
-            e, rotations_[e],
-            deformationGradient(rest_[e], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
-                                x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3])));
-      });
+      threads_, 0, static_cast<int>(rotations_.size()), kChunkElements, partial_energies_,
+      [&](int e) { return elementEnergy(e, rotations_[e], elementDeformationGradient(e, x), x); });
 }
 
 }  // namespace deformable_sim::core

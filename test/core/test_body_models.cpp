@@ -25,6 +25,17 @@ dc::Mesh box(const Eigen::Vector3d& size, const Eigen::Vector3i& cells,
   return dc::makeBoxMesh(-0.5 * size, 0.5 * size, cells, element);
 }
 
+/// A scene of one rigid steel-like body named "block" (its mesh given to the Simulation).
+dc::SceneSpec rigidBlockScene() {
+  dc::SceneSpec scene;
+  dc::BodySpec spec;
+  spec.name = "block";
+  spec.model = dc::BodyModel::kRigid;
+  spec.material = kSteelish;
+  scene.bodies.push_back(spec);
+  return scene;
+}
+
 std::vector<int> nodesWhere(const dc::Body& body, int axis, double value) {
   std::vector<int> nodes;
   for (int i = 0; i < body.numNodes(); ++i) {
@@ -345,12 +356,7 @@ TEST(RigidBody, NewMaterialKeepsTheVelocitiesAndTheNodesFollow) {
 }
 
 TEST(RigidBody, WatchdogUndoesAStepThatOverflows) {
-  dc::SceneSpec scene;
-  dc::BodySpec spec;
-  spec.name = "block";
-  spec.model = dc::BodyModel::kRigid;
-  spec.material = kSteelish;
-  scene.bodies.push_back(spec);
+  const dc::SceneSpec scene = rigidBlockScene();
   std::vector<dc::Mesh> meshes{box({0.2, 0.2, 0.2}, {1, 1, 1})};
   dc::Simulation simulation(scene, std::move(meshes));
   dc::Body& body = simulation.bodies()[0];
@@ -370,13 +376,7 @@ TEST(RigidBody, WatchdogUndoesAStepThatOverflows) {
 TEST(RigidBody, WrenchCommandsActFromTheNextStep) {
   // A wrench command rewrites the nodal forces; the next step sums them again, and clearing the
   // wrench stops the push.
-  dc::SceneSpec scene;
-  dc::BodySpec spec;
-  spec.name = "block";
-  spec.model = dc::BodyModel::kRigid;
-  spec.material = kSteelish;
-  scene.bodies.push_back(spec);
-  dc::Simulation simulation(scene, {box({0.2, 0.2, 0.2}, {2, 2, 2})});
+  dc::Simulation simulation(rigidBlockScene(), {box({0.2, 0.2, 0.2}, {2, 2, 2})});
   dc::CommandProcessor commands(simulation);
   const dc::Body& body = simulation.bodies()[0];
   const double m = body.reduced()->massProperties().mass, h = simulation.dt();

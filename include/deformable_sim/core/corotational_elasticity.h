@@ -109,6 +109,11 @@ class CorotationalElasticity {
   double tetrahedronEnergy(int e, const Eigen::Matrix3d& r, const Eigen::Matrix3d& f) const;
   double cellEnergy(const CellElement& cell, const Eigen::Matrix3d& r,
                     const Eigen::VectorXd& x) const;
+  /// Element e (tetrahedra first, then cells): F at x (a cell's at its centre), and its energy
+  /// with rotation r (a tetrahedron's from F, a cell's from x).
+  Eigen::Matrix3d elementDeformationGradient(int e, const Eigen::VectorXd& x) const;
+  double elementEnergy(int e, const Eigen::Matrix3d& r, const Eigen::Matrix3d& f,
+                       const Eigen::VectorXd& x) const;
   /// Per element, the sums of the rotation update.
   struct ElementSums {
     int inverted = 0;
