@@ -27,21 +27,41 @@ void keepConstrained(const ConstraintMask& constrained, const Eigen::VectorXd& x
 
 }  // namespace
 
-void SystemMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  const BlockSparseMatrix& k = *stiffness;
-  const int n = k.numBlockRows();
-  const std::vector<int>& row_start = k.rowStart();
-  const std::vector<int>& columns = k.columns();
-  const std::vector<Eigen::Matrix3d>& blocks = k.blocks();
-  parallelFor(threads, 0, n, [&](int i) {
+namespace {
+
+// Rows of A x with the matrix's arrays at hand (the products' inner loop).
+struct RowProduct {
+  explicit RowProduct(const SystemMatrix& a)
+      : row_start(a.stiffness->rowStart().data()),
+        columns(a.stiffness->columns().data()),
+        blocks(a.stiffness->blocks().data()),
+        nodal_mass(a.mass_coefficient != 0.0 ? a.nodal_mass->data() : nullptr),
+        mass_coefficient(a.mass_coefficient),
+        stiffness_coefficient(a.stiffness_coefficient) {}
+
+  Eigen::Vector3d operator()(int i, const Eigen::VectorXd& x) const {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     for (int s = row_start[i]; s < row_start[i + 1]; ++s) {
       sum.noalias() += blocks[s] * x.segment<3>(3 * columns[s]);
     }
     sum *= stiffness_coefficient;
-    if (mass_coefficient != 0.0) sum += (mass_coefficient * (*nodal_mass)[i]) * x.segment<3>(3 * i);
-    y.segment<3>(3 * i) = sum;
-  });
+    if (nodal_mass) sum += (mass_coefficient * nodal_mass[i]) * x.segment<3>(3 * i);
+    return sum;
+  }
+
+  const int* row_start;
+  const int* columns;
+  const Eigen::Matrix3d* blocks;
+  const double* nodal_mass;
+  double mass_coefficient, stiffness_coefficient;
+};
+
+}  // namespace
+
+void SystemMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  const RowProduct row(*this);
+  parallelFor(threads, 0, stiffness->numBlockRows(),
+              [&](int i) { y.segment<3>(3 * i) = row(i, x); });
 }
 
 void ConjugateGradientSolver::refreshPreconditioner(const SystemMatrix& a,
@@ -92,15 +112,111 @@ void ConjugateGradientSolver::refreshPreconditioner(const SystemMatrix& a,
 // B stays symmetric positive definite and costs no extra product with A).
 void ConjugateGradientSolver::precondition(const ConstraintMask& constrained,
                                            const Eigen::VectorXd& r, Eigen::VectorXd& z) {
-  const int num_nodes = static_cast<int>(inverse_diagonal_.size());
   if (factorization_) {
     factorization_->applyInverse(r, z);
     return;
   }
+  const int num_nodes = static_cast<int>(inverse_diagonal_.size());
   for (int i = 0; i < num_nodes; ++i) {
     z.segment<3>(3 * i).noalias() = inverse_diagonal_[i] * r.segment<3>(3 * i);
   }
-  if (coarse_) coarse_->addCorrection(constrained, r, z);
+  if (!coarse_) return;
+  for (int g = 0; g < coarse_->numAggregates(); ++g) coarse_->restrictTo(g, constrained, r);
+  coarse_->solveCoarse();
+  for (int i = 0; i < num_nodes; ++i) {
+    if (!constrained[i]) z.segment<3>(3 * i) += coarse_->correction(i);
+  }
+}
+
+namespace {
+
+// A loop shared by the threads of the enclosing parallel region (static schedule, a barrier at
+// its end), or run whole by the calling thread outside one.
+template <typename Function>
+void shareLoop(int begin, int end, Function&& body) {
+#pragma omp for schedule(static)
+  for (int i = begin; i < end; ++i) body(i);
+}
+
+// The sum of per-chunk partial sums in chunk order: every thread gets the same bits.
+double total(const std::vector<double>& partials) {
+  double sum = 0.0;
+  for (double partial : partials) sum += partial;
+  return sum;
+}
+
+}  // namespace
+
+void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMask& constrained,
+                                      const SolverSettings& settings, double reference,
+                                      Eigen::VectorXd& x, SolveReport& report) {
+  // Run by every thread of the team with its own copy of the scalars: each sums the same
+  // partials in the same order, so all take the same branches and meet at the same barriers.
+  const int num_nodes = a.stiffness->numBlockRows();
+  const int num_chunks = static_cast<int>(pq_partials_.size());
+  auto chunkEnd = [&](int c) { return std::min(num_nodes, (c + 1) * kChunkNodes); };
+  const RowProduct row(a);
+  double rz = total(rz_partials_);
+  double residual = std::sqrt(total(rr_partials_)) / reference;
+  int iterations = 0;
+  while (residual > settings.tolerance && iterations < settings.max_iterations) {
+    // q = A p (zero on constrained rows), and p . q.
+    shareLoop(0, num_chunks, [&](int c) {
+      double partial = 0.0;
+      for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
+        const Eigen::Vector3d qi = constrained[i] ? Eigen::Vector3d::Zero() : row(i, p_);
+        q_.segment<3>(3 * i) = qi;
+        partial += p_.segment<3>(3 * i).dot(qi);
+      }
+      pq_partials_[c] = partial;
+    });
+    const double pq = total(pq_partials_);
+    if (!(pq > 0.0)) break;  // not positive definite along p (or NaN): stop, report below
+    const double alpha = rz / pq;
+    // x += alpha p, r -= alpha q, z = D^-1 r, and |r|^2.
+    shareLoop(0, num_chunks, [&](int c) {
+      double partial = 0.0;
+      for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
+        x.segment<3>(3 * i) += alpha * p_.segment<3>(3 * i);
+        r_.segment<3>(3 * i) -= alpha * q_.segment<3>(3 * i);
+        z_.segment<3>(3 * i).noalias() = inverse_diagonal_[i] * r_.segment<3>(3 * i);
+        partial += r_.segment<3>(3 * i).squaredNorm();
+      }
+      rr_partials_[c] = partial;
+    });
+    if (factorization_) {
+#pragma omp single
+      factorization_->applyInverse(r_, z_);  // replaces block-Jacobi's z
+    }
+    if (coarse_) {
+      shareLoop(0, coarse_->numAggregates(),
+                [&](int g) { coarse_->restrictTo(g, constrained, r_); });
+#pragma omp single
+      coarse_->solveCoarse();
+    }
+    // The coarse correction's prolongation, and r . z.
+    shareLoop(0, num_chunks, [&](int c) {
+      double partial = 0.0;
+      for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
+        if (coarse_ && !constrained[i]) z_.segment<3>(3 * i) += coarse_->correction(i);
+        partial += r_.segment<3>(3 * i).dot(z_.segment<3>(3 * i));
+      }
+      rz_partials_[c] = partial;
+    });
+    const double rz_next = total(rz_partials_);
+    const double beta = rz_next / rz;
+    shareLoop(0, num_nodes, [&](int i) {
+      p_.segment<3>(3 * i) = z_.segment<3>(3 * i) + beta * p_.segment<3>(3 * i);
+    });
+    rz = rz_next;
+    residual = std::sqrt(total(rr_partials_)) / reference;
+    ++iterations;
+  }
+#pragma omp master
+  {
+    report.iterations = iterations;
+    report.relative_residual = residual;
+  }
 }
 
 SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const ConstraintMask& constrained,
@@ -113,7 +229,10 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
     p_.resize(b.size());
     q_.resize(b.size());
     inverse_diagonal_.resize(num_nodes);
-    partial_sums_.resize((num_nodes + kChunkNodes - 1) / kChunkNodes);
+    const int num_chunks = (num_nodes + kChunkNodes - 1) / kChunkNodes;
+    pq_partials_.resize(num_chunks);
+    rr_partials_.resize(num_chunks);
+    rz_partials_.resize(num_chunks);
   }
   if (settings.preconditioner != SolverSettings::Preconditioner::kTwoLevel) coarse_.reset();
   if (settings.preconditioner != SolverSettings::Preconditioner::kFactorization) {
@@ -146,53 +265,21 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
   zeroConstrained(constrained, r_);
   precondition(constrained, r_, z_);
   p_ = z_;
-  const int num_chunks = static_cast<int>(partial_sums_.size());
-  // Sums over nodes in fixed chunks, added in chunk order: the same bits on any thread count.
-  auto sum = [&](auto&& chunk_sum) {
-    parallelFor(a.threads, 0, num_chunks, [&](int c) {
-      partial_sums_[c] = chunk_sum(c * kChunkNodes, std::min(num_nodes, (c + 1) * kChunkNodes));
-    });
-    double total = 0.0;
-    for (double partial : partial_sums_) total += partial;
-    return total;
-  };
-  auto dot = [&](const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
-    return sum([&](int begin, int end) {
-      return u.segment(3 * begin, 3 * (end - begin)).dot(v.segment(3 * begin, 3 * (end - begin)));
-    });
-  };
-  double rz = dot(r_, z_);
-  double residual = std::sqrt(dot(r_, r_)) / reference;
-  while (residual > settings.tolerance && report.iterations < settings.max_iterations) {
-    a.multiply(p_, q_);
-    zeroConstrained(constrained, q_);
-    const double pq = dot(p_, q_);
-    if (!(pq > 0.0)) break;  // not positive definite along p (or NaN): stop, report below
-    const double alpha = rz / pq;
-    // One pass: x += alpha p, r -= alpha q, z = D^-1 r, and |r|^2.
-    const double rr = sum([&](int begin, int end) {
-      double partial = 0.0;
-      for (int i = begin; i < end; ++i) {
-        x.segment<3>(3 * i) += alpha * p_.segment<3>(3 * i);
-        r_.segment<3>(3 * i) -= alpha * q_.segment<3>(3 * i);
-        z_.segment<3>(3 * i).noalias() = inverse_diagonal_[i] * r_.segment<3>(3 * i);
-        partial += r_.segment<3>(3 * i).squaredNorm();
-      }
-      return partial;
-    });
-    if (factorization_) factorization_->applyInverse(r_, z_);  // replaces block-Jacobi's z
-    if (coarse_) coarse_->addCorrection(constrained, r_, z_, a.threads);
-    const double rz_next = dot(r_, z_);
-    const double beta = rz_next / rz;
-    parallelFor(a.threads, 0, num_nodes, [&](int i) {
-      p_.segment<3>(3 * i) = z_.segment<3>(3 * i) + beta * p_.segment<3>(3 * i);
-    });
-    rz = rz_next;
-    residual = std::sqrt(rr) / reference;
-    ++report.iterations;
+  // The first r . z and |r|^2, summed in the chunks the iterations use.
+  for (size_t c = 0; c < rz_partials_.size(); ++c) {
+    const int begin = 3 * kChunkNodes * static_cast<int>(c);
+    const int size = std::min(3 * kChunkNodes, static_cast<int>(r_.size()) - begin);
+    rz_partials_[c] = r_.segment(begin, size).dot(z_.segment(begin, size));
+    rr_partials_[c] = r_.segment(begin, size).squaredNorm();
   }
-  report.relative_residual = residual;
-  report.converged = residual <= settings.tolerance;
+  // One parallel region for all the iterations: starting one costs more than a short loop.
+  if (a.threads > 1) {
+#pragma omp parallel num_threads(a.threads)
+    iterate(a, constrained, settings, reference, x, report);
+  } else {
+    iterate(a, constrained, settings, reference, x, report);
+  }
+  report.converged = report.relative_residual <= settings.tolerance;
   return report;
 }
 

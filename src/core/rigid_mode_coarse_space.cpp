@@ -5,7 +5,6 @@
 #include <algorithm>
 
 #include "deformable_sim/core/linear_solver.h"
-#include "deformable_sim/core/parallel_for.h"
 
 namespace deformable_sim::core {
 
@@ -184,37 +183,32 @@ void RigidModeCoarseSpace::refresh(const SystemMatrix& a, const ConstraintMask& 
   factorization_.refactorize(coarse_);
 }
 
-void RigidModeCoarseSpace::addCorrection(const ConstraintMask& constrained,
-                                         const Eigen::VectorXd& r, Eigen::VectorXd& z,
-                                         int threads) {
-  // Restriction by aggregates (each sums its own nodes in node order), the coarse solve, and
-  // the prolongation by nodes.
-  parallelFor(threads, 0, num_aggregates_, [&](int g) {
-    Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
-    for (int k = member_start_[g]; k < member_start_[g + 1]; ++k) {
-      const int i = members_[k];
-      if (constrained[i]) continue;
-      const Eigen::Vector3d ri = r.segment<3>(3 * i);
-      force += ri;
-      torque += offset_[i].cross(ri);
-    }
-    for (int q = 0; q < 3; ++q) {
-      coarse_rhs_[permutation_[6 * g + q]] = force[q];
-      coarse_rhs_[permutation_[6 * g + 3 + q]] = torque[q];
-    }
-  });
-  coarse_solution_ = factorization_.solve(coarse_rhs_);
-  const int n = static_cast<int>(aggregate_.size());
-  parallelFor(threads, 0, n, [&](int i) {
-    if (constrained[i]) return;
-    const int g = 6 * aggregate_[i];
-    Eigen::Vector3d translation, rotation;
-    for (int q = 0; q < 3; ++q) {
-      translation[q] = coarse_solution_[permutation_[g + q]];
-      rotation[q] = coarse_solution_[permutation_[g + 3 + q]];
-    }
-    z.segment<3>(3 * i) += translation + rotation.cross(offset_[i]);
-  });
+void RigidModeCoarseSpace::restrictTo(int g, const ConstraintMask& constrained,
+                                      const Eigen::VectorXd& r) {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+  for (int k = member_start_[g]; k < member_start_[g + 1]; ++k) {
+    const int i = members_[k];
+    if (constrained[i]) continue;
+    const Eigen::Vector3d ri = r.segment<3>(3 * i);
+    force += ri;
+    torque += offset_[i].cross(ri);
+  }
+  for (int q = 0; q < 3; ++q) {
+    coarse_rhs_[permutation_[6 * g + q]] = force[q];
+    coarse_rhs_[permutation_[6 * g + 3 + q]] = torque[q];
+  }
+}
+
+void RigidModeCoarseSpace::solveCoarse() { coarse_solution_ = factorization_.solve(coarse_rhs_); }
+
+Eigen::Vector3d RigidModeCoarseSpace::correction(int i) const {
+  const int g = 6 * aggregate_[i];
+  Eigen::Vector3d translation, rotation;
+  for (int q = 0; q < 3; ++q) {
+    translation[q] = coarse_solution_[permutation_[g + q]];
+    rotation[q] = coarse_solution_[permutation_[g + 3 + q]];
+  }
+  return translation + rotation.cross(offset_[i]);
 }
 
 }  // namespace deformable_sim::core

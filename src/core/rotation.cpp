@@ -18,6 +18,14 @@ constexpr int kNewtonMaxIterations = 20;
 constexpr double kNewtonConvergedUpdate2 = 1e-13;
 // Scaling only pays while the singular values are far from one.
 constexpr double kNewtonScaledUpdate2 = 1e-4;
+// Near a rotation, |X^T X - I|^2 below this (strains up to about a fifth), the Newton-Schulz
+// iteration takes over: X = R (I + E) goes to R (I - 3/2 E^2 + ...), so the strain's square
+// shrinks quadratically with products alone (no division or root on the chain from one iterate
+// to the next). Once |X^T X - I|^2 < 1e-14 (|E| < 5e-8), one more step leaves an error of
+// about 4e-15.
+constexpr double kSchulzMaxDeviation2 = 0.25;
+constexpr double kSchulzLastDeviation2 = 1e-14;
+constexpr int kSchulzMaxIterations = 8;
 
 // Cofactor matrix C with X^T C = det(X) I, i.e. X^-T = C / det(X) and det(X) = x_0 . c_0.
 Eigen::Matrix3d cofactor(const Eigen::Matrix3d& x) {
@@ -45,6 +53,14 @@ Eigen::Matrix3d extractRotation(const Eigen::Matrix3d& deformation_gradient) {
   Eigen::Matrix3d c = cofactor(x);
   double det = x.col(0).dot(c.col(0));
   if (!(det > kNewtonMinDeterminant)) return extractRotationBySvd(deformation_gradient);
+  for (int k = 0; k < kSchulzMaxIterations; ++k) {
+    const Eigen::Matrix3d deviation = x.transpose() * x - Eigen::Matrix3d::Identity();
+    const double deviation2 = deviation.squaredNorm();
+    if (!(deviation2 < kSchulzMaxDeviation2)) break;  // too far from a rotation: Newton
+    x -= 0.5 * x * deviation;                         // X (3 I - X^T X) / 2
+    if (deviation2 < kSchulzLastDeviation2) return x;
+  }
+  x = deformation_gradient;  // not converged within the cap: Newton from F
   bool scaled = true;
   for (int k = 0; k < kNewtonMaxIterations; ++k) {
     // X+ = (g X + X^-T / g) / 2 with X^-T = C / det.

@@ -4,16 +4,19 @@
 
 #include <ros/time.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <string>
+#include <thread>
 
 namespace {
 
 constexpr const char* kUsage =
     "usage: deformable_sim_replay IN.bag [--out OUT.bag] [--node NAME] [--solver cg|direct]\n"
-    "                             [--tolerance TOL] [--max-iterations N] [--quiet]\n"
+    "                             [--tolerance TOL] [--max-iterations N] [--threads N]\n"
+    "                             [--quiet]\n"
     "  Re-runs the session recorded in IN.bag (the node's ~scene, ~applied and ~state) and "
     "reports\n"
     "  the largest difference from the recorded states.\n"
@@ -21,6 +24,8 @@ constexpr const char* kUsage =
     "  --node NAME         the node whose session to replay (when IN.bag holds several)\n"
     "  --solver, --tolerance, --max-iterations\n"
     "                      re-simulate with other solver settings: what would have happened\n"
+    "  --threads N         threads for the simulation (default: one per core); the results are\n"
+    "                      the same bits on any count\n"
     "  --quiet             no progress bar\n";
 
 bool number(const char* text, double& value) {
@@ -52,6 +57,10 @@ int main(int argc, char** argv) {
                value >= 1.0) {
       options.solver_max_iterations = static_cast<int>(value);
       ++i;
+    } else if (arg == "--threads" && has_value && number(argv[i + 1], value) && value >= 1.0 &&
+               value <= 64.0) {
+      options.threads = static_cast<int>(value);
+      ++i;
     } else if (arg == "--quiet") {
       quiet = true;
     } else if (!arg.empty() && arg[0] != '-' && options.input.empty()) {
@@ -65,15 +74,17 @@ int main(int argc, char** argv) {
     std::cerr << kUsage;
     return 2;
   }
+  if (!options.threads) options.threads = std::max(1u, std::thread::hardware_concurrency());
   ros::Time::init();
   try {
     const auto report = deformable_sim::ros_layer::replay(options, quiet ? nullptr : &std::cerr);
     const bool same_settings =
         !options.solver_method && !options.solver_tolerance && !options.solver_max_iterations;
     std::printf(
-        "node %s: re-simulated %ld steps (%.2f s simulated) in %.3f s: %.1fx real time, %.1f CG "
-        "iterations a step\n",
+        "node %s: re-simulated %ld steps (%.2f s simulated) in %.3f s on %d thread%s: %.1fx real "
+        "time, %.1f CG iterations a step\n",
         report.node.c_str(), report.steps, report.simulated_time, report.wall_time,
+        *options.threads, *options.threads == 1 ? "" : "s",
         report.wall_time > 0.0 ? report.simulated_time / report.wall_time : 0.0,
         report.steps > 0 ? static_cast<double>(report.solver_iterations) / report.steps : 0.0);
     std::printf(

@@ -217,11 +217,14 @@ TEST(Body, RejectsBadMeshesAndSettings) {
 }
 
 TEST(Body, ThreadCountChangesNoBit) {
-  // More than one chunk of nodes for the dot products and more rows than threads.
-  const auto run = [](int threads) {
+  // More than one chunk of nodes for the dot products and more rows than threads; each
+  // preconditioner, since each has its own part in the threads' shared iterations.
+  using Preconditioner = dc::SolverSettings::Preconditioner;
+  const auto run = [](int threads, Preconditioner preconditioner) {
     dc::SolverSettings solver;
     solver.threads = threads;
     solver.tolerance = 1e-10;
+    solver.preconditioner = preconditioner;
     dc::BodyEffects effects;
     effects.gravity = Eigen::Vector3d(0, 0, -9.81);
     dc::Body body("beam", dc::makeBoxMesh({0, -0.1, -0.1}, {1.0, 0.1, 0.1}, {20, 4, 4}), kSoft,
@@ -230,13 +233,16 @@ TEST(Body, ThreadCountChangesNoBit) {
     for (int s = 0; s < 15; ++s) EXPECT_TRUE(body.step(0.01).solve.converged);
     return Eigen::VectorXd(body.positions() - body.restPositions());
   };
-  const Eigen::VectorXd one = run(1);
-  const Eigen::VectorXd two = run(2);
-  const Eigen::VectorXd three = run(3);
-  // Every count assembles each row and sums each chunk in the same order: bit-identical.
-  EXPECT_EQ((one - two).cwiseAbs().maxCoeff(), 0.0);
-  EXPECT_EQ((two - three).cwiseAbs().maxCoeff(), 0.0);
-  EXPECT_GT(two.norm(), 1e-3);  // the beam really sagged
+  for (Preconditioner p :
+       {Preconditioner::kTwoLevel, Preconditioner::kBlockJacobi, Preconditioner::kFactorization}) {
+    const Eigen::VectorXd one = run(1, p);
+    const Eigen::VectorXd two = run(2, p);
+    const Eigen::VectorXd three = run(3, p);
+    // Every count assembles each row and sums each chunk in the same order: bit-identical.
+    EXPECT_EQ((one - two).cwiseAbs().maxCoeff(), 0.0) << static_cast<int>(p);
+    EXPECT_EQ((two - three).cwiseAbs().maxCoeff(), 0.0) << static_cast<int>(p);
+    EXPECT_GT(two.norm(), 1e-3);  // the beam really sagged
+  }
 }
 
 TEST(Body, ExtrapolatedWarmStartSavesIterationsNotAccuracy) {

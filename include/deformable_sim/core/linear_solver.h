@@ -87,12 +87,18 @@ class ConjugateGradientSolver {
                              const SolverSettings& settings);
   void precondition(const ConstraintMask& constrained, const Eigen::VectorXd& r,
                     Eigen::VectorXd& z);
+  /// The iterations from the first residual on; run by each thread of a parallel region.
+  void iterate(const SystemMatrix& a, const ConstraintMask& constrained,
+               const SolverSettings& settings, double reference, Eigen::VectorXd& x,
+               SolveReport& report);
 
   static constexpr int kChunkNodes = 256;  ///< nodes per partial sum of a dot product
 
   std::vector<Eigen::Matrix3d> inverse_diagonal_;
   Eigen::VectorXd r_, z_, p_, q_;
-  std::vector<double> partial_sums_;
+  /// Per chunk of nodes: p . q, |r|^2 and r . z. Three buffers, so that no thread overwrites
+  /// one before every thread has read it (a barrier always separates the two).
+  std::vector<double> pq_partials_, rr_partials_, rz_partials_;
   std::unique_ptr<RigidModeCoarseSpace> coarse_;
   std::unique_ptr<DirectSolver> factorization_;  ///< Preconditioner::kFactorization
   ConstraintMask factorized_constraints_;

@@ -34,9 +34,13 @@ class RigidModeCoarseSpace {
   void refresh(const SystemMatrix& a, const ConstraintMask& constrained,
                const Eigen::VectorXd& positions);
 
-  /// z += P A_c^-1 P^T r on the free nodes (r is zero on constrained nodes).
-  void addCorrection(const ConstraintMask& constrained, const Eigen::VectorXd& r,
-                     Eigen::VectorXd& z, int threads = 1);
+  /// The correction z += P A_c^-1 P^T r on the free nodes (r is zero on constrained nodes), in
+  /// three parts that the conjugate gradient's threads share: the restriction of aggregate g
+  /// (each aggregate sums its own nodes in node order), the coarse solve (one thread), and node
+  /// i's part of the prolongation.
+  void restrictTo(int g, const ConstraintMask& constrained, const Eigen::VectorXd& r);
+  void solveCoarse();
+  Eigen::Vector3d correction(int i) const;
 
  private:
   int num_aggregates_ = 0;

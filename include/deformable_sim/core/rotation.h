@@ -8,13 +8,14 @@ namespace deformable_sim::core {
 /// The rotation R of the polar decomposition F = R S, always a proper rotation (det R = +1),
 /// also for flat (rank-deficient) and inverted (det F < 0) elements.
 ///
-/// Elements in their normal range (det F well above zero) take Higham's scaled Newton iteration
-/// X <- (g X + X^-T / g) / 2, which converges quadratically to R from X = F with nothing but 3x3
-/// cofactors: a few times cheaper than an SVD. Flat, nearly flat and inverted elements take the
-/// SVD F = U Sigma V^T, R = U V^T, with the reflection of det(U V^T) = -1 moved into the
-/// direction of the smallest singular value (Irving, Teran, Fedkiw 2004, "Invertible finite
-/// elements"), which gives the proper rotation closest to F. Both agree to rounding where both
-/// apply.
+/// Elements in their normal range (det F well above zero) take, near a rotation, the
+/// Newton-Schulz iteration X <- X (3 I - X^T X) / 2 (products only), and otherwise Higham's
+/// scaled Newton iteration X <- (g X + X^-T / g) / 2; both converge quadratically to R from
+/// X = F with nothing but 3x3 products and cofactors: several times cheaper than an SVD. Flat,
+/// nearly flat and inverted elements take the SVD F = U Sigma V^T, R = U V^T, with the reflection
+/// of det(U V^T) = -1 moved into the direction of the smallest singular value (Irving, Teran,
+/// Fedkiw 2004, "Invertible finite elements"), which gives the proper rotation closest to F. Both
+/// agree to rounding where both apply.
 Eigen::Matrix3d extractRotation(const Eigen::Matrix3d& deformation_gradient);
 
 /// The SVD route of extractRotation for every F (for tests and comparisons).

@@ -23,7 +23,10 @@ struct ReplayOptions {
   std::optional<double> solver_tolerance;
   std::optional<int> solver_max_iterations;
   std::optional<std::string> solver_method;  ///< cg or direct
-  double marker_rate = 30.0;                 ///< Hz of simulated time, for ~mesh in the output
+  /// Threads for the element loops and the solver. Results are the same bits on any count, so
+  /// this only changes how fast; unset: the recorded scene's own setting.
+  std::optional<int> threads;
+  double marker_rate = 30.0;  ///< Hz of simulated time, for ~mesh in the output
 };
 
 struct ReplayReport {
