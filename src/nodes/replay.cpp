@@ -4,12 +4,10 @@
 
 #include <ros/time.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <string>
-#include <thread>
 
 namespace {
 
@@ -24,7 +22,7 @@ constexpr const char* kUsage =
     "  --node NAME         the node whose session to replay (when IN.bag holds several)\n"
     "  --solver, --tolerance, --max-iterations\n"
     "                      re-simulate with other solver settings: what would have happened\n"
-    "  --threads N         threads for the simulation (default: one per core); the results are\n"
+    "  --threads N         threads for the simulation (default: as recorded); the results are\n"
     "                      the same bits on any count\n"
     "  --quiet             no progress bar\n";
 
@@ -74,7 +72,6 @@ int main(int argc, char** argv) {
     std::cerr << kUsage;
     return 2;
   }
-  if (!options.threads) options.threads = std::max(1u, std::thread::hardware_concurrency());
   ros::Time::init();
   try {
     const auto report = deformable_sim::ros_layer::replay(options, quiet ? nullptr : &std::cerr);
@@ -83,8 +80,8 @@ int main(int argc, char** argv) {
     std::printf(
         "node %s: re-simulated %ld steps (%.2f s simulated) in %.3f s on %d thread%s: %.1fx real "
         "time, %.1f CG iterations a step\n",
-        report.node.c_str(), report.steps, report.simulated_time, report.wall_time,
-        *options.threads, *options.threads == 1 ? "" : "s",
+        report.node.c_str(), report.steps, report.simulated_time, report.wall_time, report.threads,
+        report.threads == 1 ? "" : "s",
         report.wall_time > 0.0 ? report.simulated_time / report.wall_time : 0.0,
         report.steps > 0 ? static_cast<double>(report.solver_iterations) / report.steps : 0.0);
     std::printf(

@@ -179,6 +179,7 @@ ReplayReport replay(const ReplayOptions& options, std::ostream* progress) {
   if (options.solver_tolerance) spec.solver.tolerance = *options.solver_tolerance;
   if (options.solver_max_iterations) spec.solver.max_iterations = *options.solver_max_iterations;
   if (options.threads) spec.solver.threads = *options.threads;
+  report.threads = spec.solver.threads;
   std::vector<core::Mesh> meshes;
   try {
     meshes = meshesFromMessage(scene);

@@ -153,6 +153,13 @@ class Replay(unittest.TestCase):
         self.assertGreater(topics[NODE + '/mesh'].message_count, 10)
         self.assertGreater(topics['/tf'].message_count, 10)
 
+    def test_more_threads_re_simulate_the_same_bits(self):
+        # The node ran on one thread; two sum everything in the same order.
+        result = replay(self.bag, '--threads', '2')
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn('on 2 threads', result.stdout)
+        self.assertIn('(bit-exact)', result.stdout)
+
     def test_other_solver_settings_give_another_result(self):
         result = replay(self.bag, '--tolerance', '1e-2', '--max-iterations', '5')
         self.assertEqual(result.returncode, 0, result.stderr)

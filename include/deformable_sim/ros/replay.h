@@ -34,6 +34,7 @@ struct ReplayReport {
   long steps = 0;                        ///< steps re-simulated, all episodes
   double simulated_time = 0.0;           ///< s
   double wall_time = 0.0;                ///< s
+  int threads = 1;                       ///< threads the simulation ran on
   long solver_iterations = 0;            ///< CG iterations, all steps and bodies
   long compared_states = 0;              ///< recorded body states compared with the re-simulation
   double max_position_difference = 0.0;  ///< m, largest over nodes and states
