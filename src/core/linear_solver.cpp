@@ -159,55 +159,60 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
   double rz = total(rz_partials_);
   double residual = std::sqrt(total(rr_partials_)) / reference;
   int iterations = 0;
+  // Chunk c of a vector: its nodes' entries, one contiguous (vectorized) segment.
+  auto chunk = [&](Eigen::VectorXd& v, int c) {
+    const int begin = 3 * kChunkNodes * c;
+    return v.segment(begin, 3 * chunkEnd(c) - begin);
+  };
+  auto blockJacobi = [&](int c) {
+    for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
+      z_.segment<3>(3 * i).noalias() = inverse_diagonal_[i] * r_.segment<3>(3 * i);
+    }
+  };
   while (residual > settings.tolerance && iterations < settings.max_iterations) {
     // q = A p (zero on constrained rows), and p . q.
     shareLoop(0, num_chunks, [&](int c) {
-      double partial = 0.0;
       for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
-        const Eigen::Vector3d qi = constrained[i] ? Eigen::Vector3d::Zero() : row(i, p_);
-        q_.segment<3>(3 * i) = qi;
-        partial += p_.segment<3>(3 * i).dot(qi);
+        q_.segment<3>(3 * i) = constrained[i] ? Eigen::Vector3d::Zero() : row(i, p_);
       }
-      pq_partials_[c] = partial;
+      pq_partials_[c] = chunk(p_, c).dot(chunk(q_, c));
     });
     const double pq = total(pq_partials_);
     if (!(pq > 0.0)) break;  // not positive definite along p (or NaN): stop, report below
     const double alpha = rz / pq;
-    // x += alpha p, r -= alpha q, z = D^-1 r, and |r|^2.
+    // x += alpha p, r -= alpha q, and |r|^2.
     shareLoop(0, num_chunks, [&](int c) {
-      double partial = 0.0;
-      for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
-        x.segment<3>(3 * i) += alpha * p_.segment<3>(3 * i);
-        r_.segment<3>(3 * i) -= alpha * q_.segment<3>(3 * i);
-        z_.segment<3>(3 * i).noalias() = inverse_diagonal_[i] * r_.segment<3>(3 * i);
-        partial += r_.segment<3>(3 * i).squaredNorm();
-      }
-      rr_partials_[c] = partial;
+      chunk(x, c) += alpha * chunk(p_, c);
+      chunk(r_, c) -= alpha * chunk(q_, c);
+      rr_partials_[c] = chunk(r_, c).squaredNorm();
     });
+    // z = B r.
     if (factorization_) {
 #pragma omp single
-      factorization_->applyInverse(r_, z_);  // replaces block-Jacobi's z
-    }
-    if (coarse_) {
+      factorization_->applyInverse(r_, z_);
+    } else if (coarse_) {
       shareLoop(0, coarse_->numAggregates(),
                 [&](int g) { coarse_->restrictTo(g, constrained, r_); });
-#pragma omp single
+      // One thread solves the coarse system while the others start on block-Jacobi.
+#pragma omp single nowait
       coarse_->solveCoarse();
+#pragma omp for schedule(dynamic)
+      for (int c = 0; c < num_chunks; ++c) blockJacobi(c);
+    } else {
+      shareLoop(0, num_chunks, blockJacobi);
     }
     // The coarse correction's prolongation, and r . z.
     shareLoop(0, num_chunks, [&](int c) {
-      double partial = 0.0;
-      for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
-        if (coarse_ && !constrained[i]) z_.segment<3>(3 * i) += coarse_->correction(i);
-        partial += r_.segment<3>(3 * i).dot(z_.segment<3>(3 * i));
+      if (coarse_) {
+        for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
+          if (!constrained[i]) z_.segment<3>(3 * i) += coarse_->correction(i);
+        }
       }
-      rz_partials_[c] = partial;
+      rz_partials_[c] = chunk(r_, c).dot(chunk(z_, c));
     });
     const double rz_next = total(rz_partials_);
     const double beta = rz_next / rz;
-    shareLoop(0, num_nodes, [&](int i) {
-      p_.segment<3>(3 * i) = z_.segment<3>(3 * i) + beta * p_.segment<3>(3 * i);
-    });
+    shareLoop(0, num_chunks, [&](int c) { chunk(p_, c) = chunk(z_, c) + beta * chunk(p_, c); });
     rz = rz_next;
     residual = std::sqrt(total(rr_partials_)) / reference;
     ++iterations;

@@ -126,6 +126,7 @@ RigidModeCoarseSpace::RigidModeCoarseSpace(const BlockSparseMatrix& k) {
   factorization_.analyzePattern(coarse_);
   coarse_rhs_.resize(size);
   coarse_solution_.resize(size);
+  modes_.resize(size);
   offset_.resize(n);
   centroid_.resize(num_aggregates_);
   centroid_count_.resize(num_aggregates_);
@@ -199,16 +200,14 @@ void RigidModeCoarseSpace::restrictTo(int g, const ConstraintMask& constrained,
   }
 }
 
-void RigidModeCoarseSpace::solveCoarse() { coarse_solution_ = factorization_.solve(coarse_rhs_); }
+void RigidModeCoarseSpace::solveCoarse() {
+  coarse_solution_ = factorization_.solve(coarse_rhs_);
+  for (int k = 0; k < 6 * num_aggregates_; ++k) modes_[k] = coarse_solution_[permutation_[k]];
+}
 
 Eigen::Vector3d RigidModeCoarseSpace::correction(int i) const {
   const int g = 6 * aggregate_[i];
-  Eigen::Vector3d translation, rotation;
-  for (int q = 0; q < 3; ++q) {
-    translation[q] = coarse_solution_[permutation_[g + q]];
-    rotation[q] = coarse_solution_[permutation_[g + 3 + q]];
-  }
-  return translation + rotation.cross(offset_[i]);
+  return modes_.segment<3>(g) + modes_.segment<3>(g + 3).cross(offset_[i]);
 }
 
 }  // namespace deformable_sim::core

@@ -68,6 +68,7 @@ class RigidModeCoarseSpace {
                                    ///< of coarse_, or -1 for the lower triangle
   Factorization factorization_;
   Eigen::VectorXd coarse_rhs_, coarse_solution_;
+  Eigen::VectorXd modes_;  ///< the coarse solution by aggregate: translation, rotation
 };
 
 }  // namespace deformable_sim::core
