@@ -31,6 +31,11 @@ BlockSparseMatrix::BlockSparseMatrix(const Mesh& mesh) {
     row_start_.push_back(static_cast<int>(columns_.size()));
   }
   blocks_.assign(columns_.size(), Eigen::Matrix3d::Zero());
+  transpose_.resize(columns_.size());
+  for (int i = 0; i < num_nodes; ++i) {
+    for (int s = row_start_[i]; s < row_start_[i + 1]; ++s)
+      transpose_[s] = blockIndex(columns_[s], i);
+  }
 }
 
 int BlockSparseMatrix::blockIndex(int row, int col) const {

@@ -247,22 +247,32 @@ void CorotationalElasticity::assemble() {
     return;
   }
   // On several threads, row by row: rows are disjoint, so no two threads add into one block.
+  // Each row sums its diagonal and upper blocks; the lower ones are then the transposes of
+  // other rows' upper blocks (the element path's sums, transposed exactly).
   parallelFor(threads_, 0, static_cast<int>(tetrahedra_.size()),
               [&](int e) { warped_[e] = warp(e); });
   const std::vector<int>& row_start = stiffness_.rowStart();
-  parallelFor(threads_, 0, static_cast<int>(incidence_start_.size()) - 1, [&](int i) {
-    for (int s = row_start[i]; s < row_start[i + 1]; ++s) blocks[s].setZero();
+  const int num_nodes = stiffness_.numBlockRows();
+  parallelFor(threads_, 0, num_nodes, [&](int i) {
+    for (int s = stiffness_.diagonalIndex(i); s < row_start[i + 1]; ++s) blocks[s].setZero();
     Eigen::Vector3d offset = Eigen::Vector3d::Zero();
     for (int k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k) {
       const int e = incidences_[k] / 4, a = incidences_[k] % 4;
       const WarpedElement& w = warped_[e];
       for (int b = 0; b < 4; ++b) {
+        if (tetrahedra_[e][b] < i) continue;
         blocks[block_index_[e][4 * a + b]] +=
             stiffnessBlock(lambda_, mu_, w.gradients[a], w.gradients[b]);
       }
       offset -= w.offsets[a];
     }
     force_offset_.segment<3>(3 * i) = offset;
+  });
+  const std::vector<int>& transpose = stiffness_.transposeIndex();
+  parallelFor(threads_, 0, num_nodes, [&](int i) {
+    for (int s = row_start[i]; s < stiffness_.diagonalIndex(i); ++s) {
+      blocks[s] = blocks[transpose[s]].transpose();
+    }
   });
   addCells();
 }

@@ -24,6 +24,8 @@ class BlockSparseMatrix {
   /// for set-up, not for the step.
   int blockIndex(int row, int col) const;
   int diagonalIndex(int row) const { return diagonal_[row]; }
+  /// Per block (i, j): the index of block (j, i) (the pattern is symmetric).
+  const std::vector<int>& transposeIndex() const { return transpose_; }
 
   const std::vector<int>& rowStart() const { return row_start_; }
   const std::vector<int>& columns() const { return columns_; }
@@ -42,6 +44,7 @@ class BlockSparseMatrix {
   std::vector<int> row_start_{0};
   std::vector<int> columns_;
   std::vector<int> diagonal_;
+  std::vector<int> transpose_;
   std::vector<Eigen::Matrix3d> blocks_;
 };
 
