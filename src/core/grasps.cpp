@@ -52,6 +52,7 @@ int CommandProcessor::apply(const GraspCommand& command) {
     grasp.local.push_back(to_frame * here.back());
   }
   body.setNodeTargets(nodes, here);
+  grasp.targets = std::move(here);
   grasps_[command.name] = std::move(grasp);
   return static_cast<int>(nodes.size());
 }
@@ -68,9 +69,9 @@ void CommandProcessor::moveGrasp(const std::string& name, const Eigen::Isometry3
   ActiveGrasp& grasp = grasps_.at(name);
   grasp.frame = frame;
   Body& body = simulation_.bodies()[grasp.body];
-  std::vector<Eigen::Vector3d> targets(grasp.nodes.size());
-  for (size_t k = 0; k < grasp.nodes.size(); ++k) targets[k] = frame * grasp.local[k];
-  body.setNodeTargets(grasp.nodes, targets);
+  // Into the grasp's own buffer: a grasp moves every tick, and allocates nothing doing so.
+  for (size_t k = 0; k < grasp.nodes.size(); ++k) grasp.targets[k] = frame * grasp.local[k];
+  body.setNodeTargets(grasp.nodes, grasp.targets);
 }
 
 Wrench CommandProcessor::graspReaction(const std::string& name) const {

@@ -6,7 +6,10 @@
 
 #include "deformable_sim/core/body.h"
 #include "deformable_sim/core/box_mesh.h"
+#include "deformable_sim/core/commands.h"
+#include "deformable_sim/core/default_scene.h"
 #include "deformable_sim/core/selection.h"
+#include "deformable_sim/core/simulation.h"
 
 // Every heap allocation of the process goes through malloc (operator new and Eigen both call it):
 // interpose it and count the calls, forwarding to glibc's own implementation.
@@ -97,4 +100,33 @@ TEST(Allocations, NoneInStepsSolvedAgainOrSplit) {
     EXPECT_GT(solves, 10);
     EXPECT_GT(splits, 0);
   }
+}
+
+// A grasp frame moves every tick (the node's grasp timer): moving it and stepping allocate
+// nothing after the first tick.
+TEST(Allocations, NoneWhenAGraspMovesEveryTick) {
+  const dc::SceneSpec spec = dc::defaultScene();
+  const dc::BoxMeshSpec& box = *spec.bodies[0].box_mesh;
+  dc::Simulation simulation(spec, {dc::makeBoxMesh(box.min, box.max, box.cells)});
+  dc::CommandProcessor commands(simulation);
+  dc::GraspCommand grasp;
+  grasp.name = "gripper";
+  grasp.nodes.box =
+      dc::Box{box.max - Eigen::Vector3d(0.05, 1, 1), box.max + Eigen::Vector3d::Ones()};
+  grasp.frame.translation() = box.max;
+  ASSERT_GT(commands.apply(grasp), 0);
+  std::vector<dc::StepReport> reports;
+  Eigen::Isometry3d frame = grasp.frame;
+  auto tick = [&](int s) {
+    frame.translation().z() = box.max.z() + 0.001 * s;  // lift it, a millimetre a tick
+    commands.moveGrasp("gripper", frame);
+    simulation.step(reports);
+  };
+  tick(1);
+  const long before = g_allocations.load();
+  for (int s = 2; s <= 20; ++s) tick(s);
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  const dc::Body& body = simulation.bodies()[0];
+  const int node = commands.grasps().at("gripper").nodes[0];
+  EXPECT_NEAR(body.positions()[3 * node + 2] - body.restPositions()[3 * node + 2], 0.02, 1e-9);
 }
