@@ -290,26 +290,14 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
 
 void DirectSolver::buildPattern(const BlockSparseMatrix& k) {
   const int n = k.numBlockRows();
-  // Tag each scalar entry with its own id, then read back where the compressed matrix put it.
-  std::vector<Eigen::Triplet<double>> entries;
+  std::vector<std::pair<int, int>> entries;
   entries.reserve(9 * k.numBlocks());
   for (int i = 0; i < n; ++i) {
     for (int s = k.rowStart()[i]; s < k.rowStart()[i + 1]; ++s) {
-      for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) {
-          entries.emplace_back(3 * i + r, 3 * k.columns()[s] + c, 1.0 + 9.0 * s + 3 * r + c);
-        }
-      }
+      for (int e = 0; e < 9; ++e) entries.emplace_back(3 * i + e / 3, 3 * k.columns()[s] + e % 3);
     }
   }
-  matrix_.resize(3 * n, 3 * n);
-  matrix_.setFromTriplets(entries.begin(), entries.end());
-  matrix_.makeCompressed();
-  value_of_block_entry_.assign(entries.size(), -1);
-  for (int v = 0; v < matrix_.nonZeros(); ++v) {
-    value_of_block_entry_[static_cast<int>(matrix_.valuePtr()[v]) - 1] = v;
-  }
-  factorization_.analyzePattern(matrix_);
+  value_of_block_entry_ = factorization_.setPattern(3 * n, entries);
   rhs_.resize(3 * n);
   product_.resize(3 * n);
   analysed_ = true;
@@ -318,7 +306,7 @@ void DirectSolver::buildPattern(const BlockSparseMatrix& k) {
 bool DirectSolver::factorize(const SystemMatrix& a, const ConstraintMask& constrained) {
   const BlockSparseMatrix& k = *a.stiffness;
   if (!analysed_) buildPattern(k);
-  double* values = matrix_.valuePtr();
+  double* values = factorization_.values();
   for (int i = 0; i < k.numBlockRows(); ++i) {
     for (int s = k.rowStart()[i]; s < k.rowStart()[i + 1]; ++s) {
       const int j = k.columns()[s];
@@ -332,15 +320,18 @@ bool DirectSolver::factorize(const SystemMatrix& a, const ConstraintMask& constr
         block.setZero();
         if (i == j) block.setIdentity();
       }
-      for (int e = 0; e < 9; ++e) values[value_of_block_entry_[9 * s + e]] = block(e / 3, e % 3);
+      for (int e = 0; e < 9; ++e) {
+        const int v = value_of_block_entry_[9 * s + e];
+        if (v >= 0) values[v] = block(e / 3, e % 3);  // the other triangle holds the rest
+      }
     }
   }
-  factorization_.factorize(matrix_);
-  return factorization_.info() == Eigen::Success;
+  factorized_ = factorization_.factorize();
+  return factorized_;
 }
 
-void DirectSolver::applyInverse(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
-  z = factorization_.solve(r);
+void DirectSolver::applyInverse(const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+  factorization_.solve(r, z);
 }
 
 SolveReport DirectSolver::solve(const SystemMatrix& a, const ConstraintMask& constrained,
@@ -348,7 +339,7 @@ SolveReport DirectSolver::solve(const SystemMatrix& a, const ConstraintMask& con
   const BlockSparseMatrix& k = *a.stiffness;
   if (matrix_changed || !analysed_) factorize(a, constrained);
   SolveReport report;
-  if (factorization_.info() != Eigen::Success) {
+  if (!factorized_) {
     report.converged = false;
     report.relative_residual = std::nan("");
     return report;
@@ -369,7 +360,7 @@ SolveReport DirectSolver::solve(const SystemMatrix& a, const ConstraintMask& con
     }
     return std::sqrt(sum);
   }();
-  x = factorization_.solve(rhs_);
+  factorization_.solve(rhs_, x);
   a.multiply(x, product_);
   product_ = b - product_;
   zeroConstrained(constrained, product_);

@@ -1,7 +1,6 @@
 #include "deformable_sim/core/rigid_mode_coarse_space.h"
 
 #include <Eigen/Geometry>
-#include <Eigen/OrderingMethods>
 #include <algorithm>
 
 #include "deformable_sim/core/linear_solver.h"
@@ -87,45 +86,18 @@ RigidModeCoarseSpace::RigidModeCoarseSpace(const BlockSparseMatrix& k) {
     }
   }
 
-  // Fill-reducing order of the scalar coarse pattern, once.
+  // The scalar coarse pattern, in a fill-reducing order computed once.
   const int size = 6 * num_aggregates_;
-  std::vector<Eigen::Triplet<double>> entries;
+  std::vector<std::pair<int, int>> entries;
   entries.reserve(36 * coarse_columns.size());
   for (int a = 0; a < num_aggregates_; ++a) {
     for (int s = coarse_row_start[a]; s < coarse_row_start[a + 1]; ++s) {
-      for (int e = 0; e < 36; ++e) {
-        entries.emplace_back(6 * a + e / 6, 6 * coarse_columns[s] + e % 6, 1.0);
-      }
+      for (int e = 0; e < 36; ++e)
+        entries.emplace_back(6 * a + e / 6, 6 * coarse_columns[s] + e % 6);
     }
   }
-  Eigen::SparseMatrix<double> pattern(size, size);
-  pattern.setFromTriplets(entries.begin(), entries.end());
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> ordering;
-  Eigen::AMDOrdering<int>()(pattern, ordering);
-  const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse = ordering.inverse();
-  permutation_.assign(inverse.indices().data(), inverse.indices().data() + size);
-
-  // The permuted upper triangle, each value tagged with its entry's id to find where it went.
-  entries.clear();
-  for (int a = 0; a < num_aggregates_; ++a) {
-    for (int s = coarse_row_start[a]; s < coarse_row_start[a + 1]; ++s) {
-      for (int e = 0; e < 36; ++e) {
-        const int row = permutation_[6 * a + e / 6];
-        const int column = permutation_[6 * coarse_columns[s] + e % 6];
-        if (row <= column) entries.emplace_back(row, column, 1.0 + 36.0 * s + e);
-      }
-    }
-  }
-  coarse_.resize(size, size);
-  coarse_.setFromTriplets(entries.begin(), entries.end());
-  coarse_.makeCompressed();
-  coarse_value_.assign(36 * coarse_columns.size(), -1);
-  for (int v = 0; v < coarse_.nonZeros(); ++v) {
-    coarse_value_[static_cast<int>(coarse_.valuePtr()[v]) - 1] = v;
-  }
-  factorization_.analyzePattern(coarse_);
+  coarse_value_ = coarse_.setPattern(size, entries);
   coarse_rhs_.resize(size);
-  coarse_solution_.resize(size);
   modes_.resize(size);
   offset_.resize(n);
   centroid_.resize(num_aggregates_);
@@ -151,8 +123,8 @@ void RigidModeCoarseSpace::refresh(const SystemMatrix& a, const ConstraintMask& 
 
   // A_c = sum over blocks (i, j) of P_i^T A_ij P_j with P_i = [I, -[d_i]x]: the 3 x 6 map from
   // an aggregate's translation t and rotation w to node i's displacement t + w x d_i.
-  double* values = coarse_.valuePtr();
-  std::fill(values, values + coarse_.nonZeros(), 0.0);
+  coarse_.setZero();
+  double* values = coarse_.values();
   double largest_diagonal = 0.0;
   for (int i = 0; i < n; ++i) {
     if (constrained[i]) continue;
@@ -180,8 +152,7 @@ void RigidModeCoarseSpace::refresh(const SystemMatrix& a, const ConstraintMask& 
   // Aggregates with constrained nodes can lose modes (all of them, or a rotation about the line
   // through their only free node): a tiny shift keeps A_c definite, and those modes carry no
   // residual, so it changes nothing else.
-  factorization_.setShift(1e-12 * largest_diagonal);
-  factorization_.refactorize(coarse_);
+  coarse_.factorize(1e-12 * largest_diagonal);
 }
 
 void RigidModeCoarseSpace::restrictTo(int g, const ConstraintMask& constrained,
@@ -194,16 +165,11 @@ void RigidModeCoarseSpace::restrictTo(int g, const ConstraintMask& constrained,
     force += ri;
     torque += offset_[i].cross(ri);
   }
-  for (int q = 0; q < 3; ++q) {
-    coarse_rhs_[permutation_[6 * g + q]] = force[q];
-    coarse_rhs_[permutation_[6 * g + 3 + q]] = torque[q];
-  }
+  coarse_rhs_.segment<3>(6 * g) = force;
+  coarse_rhs_.segment<3>(6 * g + 3) = torque;
 }
 
-void RigidModeCoarseSpace::solveCoarse() {
-  coarse_solution_ = factorization_.solve(coarse_rhs_);
-  for (int k = 0; k < 6 * num_aggregates_; ++k) modes_[k] = coarse_solution_[permutation_[k]];
-}
+void RigidModeCoarseSpace::solveCoarse() { coarse_.solve(coarse_rhs_, modes_); }
 
 Eigen::Vector3d RigidModeCoarseSpace::correction(int i) const {
   const int g = 6 * aggregate_[i];

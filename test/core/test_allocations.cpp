@@ -68,6 +68,34 @@ TEST(Allocations, NoneInAStepAfterTheFirst) {
   }
 }
 
+// The direct solver refactorizes every step (the warped matrix changes), and the factorization
+// preconditioner every few: neither allocates once the pattern is analysed.
+TEST(Allocations, NoneInRefactorizations) {
+  using Settings = dc::SolverSettings;
+  for (auto [method, preconditioner] :
+       {std::pair{Settings::Method::kDirect, Settings::Preconditioner::kTwoLevel},
+        std::pair{Settings::Method::kConjugateGradient,
+                  Settings::Preconditioner::kFactorization}}) {
+    dc::SolverSettings solver;
+    solver.method = method;
+    solver.preconditioner = preconditioner;
+    solver.coarse_refresh_interval = 3;
+    dc::BodyEffects effects;
+    effects.gravity = Eigen::Vector3d(0, 0, -9.81);
+    dc::Body body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {1, 0.05, 0.05}, {10, 2, 2}),
+                  {1e5, 0.3, 1000}, effects, solver);
+    dc::NodeSelection end;
+    end.kind = dc::NodeSelection::Kind::kBox;
+    end.box = {{-1e-9, -1, -1}, {1e-9, 1, 1}};
+    body.fixNodes(dc::selectNodes(body.mesh(), end));
+    body.step(0.01);
+    const long before = g_allocations.load();
+    for (int s = 0; s < 10; ++s) EXPECT_TRUE(body.step(0.01).solve.converged);
+    EXPECT_EQ(g_allocations.load() - before, 0) << "method " << static_cast<int>(method);
+    EXPECT_LT(body.positions().minCoeff(), -0.05 - 1e-4);  // the beam really sagged
+  }
+}
+
 // Steps solved again with their end rotations, or split because those did not settle, allocate
 // nothing either (on one thread and on two).
 TEST(Allocations, NoneInStepsSolvedAgainOrSplit) {

@@ -5,13 +5,12 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 #include <cstdint>
 #include <memory>
 #include <vector>
 
 #include "deformable_sim/core/block_sparse_matrix.h"
+#include "deformable_sim/core/preordered_ldlt.h"
 #include "deformable_sim/core/rigid_mode_coarse_space.h"
 
 namespace deformable_sim::core {
@@ -106,9 +105,9 @@ class ConjugateGradientSolver {
   double coarse_mass_coefficient_ = 0.0, coarse_stiffness_coefficient_ = 0.0;
 };
 
-/// Sparse LDL^T factorization (Eigen's SimplicialLDLT). The scalar pattern and its ordering are
-/// computed on the first solve; later solves refill values and refactorize only when told the
-/// matrix or the constraint set changed.
+/// Sparse LDL^T factorization (Eigen's SimplicialLDLT in a fill-reducing order). The scalar
+/// pattern and its ordering are computed on the first solve; later solves refill values and
+/// refactorize only when told the matrix or the constraint set changed, allocating nothing.
 class DirectSolver {
  public:
   SolveReport solve(const SystemMatrix& a, const ConstraintMask& constrained,
@@ -117,16 +116,16 @@ class DirectSolver {
   /// Factorizes A with the constrained rows and columns made identity ones; false if it failed.
   bool factorize(const SystemMatrix& a, const ConstraintMask& constrained);
   /// z = A^-1 r with the last factorization (zero on constrained rows where r is).
-  void applyInverse(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
+  void applyInverse(const Eigen::VectorXd& r, Eigen::VectorXd& z);
 
  private:
   void buildPattern(const BlockSparseMatrix& k);
 
-  Eigen::SparseMatrix<double> matrix_;
-  std::vector<int> value_of_block_entry_;  ///< 9 per block: index into matrix_.valuePtr()
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factorization_;
+  PreorderedLdlt factorization_;
+  std::vector<int> value_of_block_entry_;  ///< 9 per block: index into its values, or -1
   Eigen::VectorXd rhs_, product_;
   bool analysed_ = false;
+  bool factorized_ = false;
 };
 
 }  // namespace deformable_sim::core

@@ -7,12 +7,11 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 #include <cstdint>
 #include <vector>
 
 #include "deformable_sim/core/block_sparse_matrix.h"
+#include "deformable_sim/core/preordered_ldlt.h"
 
 namespace deformable_sim::core {
 
@@ -51,24 +50,11 @@ class RigidModeCoarseSpace {
   std::vector<int> centroid_count_;
   /// Per block of A (in the order of its storage): where block (agg(i), agg(j)) of A_c starts.
   std::vector<int> coarse_block_;
-  /// Eigen's LDL^T with the refactorization that reuses its storage (its public factorize()
-  /// builds a temporary matrix on every call; this one allocates nothing).
-  class Factorization : public Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper,
-                                                     Eigen::NaturalOrdering<int>> {
-   public:
-    void refactorize(const Eigen::SparseMatrix<double>& upper) {
-      factorize_preordered<true>(upper);
-    }
-  };
-
-  /// A_c in a fill-reducing order (AMD, computed once), upper triangle only.
-  Eigen::SparseMatrix<double> coarse_;
-  std::vector<int> permutation_;   ///< coarse unknown -> its row in coarse_
+  PreorderedLdlt coarse_;          ///< A_c and its factorization
   std::vector<int> coarse_value_;  ///< per coarse block, 36 (row-major): index into the values
                                    ///< of coarse_, or -1 for the lower triangle
-  Factorization factorization_;
-  Eigen::VectorXd coarse_rhs_, coarse_solution_;
-  Eigen::VectorXd modes_;  ///< the coarse solution by aggregate: translation, rotation
+  Eigen::VectorXd coarse_rhs_;     ///< P^T r by aggregate: force, torque
+  Eigen::VectorXd modes_;          ///< the coarse solution by aggregate: translation, rotation
 };
 
 }  // namespace deformable_sim::core

@@ -1,0 +1,48 @@
+// A symmetric sparse matrix kept in a fill-reducing order and its LDL^T, refactorized in place.
+// Eigen's SimplicialLDLT::factorize builds a temporary copy of the matrix on every call; here the
+// matrix is stored already permuted (AMD, computed once from its pattern), upper triangle only,
+// so that refactorizing and solving allocate nothing after the pattern is set.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+namespace deformable_sim::core {
+
+class PreorderedLdlt {
+ public:
+  /// The pattern: every (row, column) of the full symmetric matrix, each once. Returns, per entry,
+  /// the index of its value in values(), or -1 where its symmetric partner holds the value.
+  std::vector<int> setPattern(int size, const std::vector<std::pair<int, int>>& entries);
+
+  /// The stored values (upper triangle in the fill-reducing order), to be written through the
+  /// indices setPattern returned.
+  double* values() { return matrix_.valuePtr(); }
+  void setZero() { std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0); }
+
+  /// Factorizes D + shift I for the values written; false if that failed (not definite).
+  bool factorize(double shift = 0.0);
+
+  /// x = A^-1 b in the original order of the unknowns (x must not alias b).
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+
+ private:
+  class Factorization : public Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper,
+                                                     Eigen::NaturalOrdering<int>> {
+   public:
+    void refactorize(const Eigen::SparseMatrix<double>& upper) {
+      factorize_preordered<true>(upper);
+    }
+  };
+
+  Eigen::SparseMatrix<double> matrix_;
+  std::vector<int> permutation_;  ///< unknown -> its row in matrix_
+  Factorization factorization_;
+  Eigen::VectorXd permuted_rhs_, permuted_solution_;
+};
+
+}  // namespace deformable_sim::core
