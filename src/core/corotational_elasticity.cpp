@@ -192,18 +192,30 @@ double CorotationalElasticity::elementEnergy(int e, const Eigen::Matrix3d& r,
 CorotationalElasticity::RotationUpdate CorotationalElasticity::updateRotations(
     const Eigen::VectorXd& x) {
   // Each element's new rotation, how far it turned, and its energy with the new and the old one.
+  // Chunk by chunk, the rotations a batch at a time, the sums in element order.
   const int num_elements = static_cast<int>(rotations_.size());
+  const int num_chunks = (num_elements + kChunkElements - 1) / kChunkElements;
   const ElementSums sums =
-      parallelChunkedSum(threads_, 0, num_elements, kChunkElements, partial_sums_, [&](int e) {
-        const Eigen::Matrix3d f = elementDeformationGradient(e, x);
-        const Eigen::Matrix3d r = extractRotation(f);
-        ElementSums one;
-        one.inverted = f.determinant() > 0.0 ? 0 : 1;
-        one.energy = elementEnergy(e, r, f, x);
-        one.energy_before = elementEnergy(e, rotations_[e], f, x);
-        one.largest_change2 = (r - rotations_[e]).squaredNorm();
-        rotations_[e] = r;
-        return one;
+      parallelChunkedSum(threads_, 0, num_chunks, 1, partial_sums_, [&](int chunk) {
+        ElementSums chunk_sums;
+        const int end = std::min(num_elements, (chunk + 1) * kChunkElements);
+        for (int first = chunk * kChunkElements; first < end; first += kRotationBatch) {
+          const int count = std::min(kRotationBatch, end - first);
+          std::array<Eigen::Matrix3d, kRotationBatch> f, r;
+          for (int k = 0; k < count; ++k) f[k] = elementDeformationGradient(first + k, x);
+          extractRotations(f.data(), r.data(), count);
+          for (int k = 0; k < count; ++k) {
+            const int e = first + k;
+            ElementSums one;
+            one.inverted = f[k].determinant() > 0.0 ? 0 : 1;
+            one.energy = elementEnergy(e, r[k], f[k], x);
+            one.energy_before = elementEnergy(e, rotations_[e], f[k], x);
+            one.largest_change2 = (r[k] - rotations_[e]).squaredNorm();
+            rotations_[e] = r[k];
+            chunk_sums += one;
+          }
+        }
+        return chunk_sums;
       });
   RotationUpdate update;
   update.inverted = sums.inverted;

@@ -82,4 +82,72 @@ Eigen::Matrix3d extractRotation(const Eigen::Matrix3d& deformation_gradient) {
   return extractRotationBySvd(deformation_gradient);  // not reached for det F > the threshold
 }
 
+void extractRotations(const Eigen::Matrix3d* deformation_gradients, Eigen::Matrix3d* rotations,
+                      int count) {
+  // The Newton-Schulz iteration of extractRotation for kRotationBatch matrices in lockstep, entry
+  // by entry across them (x[k][l]: entry k, column-major, of matrix l), a form the compiler
+  // vectorizes. Every matrix takes updates until all have converged; the extra ones keep a
+  // converged iterate at R to rounding. Matrices the iteration does not suit (det F small or
+  // negative, far from a rotation, not converged in time) take extractRotation alone.
+  constexpr int kLanes = kRotationBatch;
+  double x[9][kLanes];
+  bool alone[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    const Eigen::Matrix3d& f =
+        l < count ? deformation_gradients[l] : Eigen::Matrix3d::Identity().eval();
+    for (int k = 0; k < 9; ++k) x[k][l] = f.data()[k];
+    alone[l] = l < count && !(f.determinant() > kNewtonMinDeterminant);
+  }
+  bool converged = false;
+  for (int iteration = 0; iteration < kSchulzMaxIterations && !converged; ++iteration) {
+    // G = X^T X - I (symmetric): g[3 a + b] = column a . column b - delta_ab.
+    double g[9][kLanes], deviation2[kLanes];
+    for (int a = 0; a < 3; ++a) {
+      for (int b = a; b < 3; ++b) {
+        for (int l = 0; l < kLanes; ++l) {
+          g[3 * a + b][l] = x[3 * a][l] * x[3 * b][l] + x[3 * a + 1][l] * x[3 * b + 1][l] +
+                            x[3 * a + 2][l] * x[3 * b + 2][l] - (a == b ? 1.0 : 0.0);
+          g[3 * b + a][l] = g[3 * a + b][l];
+        }
+      }
+    }
+    for (int l = 0; l < kLanes; ++l) {
+      double sum = 0.0;
+      for (int k = 0; k < 9; ++k) sum += g[k][l] * g[k][l];
+      deviation2[l] = sum;
+    }
+    converged = true;
+    for (int l = 0; l < kLanes; ++l) {
+      if (alone[l]) continue;
+      if (!(deviation2[l] < kSchulzMaxDeviation2)) {
+        alone[l] = true;  // too far from a rotation (or diverging)
+      } else if (!(deviation2[l] < kSchulzLastDeviation2)) {
+        converged = false;
+      }
+    }
+    // X <- X - X G / 2, column by column.
+    double next[9][kLanes];
+    for (int column = 0; column < 3; ++column) {
+      for (int row = 0; row < 3; ++row) {
+        for (int l = 0; l < kLanes; ++l) {
+          next[3 * column + row][l] =
+              x[3 * column + row][l] -
+              0.5 * (x[row][l] * g[column][l] + x[3 + row][l] * g[3 + column][l] +
+                     x[6 + row][l] * g[6 + column][l]);
+        }
+      }
+    }
+    for (int k = 0; k < 9; ++k) {
+      for (int l = 0; l < kLanes; ++l) x[k][l] = next[k][l];
+    }
+  }
+  for (int l = 0; l < count; ++l) {
+    if (alone[l] || !converged) {
+      rotations[l] = extractRotation(deformation_gradients[l]);
+      continue;
+    }
+    for (int k = 0; k < 9; ++k) rotations[l].data()[k] = x[k][l];
+  }
+}
+
 }  // namespace deformable_sim::core

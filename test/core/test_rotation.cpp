@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 
@@ -82,4 +83,27 @@ TEST(Rotation, NewtonIterationAgreesWithTheSvdOverStretchesRotationsAndShears) {
     ++checked;
   }
   EXPECT_GT(checked, 1900);
+}
+
+TEST(Rotation, BatchesAgreeWithOneAtATimeAlsoWhenSomeNeedAnotherRoute) {
+  // Batches of near-rotations mixed with inverted, flat and strongly stretched elements (which
+  // leave the lockstep iteration), and batches shorter than kRotationBatch.
+  std::srand(11);
+  for (int k = 0; k < 500; ++k) {
+    std::array<Eigen::Matrix3d, dc::kRotationBatch> f, r;
+    const int count = 1 + k % dc::kRotationBatch;
+    for (int l = 0; l < count; ++l) {
+      const int kind = (k + 3 * l) % 7;
+      const double spread = kind == 0 ? 0.9 : kind == 1 ? 0.3 : kind == 2 ? 1e-6 : 1e-3;
+      f[l] = someRotation(3.0 * Eigen::Vector3d::Random()(0), Eigen::Vector3d::Random()) *
+             (Eigen::Matrix3d::Identity() + spread * Eigen::Matrix3d::Random());
+      if (kind == 3) f[l].col(2) *= -0.2;    // inverted
+      if (kind == 4) f[l].col(1).setZero();  // flat
+    }
+    dc::extractRotations(f.data(), r.data(), count);
+    for (int l = 0; l < count; ++l) {
+      expectProperRotation(r[l]);
+      EXPECT_NEAR((r[l] - dc::extractRotation(f[l])).norm(), 0.0, 1e-13) << "F =\n" << f[l];
+    }
+  }
 }

@@ -18,6 +18,15 @@ namespace deformable_sim::core {
 /// agree to rounding where both apply.
 Eigen::Matrix3d extractRotation(const Eigen::Matrix3d& deformation_gradient);
 
+/// How many rotations extractRotations takes at once.
+constexpr int kRotationBatch = 4;
+
+/// extractRotation for `count` (at most kRotationBatch) deformation gradients at once, in
+/// lockstep where they are near rotations (the common case, vectorized across them). Each
+/// result agrees with extractRotation's to rounding.
+void extractRotations(const Eigen::Matrix3d* deformation_gradients, Eigen::Matrix3d* rotations,
+                      int count);
+
 /// The SVD route of extractRotation for every F (for tests and comparisons).
 Eigen::Matrix3d extractRotationBySvd(const Eigen::Matrix3d& deformation_gradient);
 
