@@ -12,6 +12,7 @@ namespace deformable_sim::core {
 
 namespace {
 constexpr int kChunkElements = 256;  ///< elements per partial sum
+constexpr int kPrefetchAhead = 8;    ///< elements between a prefetch and its use in assembly
 }  // namespace
 
 CorotationalElasticity::CorotationalElasticity(const Mesh& mesh,
@@ -242,7 +243,16 @@ void CorotationalElasticity::assemble() {
     // Element by element, each symmetric pair of blocks computed once.
     stiffness_.setZero();
     force_offset_.setZero();
-    for (int e = 0; e < static_cast<int>(tetrahedra_.size()); ++e) {
+    const int num_tetrahedra = static_cast<int>(tetrahedra_.size());
+    for (int e = 0; e < num_tetrahedra; ++e) {
+      if (e + kPrefetchAhead < num_tetrahedra) {
+        // The blocks a later element adds into are scattered over four rows: ask for them now.
+        for (int k : block_index_[e + kPrefetchAhead]) {
+          const char* block = reinterpret_cast<const char*>(blocks.data() + k);
+          __builtin_prefetch(block, 1);
+          __builtin_prefetch(block + sizeof(Eigen::Matrix3d) - 1, 1);
+        }
+      }
       const WarpedElement w = warp(e);
       const std::array<int, 16>& slot = block_index_[e];
       for (int a = 0; a < 4; ++a) {
@@ -268,7 +278,12 @@ void CorotationalElasticity::assemble() {
   parallelFor(threads_, 0, num_nodes, [&](int i) {
     for (int s = stiffness_.diagonalIndex(i); s < row_start[i + 1]; ++s) blocks[s].setZero();
     Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+    const int last = static_cast<int>(incidences_.size()) - 1;
     for (int k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k) {
+      const char* ahead = reinterpret_cast<const char*>(
+          &warped_[incidences_[std::min(k + kPrefetchAhead, last)] / 4]);
+      for (size_t byte = 0; byte < sizeof(WarpedElement); byte += 64)
+        __builtin_prefetch(ahead + byte);
       const int e = incidences_[k] / 4, a = incidences_[k] % 4;
       const WarpedElement& w = warped_[e];
       for (int b = 0; b < 4; ++b) {
