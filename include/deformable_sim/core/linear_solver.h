@@ -76,6 +76,8 @@ class DirectSolver;
 /// Preconditioned conjugate gradients. `x` comes in with the prescribed values on constrained
 /// nodes and the initial guess elsewhere (a warm start), and leaves with the solution. Buffers and
 /// the coarse space are set up on the first call; later calls of the same size allocate nothing.
+/// Not to be called from inside an OpenMP parallel region: its iterations share their loops
+/// among the threads of the region they run in (their own with settings.threads > 1).
 class ConjugateGradientSolver {
  public:
   SolveReport solve(const SystemMatrix& a, const ConstraintMask& constrained,
@@ -107,7 +109,8 @@ class ConjugateGradientSolver {
 
 /// Sparse LDL^T factorization (Eigen's SimplicialLDLT in a fill-reducing order). The scalar
 /// pattern and its ordering are computed on the first solve; later solves refill values and
-/// refactorize only when told the matrix or the constraint set changed, allocating nothing.
+/// refactorize only when told the matrix or the constraint set changed, allocating nothing up to
+/// 5 461 nodes (see PreorderedLdlt).
 class DirectSolver {
  public:
   SolveReport solve(const SystemMatrix& a, const ConstraintMask& constrained,

@@ -1,7 +1,9 @@
 // A symmetric sparse matrix kept in a fill-reducing order and its LDL^T, refactorized in place.
 // Eigen's SimplicialLDLT::factorize builds a temporary copy of the matrix on every call; here the
 // matrix is stored already permuted (AMD, computed once from its pattern), upper triangle only,
-// so that refactorizing and solving allocate nothing after the pattern is set.
+// so that refactorizing and solving allocate nothing after the pattern is set, up to 16 384
+// unknowns: above that, Eigen takes the factorization's work vectors (over its 128 KB stack
+// limit) from the heap.
 #pragma once
 
 #include <Eigen/Core>
