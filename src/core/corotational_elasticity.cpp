@@ -239,32 +239,50 @@ CorotationalElasticity::WarpedElement CorotationalElasticity::warp(int e) const 
 void CorotationalElasticity::assemble() {
   // Every block sums its elements' contributions in element order, whichever way is taken.
   std::vector<Eigen::Matrix3d>& blocks = stiffness_.blocks();
+  const std::vector<int>& row_start = stiffness_.rowStart();
+  const int num_nodes = stiffness_.numBlockRows();
   if (threads_ == 1) {
-    // Element by element, each symmetric pair of blocks computed once.
-    stiffness_.setZero();
+    // Element by element, each symmetric pair of blocks computed once and added to the upper
+    // one of the two; the lower ones are copied as transposes at the end.
+    for (int i = 0; i < num_nodes; ++i) {
+      for (int s = stiffness_.diagonalIndex(i); s < row_start[i + 1]; ++s) blocks[s].setZero();
+    }
     force_offset_.setZero();
     const int num_tetrahedra = static_cast<int>(tetrahedra_.size());
+    // The upper block of corners a and b of element e.
+    auto upperSlot = [&](int e, int a, int b) {
+      const Tetrahedron& t = tetrahedra_[e];
+      return t[a] <= t[b] ? block_index_[e][4 * a + b] : block_index_[e][4 * b + a];
+    };
     for (int e = 0; e < num_tetrahedra; ++e) {
       if (e + kPrefetchAhead < num_tetrahedra) {
         // The blocks a later element adds into are scattered over four rows: ask for them now.
-        for (int k : block_index_[e + kPrefetchAhead]) {
-          const char* block = reinterpret_cast<const char*>(blocks.data() + k);
-          __builtin_prefetch(block, 1);
-          __builtin_prefetch(block + sizeof(Eigen::Matrix3d) - 1, 1);
+        for (int a = 0; a < 4; ++a) {
+          for (int b = a; b < 4; ++b) {
+            const char* block =
+                reinterpret_cast<const char*>(blocks.data() + upperSlot(e + kPrefetchAhead, a, b));
+            __builtin_prefetch(block, 1);
+            __builtin_prefetch(block + sizeof(Eigen::Matrix3d) - 1, 1);
+          }
         }
       }
       const WarpedElement w = warp(e);
-      const std::array<int, 16>& slot = block_index_[e];
+      const Tetrahedron& t = tetrahedra_[e];
       for (int a = 0; a < 4; ++a) {
-        blocks[slot[5 * a]] += stiffnessBlock(lambda_, mu_, w.gradients[a], w.gradients[a]);
+        blocks[block_index_[e][5 * a]] +=
+            stiffnessBlock(lambda_, mu_, w.gradients[a], w.gradients[a]);
         for (int b = a + 1; b < 4; ++b) {
           const Eigen::Matrix3d k = stiffnessBlock(lambda_, mu_, w.gradients[a], w.gradients[b]);
-          blocks[slot[4 * a + b]] += k;
-          blocks[slot[4 * b + a]] += k.transpose();
+          if (t[a] < t[b]) {
+            blocks[block_index_[e][4 * a + b]] += k;
+          } else {
+            blocks[block_index_[e][4 * b + a]] += k.transpose();
+          }
         }
-        force_offset_.segment<3>(3 * tetrahedra_[e][a]) -= w.offsets[a];
+        force_offset_.segment<3>(3 * t[a]) -= w.offsets[a];
       }
     }
+    copyLowerBlocks();
     addCells();
     return;
   }
@@ -273,8 +291,6 @@ void CorotationalElasticity::assemble() {
   // other rows' upper blocks (the element path's sums, transposed exactly).
   parallelFor(threads_, 0, static_cast<int>(tetrahedra_.size()),
               [&](int e) { warped_[e] = warp(e); });
-  const std::vector<int>& row_start = stiffness_.rowStart();
-  const int num_nodes = stiffness_.numBlockRows();
   parallelFor(threads_, 0, num_nodes, [&](int i) {
     for (int s = stiffness_.diagonalIndex(i); s < row_start[i + 1]; ++s) blocks[s].setZero();
     Eigen::Vector3d offset = Eigen::Vector3d::Zero();
@@ -295,13 +311,20 @@ void CorotationalElasticity::assemble() {
     }
     force_offset_.segment<3>(3 * i) = offset;
   });
+  copyLowerBlocks();
+  addCells();
+}
+
+void CorotationalElasticity::copyLowerBlocks() {
+  // Once every upper block is summed: the lower ones are their exact transposes.
+  std::vector<Eigen::Matrix3d>& blocks = stiffness_.blocks();
+  const std::vector<int>& row_start = stiffness_.rowStart();
   const std::vector<int>& transpose = stiffness_.transposeIndex();
-  parallelFor(threads_, 0, num_nodes, [&](int i) {
+  parallelFor(threads_, 0, stiffness_.numBlockRows(), [&](int i) {
     for (int s = row_start[i]; s < stiffness_.diagonalIndex(i); ++s) {
       blocks[s] = blocks[transpose[s]].transpose();
     }
   });
-  addCells();
 }
 
 void CorotationalElasticity::addCells() {

@@ -73,6 +73,7 @@ class CorotationalElasticity {
   /// Each cell's rest stiffness and rest-force offset for the current material.
   void setCellStiffness();
   /// Adds the warped cells to K' and f0'.
+  void copyLowerBlocks();
   void addCells();
   static CellVectors currentCorners(const Cell& cell, const Eigen::VectorXd& x);
 
