@@ -287,8 +287,8 @@ void CorotationalElasticity::assemble() {
     return;
   }
   // On several threads, row by row: rows are disjoint, so no two threads add into one block.
-  // Each row sums its diagonal and upper blocks; the lower ones are then the transposes of
-  // other rows' upper blocks (the element path's sums, transposed exactly).
+  // Each row sums its diagonal and upper blocks in element order, as the element path does;
+  // the lower ones are then copied as transposes.
   parallelFor(threads_, 0, static_cast<int>(tetrahedra_.size()),
               [&](int e) { warped_[e] = warp(e); });
   parallelFor(threads_, 0, num_nodes, [&](int i) {
