@@ -91,12 +91,18 @@ class BodyModels(unittest.TestCase):
         gripper.transform.translation.z = -0.2
         gripper.transform.rotation.w = 1.0
         type(self).gripper = gripper
-        rospy.sleep(0.3)
+        self.assertTrue(self.buffer.can_transform('world', 'gripper', rospy.Time(0),
+                                                  rospy.Duration(10.0)))
         # The top face, a little below z = -0.2 where its weight squashes the cushion.
         request = Grasp(name='hand', body='cushion', action=Grasp.ATTACH, region=Grasp.REGION_BOX,
                         box_min=Point(-0.2, -0.2, -0.01), box_max=Point(0.2, 0.2, 0.01))
         request.header.frame_id = 'gripper'
+        # The node's tf listener may hear of the new frame a little after this test's buffer.
+        deadline = rospy.Time.now() + rospy.Duration(10.0)
         answer = self.grasp(request)
+        while not answer.success and 'not in tf' in answer.message and rospy.Time.now() < deadline:
+            rospy.sleep(0.1)
+            answer = self.grasp(request)
         self.assertTrue(answer.success, answer.message)
         held = self.body_state('cushion', lambda m: True)
         top_z = max(p[2] for p in positions(held))

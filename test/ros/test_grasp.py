@@ -70,7 +70,13 @@ class GraspTest(unittest.TestCase):
         request = Grasp(name='hand', body='block', action=Grasp.ATTACH, region=Grasp.REGION_BOX,
                         box_min=Point(-0.001, -0.001, -0.026), box_max=Point(0.026, 0.026, 0.001))
         request.header.frame_id = 'gripper'
-        return self.grasp(request)
+        # The node's tf listener hears of the gripper frame some time after its first broadcast.
+        deadline = rospy.Time.now() + rospy.Duration(10.0)
+        answer = self.grasp(request)
+        while not answer.success and 'not in tf' in answer.message and rospy.Time.now() < deadline:
+            rospy.sleep(0.1)
+            answer = self.grasp(request)
+        return answer
 
     def setUp(self):
         self.sim.pause()
