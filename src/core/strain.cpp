@@ -1,6 +1,7 @@
 #include "deformable_sim/core/strain.h"
 
 #include <algorithm>
+#include <array>
 
 #include "deformable_sim/core/cell.h"
 #include "deformable_sim/core/rotation.h"
@@ -10,11 +11,13 @@ namespace deformable_sim::core {
 
 namespace {
 
-// |sym(R^T F) - I|: the rotation-free (small-strain) measure of F.
-double strainMagnitude(const Eigen::Matrix3d& f) {
-  const Eigen::Matrix3d unrotated = extractRotation(f).transpose() * f;
+// |sym(R^T F) - I|: the rotation-free (small-strain) measure of F with its rotation R.
+double strainMagnitude(const Eigen::Matrix3d& f, const Eigen::Matrix3d& r) {
+  const Eigen::Matrix3d unrotated = r.transpose() * f;
   return (0.5 * (unrotated + unrotated.transpose()) - Eigen::Matrix3d::Identity()).norm();
 }
+
+double strainMagnitude(const Eigen::Matrix3d& f) { return strainMagnitude(f, extractRotation(f)); }
 
 }  // namespace
 
@@ -30,12 +33,21 @@ void nodalStrain(const Body& body, std::vector<double>& strain) {
   const Eigen::VectorXd& x = body.positions();
   const std::vector<TetrahedronRest>& rest = body.elasticity().restData();
   const std::vector<Tetrahedron>& tetrahedra = body.mesh().tetrahedra;
-  for (size_t e = 0; e < tetrahedra.size(); ++e) {
-    const Tetrahedron& t = tetrahedra[e];
-    const Eigen::Matrix3d f =
-        deformationGradient(rest[e], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
-                            x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
-    for (int i : t) strain[i] = std::max(strain[i], strainMagnitude(f));
+  // Tetrahedra a batch of rotations at a time.
+  const int num_tetrahedra = static_cast<int>(tetrahedra.size());
+  for (int first = 0; first < num_tetrahedra; first += kRotationBatch) {
+    const int count = std::min(kRotationBatch, num_tetrahedra - first);
+    std::array<Eigen::Matrix3d, kRotationBatch> f, r;
+    for (int k = 0; k < count; ++k) {
+      const Tetrahedron& t = tetrahedra[first + k];
+      f[k] = deformationGradient(rest[first + k], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
+                                 x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
+    }
+    extractRotations(f.data(), r.data(), count);
+    for (int k = 0; k < count; ++k) {
+      const double magnitude = strainMagnitude(f[k], r[k]);
+      for (int i : tetrahedra[first + k]) strain[i] = std::max(strain[i], magnitude);
+    }
   }
   // Cells: the strain at the centre, from the rest data the elasticity keeps.
   const std::vector<Cell>& cells = body.mesh().cells;
