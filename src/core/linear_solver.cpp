@@ -120,12 +120,7 @@ void ConjugateGradientSolver::precondition(const ConstraintMask& constrained,
   for (int i = 0; i < num_nodes; ++i) {
     z.segment<3>(3 * i).noalias() = inverse_diagonal_[i] * r.segment<3>(3 * i);
   }
-  if (!coarse_) return;
-  for (int g = 0; g < coarse_->numAggregates(); ++g) coarse_->restrictTo(g, constrained, r);
-  coarse_->solveCoarse();
-  for (int i = 0; i < num_nodes; ++i) {
-    if (!constrained[i]) z.segment<3>(3 * i) += coarse_->correction(i);
-  }
+  if (coarse_) coarse_->addCorrection(constrained, r, z);
 }
 
 namespace {

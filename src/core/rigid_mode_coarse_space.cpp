@@ -176,4 +176,13 @@ Eigen::Vector3d RigidModeCoarseSpace::correction(int i) const {
   return modes_.segment<3>(g) + modes_.segment<3>(g + 3).cross(offset_[i]);
 }
 
+void RigidModeCoarseSpace::addCorrection(const ConstraintMask& constrained,
+                                         const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+  for (int g = 0; g < num_aggregates_; ++g) restrictTo(g, constrained, r);
+  solveCoarse();
+  for (size_t i = 0; i < aggregate_.size(); ++i) {
+    if (!constrained[i]) z.segment<3>(3 * i) += correction(static_cast<int>(i));
+  }
+}
+
 }  // namespace deformable_sim::core

@@ -38,6 +38,22 @@ void* realloc(void* p, size_t size) {
 
 namespace dc = deformable_sim::core;
 
+namespace {
+
+// A 0.1 m x 0.1 m beam along x (10 x 2 x 2 boxes) clamped at x = 0.
+dc::Body clampedBeam(double length, double young, const dc::BodyEffects& effects,
+                     const dc::SolverSettings& solver) {
+  dc::Body body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {length, 0.05, 0.05}, {10, 2, 2}),
+                {young, 0.3, 1000}, effects, solver);
+  dc::NodeSelection clamp;
+  clamp.kind = dc::NodeSelection::Kind::kBox;
+  clamp.box = {{-1e-9, -1, -1}, {1e-9, 1, 1}};
+  body.fixNodes(dc::selectNodes(body.mesh(), clamp));
+  return body;
+}
+
+}  // namespace
+
 TEST(Allocations, NoneInAStepAfterTheFirst) {
   // Sanity check of the counter itself.
   const long start = g_allocations.load();
@@ -53,12 +69,7 @@ TEST(Allocations, NoneInAStepAfterTheFirst) {
     effects.warping = warping;
     effects.gravity = Eigen::Vector3d(0, 0, -9.81);
     effects.damping = dc::RayleighDamping{0.1, 0.01};
-    dc::Body body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {1, 0.05, 0.05}, {10, 2, 2}),
-                  {1e5, 0.3, 1000}, effects, solver);
-    dc::NodeSelection end;
-    end.kind = dc::NodeSelection::Kind::kBox;
-    end.box = {{-1e-9, -1, -1}, {1e-9, 1, 1}};
-    body.fixNodes(dc::selectNodes(body.mesh(), end));
+    dc::Body body = clampedBeam(1.0, 1e5, effects, solver);
     body.step(0.01);
     const long before = g_allocations.load();
     int iterations = 0;
@@ -82,12 +93,7 @@ TEST(Allocations, NoneInRefactorizations) {
     solver.coarse_refresh_interval = 3;
     dc::BodyEffects effects;
     effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-    dc::Body body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {1, 0.05, 0.05}, {10, 2, 2}),
-                  {1e5, 0.3, 1000}, effects, solver);
-    dc::NodeSelection end;
-    end.kind = dc::NodeSelection::Kind::kBox;
-    end.box = {{-1e-9, -1, -1}, {1e-9, 1, 1}};
-    body.fixNodes(dc::selectNodes(body.mesh(), end));
+    dc::Body body = clampedBeam(1.0, 1e5, effects, solver);
     body.step(0.01);
     const long before = g_allocations.load();
     for (int s = 0; s < 10; ++s) EXPECT_TRUE(body.step(0.01).solve.converged);
@@ -104,15 +110,11 @@ TEST(Allocations, NoneInStepsSolvedAgainOrSplit) {
     solver.threads = threads;
     dc::BodyEffects effects;
     effects.warping = true;
-    dc::Body body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}),
-                  {1e6, 0.3, 1000}, effects, solver);
-    dc::NodeSelection clamp;
-    clamp.kind = dc::NodeSelection::Kind::kBox;
-    clamp.box = {{-1e-9, -1, -1}, {1e-9, 1, 1}};
-    body.fixNodes(dc::selectNodes(body.mesh(), clamp));
+    dc::Body body = clampedBeam(0.5, 1e6, effects, solver);
     body.step(0.01);
     // A kick of 1e4 times the beam's weight on its free end throws it metres within one step.
-    dc::NodeSelection tip = clamp;
+    dc::NodeSelection tip;
+    tip.kind = dc::NodeSelection::Kind::kBox;
     tip.box = {{0.5 - 1e-9, -1, -1}, {0.5 + 1e-9, 1, 1}};
     const std::vector<int> end = dc::selectNodes(body.mesh(), tip);
     const long before = g_allocations.load();

@@ -26,7 +26,7 @@ class PreorderedLdlt {
   double* values() { return matrix_.valuePtr(); }
   void setZero() { std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0); }
 
-  /// Factorizes D + shift I for the values written; false if that failed (not definite).
+  /// Factorizes A + shift I for the values written; false if that failed (not definite).
   bool factorize(double shift = 0.0);
 
   /// x = A^-1 b in the original order of the unknowns (x must not alias b).

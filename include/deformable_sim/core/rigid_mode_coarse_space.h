@@ -40,6 +40,9 @@ class RigidModeCoarseSpace {
   void restrictTo(int g, const ConstraintMask& constrained, const Eigen::VectorXd& r);
   void solveCoarse();
   Eigen::Vector3d correction(int i) const;
+  /// The three parts in turn, on the calling thread.
+  void addCorrection(const ConstraintMask& constrained, const Eigen::VectorXd& r,
+                     Eigen::VectorXd& z);
 
  private:
   int num_aggregates_ = 0;
