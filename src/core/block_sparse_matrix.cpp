@@ -2,7 +2,61 @@
 
 #include <algorithm>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 namespace deformable_sim::core {
+
+namespace {
+
+void multiplyRowsPortable(const int* row_start, const int* columns, const Eigen::Matrix3d* blocks,
+                          int begin, int end, const double* x, double* y) {
+  for (int i = begin; i < end; ++i) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int s = row_start[i]; s < row_start[i + 1]; ++s) {
+      sum.noalias() += blocks[s] * Eigen::Map<const Eigen::Vector3d>(x + 3 * columns[s]);
+    }
+    Eigen::Map<Eigen::Vector3d>(y + 3 * i) = sum;
+  }
+}
+
+#if defined(__x86_64__)
+// A block is stored column-major (9 doubles): its columns are read four-wide from entries 0, 3
+// and 5 (the last rotated down one lane), so that no load leaves the block; the fourth lane is
+// ignored. Each block's product is formed whole and then added to the row's sum, as the portable
+// loop does: summing column by column instead leaves the large terms of a stiff body's rigid
+// motions to cancel at the end, and a steel cube spinning at dt = 1/30 s then gains 2e-7 of its
+// energy (test_hard_cases).
+__attribute__((target("avx2,fma"))) void multiplyRowsAvx2(const int* row_start, const int* columns,
+                                                          const Eigen::Matrix3d* blocks, int begin,
+                                                          int end, const double* x, double* y) {
+  for (int i = begin; i < end; ++i) {
+    __m256d sum = _mm256_setzero_pd();
+    for (int s = row_start[i]; s < row_start[i + 1]; ++s) {
+      const double* p = blocks[s].data();
+      const double* xp = x + 3 * columns[s];
+      __m256d t = _mm256_mul_pd(_mm256_loadu_pd(p), _mm256_broadcast_sd(xp));
+      t = _mm256_fmadd_pd(_mm256_loadu_pd(p + 3), _mm256_broadcast_sd(xp + 1), t);
+      t = _mm256_fmadd_pd(_mm256_permute4x64_pd(_mm256_loadu_pd(p + 5), 0x39),
+                          _mm256_broadcast_sd(xp + 2), t);
+      sum = _mm256_add_pd(sum, t);
+    }
+    alignas(32) double lanes[4];
+    _mm256_store_pd(lanes, sum);
+    y[3 * i] = lanes[0];
+    y[3 * i + 1] = lanes[1];
+    y[3 * i + 2] = lanes[2];
+  }
+}
+
+const bool kHasAvx2Fma = [] {
+  __builtin_cpu_init();  // may run before the constructors that would otherwise do it
+  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+}();
+#endif
+
+}  // namespace
 
 BlockSparseMatrix::BlockSparseMatrix(const Mesh& mesh) {
   const int num_nodes = mesh.numNodes();
@@ -50,14 +104,17 @@ void BlockSparseMatrix::setZero() {
 }
 
 void BlockSparseMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  const int n = numBlockRows();
-  for (int i = 0; i < n; ++i) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (int k = row_start_[i]; k < row_start_[i + 1]; ++k) {
-      sum.noalias() += blocks_[k] * x.segment<3>(3 * columns_[k]);
-    }
-    y.segment<3>(3 * i) = sum;
+  multiplyRows(0, numBlockRows(), x.data(), y.data());
+}
+
+void BlockSparseMatrix::multiplyRows(int begin, int end, const double* x, double* y) const {
+#if defined(__x86_64__)
+  if (kHasAvx2Fma) {
+    multiplyRowsAvx2(row_start_.data(), columns_.data(), blocks_.data(), begin, end, x, y);
+    return;
   }
+#endif
+  multiplyRowsPortable(row_start_.data(), columns_.data(), blocks_.data(), begin, end, x, y);
 }
 
 Eigen::MatrixXd BlockSparseMatrix::toDense() const {

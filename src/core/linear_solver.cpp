@@ -29,39 +29,26 @@ void keepConstrained(const ConstraintMask& constrained, const Eigen::VectorXd& x
 
 namespace {
 
-// Rows of A x with the matrix's arrays at hand (the products' inner loop).
-struct RowProduct {
-  explicit RowProduct(const SystemMatrix& a)
-      : row_start(a.stiffness->rowStart().data()),
-        columns(a.stiffness->columns().data()),
-        blocks(a.stiffness->blocks().data()),
-        nodal_mass(a.mass_coefficient != 0.0 ? a.nodal_mass->data() : nullptr),
-        mass_coefficient(a.mass_coefficient),
-        stiffness_coefficient(a.stiffness_coefficient) {}
-
-  Eigen::Vector3d operator()(int i, const Eigen::VectorXd& x) const {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (int s = row_start[i]; s < row_start[i + 1]; ++s) {
-      sum.noalias() += blocks[s] * x.segment<3>(3 * columns[s]);
-    }
-    sum *= stiffness_coefficient;
-    if (nodal_mass) sum += (mass_coefficient * nodal_mass[i]) * x.segment<3>(3 * i);
-    return sum;
+// Rows begin .. end - 1 of y = A x: K's product, then the coefficients and the mass.
+void multiplyRows(const SystemMatrix& a, int begin, int end, const Eigen::VectorXd& x,
+                  Eigen::VectorXd& y) {
+  a.stiffness->multiplyRows(begin, end, x.data(), y.data());
+  const double* nodal_mass = a.mass_coefficient != 0.0 ? a.nodal_mass->data() : nullptr;
+  for (int i = begin; i < end; ++i) {
+    y.segment<3>(3 * i) *= a.stiffness_coefficient;
+    if (nodal_mass)
+      y.segment<3>(3 * i) += (a.mass_coefficient * nodal_mass[i]) * x.segment<3>(3 * i);
   }
-
-  const int* row_start;
-  const int* columns;
-  const Eigen::Matrix3d* blocks;
-  const double* nodal_mass;
-  double mass_coefficient, stiffness_coefficient;
-};
+}
 
 }  // namespace
 
 void SystemMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  const RowProduct row(*this);
-  parallelFor(threads, 0, stiffness->numBlockRows(),
-              [&](int i) { y.segment<3>(3 * i) = row(i, x); });
+  constexpr int kRows = 256;  // rows a thread takes at a time
+  const int num_rows = stiffness->numBlockRows();
+  parallelFor(threads, 0, (num_rows + kRows - 1) / kRows, [&](int c) {
+    multiplyRows(*this, c * kRows, std::min(num_rows, (c + 1) * kRows), x, y);
+  });
 }
 
 void ConjugateGradientSolver::refreshPreconditioner(const SystemMatrix& a,
@@ -150,7 +137,6 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
   const int num_nodes = a.stiffness->numBlockRows();
   const int num_chunks = static_cast<int>(pq_partials_.size());
   auto chunkEnd = [&](int c) { return std::min(num_nodes, (c + 1) * kChunkNodes); };
-  const RowProduct row(a);
   double rz = total(rz_partials_);
   double residual = std::sqrt(total(rr_partials_)) / reference;
   int iterations = 0;
@@ -167,8 +153,9 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
   while (residual > settings.tolerance && iterations < settings.max_iterations) {
     // q = A p (zero on constrained rows), and p . q.
     shareLoop(0, num_chunks, [&](int c) {
+      multiplyRows(a, c * kChunkNodes, chunkEnd(c), p_, q_);
       for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
-        q_.segment<3>(3 * i) = constrained[i] ? Eigen::Vector3d::Zero() : row(i, p_);
+        if (constrained[i]) q_.segment<3>(3 * i).setZero();
       }
       pq_partials_[c] = chunk(p_, c).dot(chunk(q_, c));
     });

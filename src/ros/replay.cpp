@@ -207,8 +207,8 @@ ReplayReport replay(const ReplayOptions& options, std::ostream* progress) {
   long episode_offset = 0;
   size_t first = 0;
   const bool from_start =
-      recording.states.empty() || std::get<0>(recording.states.begin()->first) == 0 &&
-                                      std::get<1>(recording.states.begin()->first) == 0;
+      recording.states.empty() || (std::get<0>(recording.states.begin()->first) == 0 &&
+                                   std::get<1>(recording.states.begin()->first) == 0);
   if (!from_start) {
     while (first < recording.applied.size() && recording.applied[first].kind != Applied::RESET) {
       ++first;

@@ -289,7 +289,7 @@ TEST(RigidBody, StepWorkDoesNotDependOnTheMesh) {
   dc::BodyEffects effects;
   effects.gravity = Eigen::Vector3d(0, 0, -9.81);
   effects.damping = dc::RayleighDamping{0.5, 0.0};
-  for (const Eigen::Vector3i cells : {Eigen::Vector3i(1, 1, 1), Eigen::Vector3i(24, 24, 24)}) {
+  for (const Eigen::Vector3i& cells : {Eigen::Vector3i(1, 1, 1), Eigen::Vector3i(24, 24, 24)}) {
     dc::Body body("block", box({0.2, 0.2, 0.2}, cells), kSteelish, effects, dc::SolverSettings{},
                   dc::BodyModel::kRigid);
     dc::addTotalForce(nodesWhere(body, 0, 0.1), {0, 0, 5}, body.externalForces());

@@ -26,6 +26,9 @@ class PreorderedLdlt {
   double* values() { return matrix_.valuePtr(); }
   void setZero() { std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0); }
 
+  /// Entries of the factor L below its diagonal (known once the pattern is set).
+  int factorNonZeros() const { return factorization_.nonZeros(); }
+
   /// Factorizes A + shift I for the values written; false if that failed (not definite).
   bool factorize(double shift = 0.0);
 
@@ -39,6 +42,7 @@ class PreorderedLdlt {
     void refactorize(const Eigen::SparseMatrix<double>& upper) {
       factorize_preordered<true>(upper);
     }
+    int nonZeros() const { return static_cast<int>(m_matrix.nonZeros()); }
   };
 
   Eigen::SparseMatrix<double> matrix_;

@@ -20,12 +20,15 @@ using ConstraintMask = std::vector<std::uint8_t>;
 
 class RigidModeCoarseSpace {
  public:
-  /// Aggregates the nodes of the pattern of `k` (greedy: a node whose neighbours are all free
-  /// takes them; leftovers join a neighbouring aggregate) and builds the coarse pattern and its
-  /// symbolic factorization. Once per mesh.
+  /// Aggregates the nodes of the pattern of `k` (greedy: a node whose rings of neighbours are all
+  /// free takes them; leftovers join a neighbouring aggregate) and builds the coarse pattern and
+  /// its symbolic factorization. One ring where the coarse factor then holds (counted twice, for
+  /// the two triangular solves) at most a fifth as many numbers as K, two otherwise. Once per
+  /// mesh.
   explicit RigidModeCoarseSpace(const BlockSparseMatrix& k);
 
   int numAggregates() const { return num_aggregates_; }
+  int rings() const { return rings_; }  ///< of neighbours around an aggregate's first node
   const std::vector<int>& aggregateOfNode() const { return aggregate_; }
 
   /// Recomputes A_c = P^T A P for the rigid modes of each aggregate at `positions`, over the free
@@ -45,6 +48,10 @@ class RigidModeCoarseSpace {
                      Eigen::VectorXd& z);
 
  private:
+  static constexpr double kLargestFactorShare = 0.2;
+  void build(const BlockSparseMatrix& k, int rings);
+
+  int rings_ = 0;
   int num_aggregates_ = 0;
   std::vector<int> aggregate_;               ///< per node
   std::vector<int> member_start_, members_;  ///< the nodes of aggregate g, in node order
