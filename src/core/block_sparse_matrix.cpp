@@ -10,14 +10,29 @@ namespace deformable_sim::core {
 
 namespace {
 
-void multiplyRowsPortable(const int* row_start, const int* columns, const Eigen::Matrix3d* blocks,
-                          int begin, int end, const double* x, double* y) {
-  for (int i = begin; i < end; ++i) {
+// The arguments of multiplyRows.
+struct Rows {
+  const int* row_start;
+  const int* columns;
+  const Eigen::Matrix3d* blocks;
+  int begin, end;
+  const double* x;
+  double* y;
+  double scale;
+  const double* diagonal;
+  double diagonal_scale;
+};
+
+void multiplyRowsPortable(const Rows& a) {
+  for (int i = a.begin; i < a.end; ++i) {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (int s = row_start[i]; s < row_start[i + 1]; ++s) {
-      sum.noalias() += blocks[s] * Eigen::Map<const Eigen::Vector3d>(x + 3 * columns[s]);
+    for (int s = a.row_start[i]; s < a.row_start[i + 1]; ++s) {
+      sum.noalias() += a.blocks[s] * Eigen::Map<const Eigen::Vector3d>(a.x + 3 * a.columns[s]);
     }
-    Eigen::Map<Eigen::Vector3d>(y + 3 * i) = sum;
+    sum *= a.scale;
+    if (a.diagonal)
+      sum += (a.diagonal_scale * a.diagonal[i]) * Eigen::Map<const Eigen::Vector3d>(a.x + 3 * i);
+    Eigen::Map<Eigen::Vector3d>(a.y + 3 * i) = sum;
   }
 }
 
@@ -28,25 +43,27 @@ void multiplyRowsPortable(const int* row_start, const int* columns, const Eigen:
 // loop does: summing column by column instead leaves the large terms of a stiff body's rigid
 // motions to cancel at the end, and a steel cube spinning at dt = 1/30 s then gains 2e-7 of its
 // energy (test_hard_cases).
-__attribute__((target("avx2,fma"))) void multiplyRowsAvx2(const int* row_start, const int* columns,
-                                                          const Eigen::Matrix3d* blocks, int begin,
-                                                          int end, const double* x, double* y) {
-  for (int i = begin; i < end; ++i) {
+__attribute__((target("avx2,fma"))) void multiplyRowsAvx2(const Rows& a) {
+  const __m256d scale = _mm256_set1_pd(a.scale);
+  const __m256i first_three = _mm256_setr_epi64x(-1, -1, -1, 0);
+  for (int i = a.begin; i < a.end; ++i) {
     __m256d sum = _mm256_setzero_pd();
-    for (int s = row_start[i]; s < row_start[i + 1]; ++s) {
-      const double* p = blocks[s].data();
-      const double* xp = x + 3 * columns[s];
+    for (int s = a.row_start[i]; s < a.row_start[i + 1]; ++s) {
+      const double* p = a.blocks[s].data();
+      const double* xp = a.x + 3 * a.columns[s];
       __m256d t = _mm256_mul_pd(_mm256_loadu_pd(p), _mm256_broadcast_sd(xp));
       t = _mm256_fmadd_pd(_mm256_loadu_pd(p + 3), _mm256_broadcast_sd(xp + 1), t);
       t = _mm256_fmadd_pd(_mm256_permute4x64_pd(_mm256_loadu_pd(p + 5), 0x39),
                           _mm256_broadcast_sd(xp + 2), t);
       sum = _mm256_add_pd(sum, t);
     }
-    alignas(32) double lanes[4];
-    _mm256_store_pd(lanes, sum);
-    y[3 * i] = lanes[0];
-    y[3 * i + 1] = lanes[1];
-    y[3 * i + 2] = lanes[2];
+    sum = _mm256_mul_pd(sum, scale);
+    if (a.diagonal) {
+      const __m256d own = _mm256_maskload_pd(a.x + 3 * i, first_three);  // x_i, not x_i+1
+      sum =
+          _mm256_add_pd(sum, _mm256_mul_pd(_mm256_set1_pd(a.diagonal_scale * a.diagonal[i]), own));
+    }
+    _mm256_maskstore_pd(a.y + 3 * i, first_three, sum);
   }
 }
 
@@ -107,14 +124,17 @@ void BlockSparseMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) c
   multiplyRows(0, numBlockRows(), x.data(), y.data());
 }
 
-void BlockSparseMatrix::multiplyRows(int begin, int end, const double* x, double* y) const {
+void BlockSparseMatrix::multiplyRows(int begin, int end, const double* x, double* y, double scale,
+                                     const double* diagonal, double diagonal_scale) const {
+  const Rows rows{row_start_.data(), columns_.data(), blocks_.data(), begin, end, x, y, scale,
+                  diagonal,          diagonal_scale};
 #if defined(__x86_64__)
   if (kHasAvx2Fma) {
-    multiplyRowsAvx2(row_start_.data(), columns_.data(), blocks_.data(), begin, end, x, y);
+    multiplyRowsAvx2(rows);
     return;
   }
 #endif
-  multiplyRowsPortable(row_start_.data(), columns_.data(), blocks_.data(), begin, end, x, y);
+  multiplyRowsPortable(rows);
 }
 
 Eigen::MatrixXd BlockSparseMatrix::toDense() const {

@@ -29,16 +29,12 @@ void keepConstrained(const ConstraintMask& constrained, const Eigen::VectorXd& x
 
 namespace {
 
-// Rows begin .. end - 1 of y = A x: K's product, then the coefficients and the mass.
+// Rows begin .. end - 1 of y = A x = c_k K x + c_m M x.
 void multiplyRows(const SystemMatrix& a, int begin, int end, const Eigen::VectorXd& x,
                   Eigen::VectorXd& y) {
-  a.stiffness->multiplyRows(begin, end, x.data(), y.data());
-  const double* nodal_mass = a.mass_coefficient != 0.0 ? a.nodal_mass->data() : nullptr;
-  for (int i = begin; i < end; ++i) {
-    y.segment<3>(3 * i) *= a.stiffness_coefficient;
-    if (nodal_mass)
-      y.segment<3>(3 * i) += (a.mass_coefficient * nodal_mass[i]) * x.segment<3>(3 * i);
-  }
+  a.stiffness->multiplyRows(begin, end, x.data(), y.data(), a.stiffness_coefficient,
+                            a.mass_coefficient != 0.0 ? a.nodal_mass->data() : nullptr,
+                            a.mass_coefficient);
 }
 
 }  // namespace

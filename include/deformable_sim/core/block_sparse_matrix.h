@@ -37,11 +37,13 @@ class BlockSparseMatrix {
   /// y = A x (x and y of size 3 * numBlockRows(); y must not alias x).
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
 
-  /// Rows begin .. end - 1 of y = A x, into y[3 begin] .. y[3 end - 1] (x and y: the whole
-  /// vectors' entries). The products' inner loop: with AVX2 and FMA (checked once, at run time)
-  /// four-wide fused multiply-adds, otherwise plain Eigen. Each row sums its blocks in the same
-  /// order on every call, whichever thread makes it.
-  void multiplyRows(int begin, int end, const double* x, double* y) const;
+  /// Rows begin .. end - 1 of y = scale A x + diagonal_scale D x, into y[3 begin] ..
+  /// y[3 end - 1] (x and y: the whole vectors' entries; D: one number per node, or none if
+  /// null). The products' inner loop: with AVX2 and FMA (checked once, at run time) four-wide
+  /// fused multiply-adds, otherwise plain Eigen. Each row sums its blocks in the same order on
+  /// every call, whichever thread makes it.
+  void multiplyRows(int begin, int end, const double* x, double* y, double scale = 1.0,
+                    const double* diagonal = nullptr, double diagonal_scale = 0.0) const;
 
   /// The same matrix as a dense one (for tests and small diagnostics).
   Eigen::MatrixXd toDense() const;
