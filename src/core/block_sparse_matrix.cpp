@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "deformable_sim/core/cpu_features.h"
+
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
@@ -67,10 +69,7 @@ __attribute__((target("avx2,fma"))) void multiplyRowsAvx2(const Rows& a) {
   }
 }
 
-const bool kHasAvx2Fma = [] {
-  __builtin_cpu_init();  // may run before the constructors that would otherwise do it
-  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-}();
+const bool kHasAvx2Fma = hasAvx2Fma();
 #endif
 
 }  // namespace

@@ -114,6 +114,15 @@ void RigidModeCoarseSpace::build(const BlockSparseMatrix& k, int rings) {
     }
   }
   coarse_value_ = coarse_.setPattern(size, entries);
+  // A small coarse system is solved faster dense (its lower triangle, column-major).
+  dense_ = 0.5 * size * (size + 1.0) <= kDenseSpeedup * (coarse_.factorNonZeros() + size);
+  if (dense_) {
+    for (size_t e = 0; e < entries.size(); ++e) {
+      const auto [row, column] = entries[e];
+      coarse_value_[e] = row >= column ? row + size * column : -1;
+    }
+    dense_coarse_.resize(size);
+  }
   coarse_rhs_.resize(size);
   modes_.resize(size);
   offset_.resize(n);
@@ -140,8 +149,12 @@ void RigidModeCoarseSpace::refresh(const SystemMatrix& a, const ConstraintMask& 
 
   // A_c = sum over blocks (i, j) of P_i^T A_ij P_j with P_i = [I, -[d_i]x]: the 3 x 6 map from
   // an aggregate's translation t and rotation w to node i's displacement t + w x d_i.
-  coarse_.setZero();
-  double* values = coarse_.values();
+  if (dense_) {
+    dense_coarse_.matrix().setZero();
+  } else {
+    coarse_.setZero();
+  }
+  double* values = dense_ ? dense_coarse_.matrix().data() : coarse_.values();
   double largest_diagonal = 0.0;
   for (int i = 0; i < n; ++i) {
     if (constrained[i]) continue;
@@ -169,7 +182,13 @@ void RigidModeCoarseSpace::refresh(const SystemMatrix& a, const ConstraintMask& 
   // Aggregates with constrained nodes can lose modes (all of them, or a rotation about the line
   // through their only free node): a tiny shift keeps A_c definite, and those modes carry no
   // residual, so it changes nothing else.
-  coarse_.factorize(1e-12 * largest_diagonal);
+  const double shift = 1e-12 * largest_diagonal;
+  if (dense_) {
+    dense_coarse_.matrix().diagonal().array() += shift;
+    dense_coarse_.factorize();
+  } else {
+    coarse_.factorize(shift);
+  }
 }
 
 void RigidModeCoarseSpace::restrictTo(int g, const ConstraintMask& constrained,
@@ -186,7 +205,13 @@ void RigidModeCoarseSpace::restrictTo(int g, const ConstraintMask& constrained,
   coarse_rhs_.segment<3>(6 * g + 3) = torque;
 }
 
-void RigidModeCoarseSpace::solveCoarse() { coarse_.solve(coarse_rhs_, modes_); }
+void RigidModeCoarseSpace::solveCoarse() {
+  if (dense_) {
+    dense_coarse_.solve(coarse_rhs_, modes_);
+  } else {
+    coarse_.solve(coarse_rhs_, modes_);
+  }
+}
 
 Eigen::Vector3d RigidModeCoarseSpace::correction(int i) const {
   const int g = 6 * aggregate_[i];

@@ -1,14 +1,17 @@
 // The linear solvers on a real warped system: products agree with the dense matrix, both
 // conjugate gradient preconditioners reach the direct solution, the two-level one in far fewer
-// iterations, its coarse correction is exact on the body's rigid motions, and a stale coarse
-// operator still preconditions after constraints change.
+// iterations, its coarse correction is exact on the body's rigid motions (with the coarse system
+// kept dense or sparse), and a stale coarse operator still preconditions after constraints
+// change. The dense Cholesky solve of small coarse systems agrees with Eigen's.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <tuple>
 #include <utility>
 
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/corotational_elasticity.h"
+#include "deformable_sim/core/dense_cholesky.h"
 #include "deformable_sim/core/linear_solver.h"
 #include "deformable_sim/core/rigid_mode_coarse_space.h"
 
@@ -21,14 +24,17 @@ using Preconditioner = dc::SolverSettings::Preconditioner;
 // A bent, twisted beam: the warped stiffness of a real deformed state.
 struct WarpedSystem {
   const dc::LinearElasticMaterial material{1e6, 0.35, 1000.0};
-  dc::Mesh mesh = dc::makeBoxMesh({0, -0.05, -0.05}, {1.2, 0.05, 0.05}, {32, 4, 4});
+  dc::Mesh mesh;
   dc::CorotationalElasticity elasticity{mesh, material};
   std::vector<double> masses = dc::lumpedMasses(mesh, material.density);
   Eigen::VectorXd x;
   dc::ConstraintMask constrained;
   Eigen::VectorXd b;
 
-  WarpedSystem() : x(3 * mesh.numNodes()), constrained(mesh.numNodes(), 0) {
+  explicit WarpedSystem(const Eigen::Vector3i& cells = {32, 4, 4})
+      : mesh(dc::makeBoxMesh({0, -0.05, -0.05}, {1.2, 0.05, 0.05}, cells)),
+        x(3 * mesh.numNodes()),
+        constrained(mesh.numNodes(), 0) {
     for (int i = 0; i < mesh.numNodes(); ++i) {
       const Eigen::Vector3d& p = mesh.positions[i];
       const Eigen::AngleAxisd twist(0.8 * p.x(), Eigen::Vector3d::UnitX());
@@ -120,37 +126,72 @@ TEST(LinearSolver, BothPreconditionersReachTheDirectSolutionTheTwoLevelOneFarSoo
 
 TEST(LinearSolver, CoarseCorrectionIsExactOnRigidMotions) {
   // P A_c^-1 P^T A u = u for every u in the coarse space; rigid motions of the whole free body
-  // are in it (each aggregate translates by t + w x c and turns by w).
-  WarpedSystem system;
-  system.constrained.assign(system.mesh.numNodes(), 0);
-  const dc::SystemMatrix a = system.matrix();
-  dc::RigidModeCoarseSpace coarse(*a.stiffness);
-  ASSERT_GT(coarse.numAggregates(), 3);
-  coarse.refresh(a, system.constrained, system.x);
-  const Eigen::VectorXd& x = system.x;
-  for (int mode = 0; mode < 6; ++mode) {
-    Eigen::VectorXd u(x.size());
-    for (int i = 0; i < system.mesh.numNodes(); ++i) {
-      const Eigen::Vector3d e = Eigen::Vector3d::Unit(mode % 3);
-      u.segment<3>(3 * i) = mode < 3 ? e : Eigen::Vector3d(e.cross(x.segment<3>(3 * i)));
+  // are in it (each aggregate translates by t + w x c and turns by w). With the coarse system
+  // kept dense (425 nodes, 24 aggregates) and sparse (825 nodes, 44 aggregates).
+  for (const auto& [cells, dense] :
+       {std::pair{Eigen::Vector3i(16, 4, 4), true}, std::pair{Eigen::Vector3i(32, 4, 4), false}}) {
+    WarpedSystem system(cells);
+    system.constrained.assign(system.mesh.numNodes(), 0);
+    const dc::SystemMatrix a = system.matrix();
+    dc::RigidModeCoarseSpace coarse(*a.stiffness);
+    ASSERT_GT(coarse.numAggregates(), 3);
+    ASSERT_EQ(coarse.dense(), dense) << system.mesh.numNodes() << " nodes";
+    coarse.refresh(a, system.constrained, system.x);
+    const Eigen::VectorXd& x = system.x;
+    for (int mode = 0; mode < 6; ++mode) {
+      Eigen::VectorXd u(x.size());
+      for (int i = 0; i < system.mesh.numNodes(); ++i) {
+        const Eigen::Vector3d e = Eigen::Vector3d::Unit(mode % 3);
+        u.segment<3>(3 * i) = mode < 3 ? e : Eigen::Vector3d(e.cross(x.segment<3>(3 * i)));
+      }
+      Eigen::VectorXd r(u.size()), z = Eigen::VectorXd::Zero(u.size());
+      a.multiply(u, r);
+      coarse.addCorrection(system.constrained, r, z);
+      // Exact up to the conditioning of A_c and its tiny regularizing shift.
+      EXPECT_NEAR((z - u).norm() / u.norm(), 0.0, 1e-7)
+          << "mode " << mode << ", " << system.mesh.numNodes() << " nodes";
     }
-    Eigen::VectorXd r(u.size()), z = Eigen::VectorXd::Zero(u.size());
-    a.multiply(u, r);
-    coarse.addCorrection(system.constrained, r, z);
-    // Exact up to the conditioning of A_c and its tiny regularizing shift.
-    EXPECT_NEAR((z - u).norm() / u.norm(), 0.0, 1e-7) << "mode " << mode;
   }
 }
 
+TEST(DenseCholesky, SolvesAsEigensCholesky) {
+  // Sizes around the four-column blocks of the sweeps, and the default scene's coarse size.
+  for (int n : {1, 2, 3, 4, 5, 6, 7, 8, 9, 13, 37, 144}) {
+    const Eigen::MatrixXd b = Eigen::MatrixXd::Random(n, n);
+    const Eigen::MatrixXd spd = b * b.transpose() + n * Eigen::MatrixXd::Identity(n, n);
+    const Eigen::VectorXd rhs = Eigen::VectorXd::Random(n);
+    const Eigen::VectorXd expected = spd.llt().solve(rhs);
+    dc::DenseCholesky cholesky;
+    cholesky.resize(n);
+    cholesky.matrix().triangularView<Eigen::Lower>() = spd;  // only the lower triangle is read
+    ASSERT_TRUE(cholesky.factorize()) << n;
+    Eigen::VectorXd x(n);
+    cholesky.solve(rhs, x);
+    EXPECT_LE((x - expected).norm(), 1e-13 * expected.norm()) << n;
+    EXPECT_LE((spd * x - rhs).norm(), 1e-12 * rhs.norm()) << n;
+    Eigen::VectorXd in_place = rhs;
+    cholesky.solve(in_place, in_place);
+    EXPECT_EQ(in_place, x) << n;
+  }
+  dc::DenseCholesky indefinite;
+  indefinite.resize(2);
+  indefinite.matrix() << 1.0, 0.0, 2.0, 1.0;  // lower triangle of [1 2; 2 1]
+  EXPECT_FALSE(indefinite.factorize());
+}
+
 TEST(LinearSolver, CoarseSpaceTakesOneRingOnSmallMeshesAndTwoOnLargerOnes) {
-  // The default scene's beam (425 nodes): aggregates of a node and its neighbours; the 9k
-  // benchmark cantilever (2 025 nodes): of two rings, whose coarse system is far smaller.
-  for (const auto& [cells, rings] :
-       {std::pair{Eigen::Vector3i(16, 4, 4), 1}, std::pair{Eigen::Vector3i(24, 8, 8), 2}}) {
+  // The default scene's beam (425 nodes): aggregates of a node and its neighbours; a longer beam
+  // (825 nodes) too; the 9k benchmark cantilever (2 025 nodes): of two rings, whose coarse system
+  // is far smaller. The coarse systems of 144 and 120 unknowns are kept dense, the one of 264
+  // sparse (its factor has under a third of the numbers of its dense triangle).
+  for (const auto& [cells, rings, dense] : {std::tuple{Eigen::Vector3i(16, 4, 4), 1, true},
+                                            std::tuple{Eigen::Vector3i(32, 4, 4), 1, false},
+                                            std::tuple{Eigen::Vector3i(24, 8, 8), 2, true}}) {
     const dc::Mesh mesh = dc::makeBoxMesh({0, -0.1, -0.1}, {0.6, 0.1, 0.1}, cells);
     const dc::BlockSparseMatrix k(mesh);
     const dc::RigidModeCoarseSpace coarse(k);
     EXPECT_EQ(coarse.rings(), rings) << mesh.numNodes() << " nodes";
+    EXPECT_EQ(coarse.dense(), dense) << mesh.numNodes() << " nodes";
     // Every node is in an aggregate. One ring lies within the 3 x 3 x 3 grid nodes around its
     // first node, two rings reach out to 5 x 5 x 5: on average fewer and more than 27 nodes.
     for (int g : coarse.aggregateOfNode()) ASSERT_TRUE(g >= 0 && g < coarse.numAggregates());

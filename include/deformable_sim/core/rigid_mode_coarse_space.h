@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "deformable_sim/core/block_sparse_matrix.h"
+#include "deformable_sim/core/dense_cholesky.h"
 #include "deformable_sim/core/preordered_ldlt.h"
 
 namespace deformable_sim::core {
@@ -23,12 +24,13 @@ class RigidModeCoarseSpace {
   /// Aggregates the nodes of the pattern of `k` (greedy: a node whose rings of neighbours are all
   /// free takes them; leftovers join a neighbouring aggregate) and builds the coarse pattern and
   /// its symbolic factorization. One ring where the coarse factor then holds (counted twice, for
-  /// the two triangular solves) at most a fifth as many numbers as K, two otherwise. Once per
-  /// mesh.
+  /// the two triangular solves) at most a fifth as many numbers as K, two otherwise. A small
+  /// coarse system is kept dense (see kDenseSpeedup). Once per mesh.
   explicit RigidModeCoarseSpace(const BlockSparseMatrix& k);
 
   int numAggregates() const { return num_aggregates_; }
-  int rings() const { return rings_; }  ///< of neighbours around an aggregate's first node
+  int rings() const { return rings_; }   ///< of neighbours around an aggregate's first node
+  bool dense() const { return dense_; }  ///< the coarse system kept as a dense matrix
   const std::vector<int>& aggregateOfNode() const { return aggregate_; }
 
   /// Recomputes A_c = P^T A P for the rigid modes of each aggregate at `positions`, over the free
@@ -49,6 +51,10 @@ class RigidModeCoarseSpace {
 
  private:
   static constexpr double kLargestFactorShare = 0.2;
+  /// How many times as many numbers a dense triangular solve may take as the sparse factor's and
+  /// still be the faster: its multiply-adds run four or eight wide from contiguous memory, the
+  /// sparse one's one at a time through an index.
+  static constexpr double kDenseSpeedup = 3.0;
   void build(const BlockSparseMatrix& k, int rings);
 
   int rings_ = 0;
@@ -60,9 +66,11 @@ class RigidModeCoarseSpace {
   std::vector<int> centroid_count_;
   /// Per block of A (in the order of its storage): where block (agg(i), agg(j)) of A_c starts.
   std::vector<int> coarse_block_;
-  PreorderedLdlt coarse_;          ///< A_c and its factorization
-  std::vector<int> coarse_value_;  ///< per coarse block, 36 (row-major): index into the values
-                                   ///< of coarse_, or -1 for the lower triangle
+  PreorderedLdlt coarse_;  ///< A_c and its factorization (sparse storage)
+  bool dense_ = false;
+  DenseCholesky dense_coarse_;     ///< A_c and its factorization (dense storage)
+  std::vector<int> coarse_value_;  ///< per coarse block, 36 (row-major): index into the values of
+                                   ///< the storage in use, or -1 where the symmetric partner is
   Eigen::VectorXd coarse_rhs_;     ///< P^T r by aggregate: force, torque
   Eigen::VectorXd modes_;          ///< the coarse solution by aggregate: translation, rotation
 };
