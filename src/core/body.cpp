@@ -163,6 +163,7 @@ void Body::setMaterial(const LinearElasticMaterial& material) {
   mass_ = lumpedMasses(mesh_, material.density);
   stiffness_current_ = false;
   matrix_changed_ = true;
+  cg_.clearPreviousSolutions();
 }
 
 void Body::setDamping(const std::optional<RayleighDamping>& damping) {
@@ -243,6 +244,7 @@ void Body::setState(const Eigen::VectorXd& positions, const Eigen::VectorXd& vel
   x_ = positions;
   v_ = velocities;
   history_size_ = 0;
+  cg_.clearPreviousSolutions();
   rotations_current_ = false;
 }
 
@@ -279,6 +281,7 @@ void Body::returnToRememberedState() {
   x_ = remembered_positions_;
   v_.setZero();
   history_size_ = 0;
+  cg_.clearPreviousSolutions();
   rotations_current_ = false;
 }
 
@@ -419,7 +422,8 @@ SystemMatrix Body::systemMatrix(double mass_coefficient, double stiffness_coeffi
   return a;
 }
 
-SolveReport Body::solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+SolveReport Body::solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                        bool step_start) {
   if (a.mass_coefficient != last_mass_coefficient_ ||
       a.stiffness_coefficient != last_stiffness_coefficient_) {
     matrix_changed_ = true;
@@ -430,15 +434,16 @@ SolveReport Body::solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eigen::
   if (solver_settings_.method == SolverSettings::Method::kDirect) {
     report = direct_->solve(a, constrained_, b, matrix_changed_, x);
   } else {
-    report = cg_.solve(a, constrained_, b, solver_settings_, x);
+    report = cg_.solve(a, constrained_, b, solver_settings_, x, step_start);
   }
   matrix_changed_ = false;
   return report;
 }
 
 void Body::predictVelocity(Eigen::VectorXd& guess) const {
+  // The projected warm start replaces this guess once the solver has solutions to combine.
   const int order =
-      solver_settings_.warm_start == SolverSettings::WarmStart::kExtrapolated ? history_size_ : 0;
+      solver_settings_.warm_start == SolverSettings::WarmStart::kLastVelocity ? 0 : history_size_;
   // Polynomial extrapolation through the last velocities (backward differences of order 0-3).
   switch (order) {
     case 0:
@@ -517,7 +522,7 @@ void Body::advance(double h, int depth, StepReport& report) {
   for (int solves = 1;; ++solves) {
     setStepRightHandSide(h);
     const auto solve_start = Clock::now();
-    const SolveReport solved = solve(a, rhs_, next_);
+    const SolveReport solved = solve(a, rhs_, next_, solves == 1);
     report.times.solve += seconds(Clock::now() - solve_start);
     report.solve.iterations += solved.iterations;
     report.solve.relative_residual = solved.relative_residual;
@@ -663,6 +668,7 @@ StaticReport Body::solveStatic(const StaticSettings& settings) {
   }
   v_.setZero();
   history_size_ = 0;
+  cg_.clearPreviousSolutions();
   // Reactions at equilibrium, with the stiffness of the final configuration.
   updateStiffness();
   elasticity_->stiffness().multiply(x_, scratch_);

@@ -127,7 +127,7 @@ double total(const std::vector<double>& partials) {
 
 void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMask& constrained,
                                       const SolverSettings& settings, double reference,
-                                      Eigen::VectorXd& x, SolveReport& report) {
+                                      int min_iterations, Eigen::VectorXd& x, SolveReport& report) {
   // Run by every thread of the team with its own copy of the scalars: each sums the same
   // partials in the same order, so all take the same branches and meet at the same barriers.
   const int num_nodes = a.stiffness->numBlockRows();
@@ -146,7 +146,8 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
       z_.segment<3>(3 * i).noalias() = inverse_diagonal_[i] * r_.segment<3>(3 * i);
     }
   };
-  while (residual > settings.tolerance && iterations < settings.max_iterations) {
+  while ((residual > settings.tolerance || iterations < min_iterations) &&
+         iterations < settings.max_iterations) {
     // q = A p (zero on constrained rows), and p . q.
     shareLoop(0, num_chunks, [&](int c) {
       multiplyRows(a, c * kChunkNodes, chunkEnd(c), p_, q_);
@@ -204,7 +205,7 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
 
 SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const ConstraintMask& constrained,
                                            const Eigen::VectorXd& b, const SolverSettings& settings,
-                                           Eigen::VectorXd& x) {
+                                           Eigen::VectorXd& x, bool in_sequence) {
   const int num_nodes = a.stiffness->numBlockRows();
   if (r_.size() != b.size()) {
     r_.resize(b.size());
@@ -242,6 +243,31 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
     x = p_;
     return report;
   }
+  // A projected guess takes at least one iteration even when it meets the tolerance already:
+  // in a steady motion it repeats the last solution's error, which would otherwise pass from
+  // step to step unchecked and add up (a free fall then drifts from implicit Euler); one
+  // iteration with the coarse space's rigid modes takes the common part of it out.
+  bool projected = false;
+  const bool project = in_sequence &&
+                       settings.warm_start == SolverSettings::WarmStart::kProjected &&
+                       settings.previous_solutions > 0;
+  if (project) {
+    if (previous_.capacity() != settings.previous_solutions || previous_.size() != b.size()) {
+      previous_.reserve(settings.previous_solutions, static_cast<int>(b.size()));
+      free_rhs_.resize(b.size());
+    }
+    // The stored pairs solved another system: start afresh.
+    if (a.mass_coefficient != previous_mass_coefficient_ ||
+        a.stiffness_coefficient != previous_stiffness_coefficient_ ||
+        constrained != previous_constraints_) {
+      previous_.clear();
+      previous_mass_coefficient_ = a.mass_coefficient;
+      previous_stiffness_coefficient_ = a.stiffness_coefficient;
+      previous_constraints_ = constrained;
+    }
+    free_rhs_ = r_;
+    projected = previous_.guess(free_rhs_, constrained, x);
+  }
 
   a.multiply(x, q_);
   r_ = b - q_;
@@ -258,11 +284,12 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
   // One parallel region for all the iterations: starting one costs more than a short loop.
   if (a.threads > 1) {
 #pragma omp parallel num_threads(a.threads)
-    iterate(a, constrained, settings, reference, x, report);
+    iterate(a, constrained, settings, reference, projected ? 1 : 0, x, report);
   } else {
-    iterate(a, constrained, settings, reference, x, report);
+    iterate(a, constrained, settings, reference, projected ? 1 : 0, x, report);
   }
   report.converged = report.relative_residual <= settings.tolerance;
+  if (project && report.converged) previous_.add(x, free_rhs_, constrained);
   return report;
 }
 

@@ -237,7 +237,7 @@ class SceneParser {
     expectMap(node, "solver");
     checkKeys(node, "solver",
               {"method", "preconditioner", "tolerance", "max_iterations", "coarse_refresh_interval",
-               "threads", "warm_start", "max_rotation_updates"});
+               "threads", "warm_start", "previous_solutions", "max_rotation_updates"});
     if (node["method"]) {
       const std::string method = text(node["method"], "solver.method");
       if (method == "cg") {
@@ -263,14 +263,22 @@ class SceneParser {
     }
     if (node["warm_start"]) {
       const std::string name = text(node["warm_start"], "solver.warm_start");
-      if (name == "extrapolated") {
+      if (name == "projected") {
+        solver.warm_start = core::SolverSettings::WarmStart::kProjected;
+      } else if (name == "extrapolated") {
         solver.warm_start = core::SolverSettings::WarmStart::kExtrapolated;
       } else if (name == "last_velocity") {
         solver.warm_start = core::SolverSettings::WarmStart::kLastVelocity;
       } else {
         fail(node["warm_start"], "solver.warm_start",
-             "'" + name + "' is not one of: extrapolated, last_velocity");
+             "'" + name + "' is not one of: projected, extrapolated, last_velocity");
       }
+    }
+    if (node["previous_solutions"]) {
+      solver.previous_solutions =
+          static_cast<int>(integer(node["previous_solutions"], "solver.previous_solutions"));
+      if (solver.previous_solutions < 1 || solver.previous_solutions > 256)
+        fail(node["previous_solutions"], "solver.previous_solutions", "must be in 1 .. 256");
     }
     if (node["coarse_refresh_interval"]) {
       solver.coarse_refresh_interval = static_cast<int>(

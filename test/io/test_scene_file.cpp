@@ -59,7 +59,8 @@ TEST(SceneFile, ReadsEveryKey) {
   EXPECT_EQ(spec.solver.tolerance, 1e-8);
   EXPECT_EQ(spec.solver.max_iterations, 50);
   EXPECT_EQ(spec.solver.preconditioner, dc::SolverSettings::Preconditioner::kTwoLevel);  // default
-  EXPECT_EQ(spec.solver.warm_start, dc::SolverSettings::WarmStart::kExtrapolated);       // default
+  EXPECT_EQ(spec.solver.warm_start, dc::SolverSettings::WarmStart::kProjected);          // default
+  EXPECT_EQ(spec.solver.previous_solutions, 32);
   EXPECT_EQ(spec.statics.load_steps, 3);
   ASSERT_EQ(spec.bodies.size(), 1u);
   const dc::BodySpec& body = spec.bodies[0];
@@ -116,6 +117,12 @@ TEST(SceneFile, ChoosesThePreconditionerAndItsRefresh) {
   EXPECT_EQ(spec.solver.coarse_refresh_interval, 3);
   EXPECT_EQ(spec.solver.threads, 2);
   EXPECT_EQ(spec.solver.warm_start, dc::SolverSettings::WarmStart::kLastVelocity);
+  const dc::SceneSpec projected =
+      dio::parseScene(replaced(kScene, "method: direct",
+                               "method: cg, warm_start: projected, previous_solutions: 8"),
+                      "test.yaml", ".");
+  EXPECT_EQ(projected.solver.warm_start, dc::SolverSettings::WarmStart::kProjected);
+  EXPECT_EQ(projected.solver.previous_solutions, 8);
 }
 
 TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
@@ -138,7 +145,10 @@ TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
   EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: cg, coarse_refresh_interval: 0")),
             "test.yaml:4: solver.coarse_refresh_interval: must be >= 1");
   EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: cg, warm_start: zero")),
-            "test.yaml:4: solver.warm_start: 'zero' is not one of: extrapolated, last_velocity");
+            "test.yaml:4: solver.warm_start: 'zero' is not one of: projected, extrapolated, "
+            "last_velocity");
+  EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: cg, previous_solutions: 0")),
+            "test.yaml:4: solver.previous_solutions: must be in 1 .. 256");
   EXPECT_EQ(errorOf(replaced(kScene, "method: direct", "method: cg, threads: 0")),
             "test.yaml:4: solver.threads: must be >= 1");
   EXPECT_EQ(errorOf(replaced(kScene, "dt: 0.005", "dt: -1")), "test.yaml:2: dt: must be > 0");

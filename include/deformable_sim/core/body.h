@@ -221,8 +221,10 @@ class Body {
   void setStepRightHandSide(double h);
   /// Advances the state by h (a step, or a part of one split `depth` times).
   void advance(double h, int depth, StepReport& report);
-  /// x = A^-1 b with prescribed values already in x on constrained nodes.
-  SolveReport solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// x = A^-1 b with prescribed values already in x on constrained nodes. `step_start`: the
+  /// first solve of a step (ConjugateGradientSolver's sequence of systems).
+  SolveReport solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                    bool step_start = false);
   SystemMatrix systemMatrix(double mass_coefficient, double stiffness_coefficient) const;
   /// The solver's initial guess for the next velocity (SolverSettings::warm_start).
   void predictVelocity(Eigen::VectorXd& guess) const;

@@ -11,6 +11,7 @@
 
 #include "deformable_sim/core/block_sparse_matrix.h"
 #include "deformable_sim/core/preordered_ldlt.h"
+#include "deformable_sim/core/previous_solutions.h"
 #include "deformable_sim/core/rigid_mode_coarse_space.h"
 
 namespace deformable_sim::core {
@@ -34,11 +35,14 @@ struct SolverSettings {
   /// Threads for the element loops, products with A and CG's vector operations (1: none
   /// started). Every count sums in the same order: results are identical, bit for bit.
   int threads = 1;
-  /// Conjugate gradient's initial guess for a step's velocity: the last velocity, or the cubic
-  /// through the last four (exact for motions smooth in time, and free: about a third of the
-  /// iterations on a swinging cantilever).
-  enum class WarmStart { kLastVelocity, kExtrapolated };
-  WarmStart warm_start = WarmStart::kExtrapolated;
+  /// Conjugate gradient's initial guess for a step's velocity: the last velocity; the cubic
+  /// through the last four (exact for motions smooth in time); or the combination of the last
+  /// `previous_solutions` solutions whose right-hand sides best fit the step's (PreviousSolutions;
+  /// the cubic until one is stored). On the default scene's pushed beam the projection starts CG
+  /// about two orders of magnitude closer than the cubic and halves its iterations.
+  enum class WarmStart { kLastVelocity, kExtrapolated, kProjected };
+  WarmStart warm_start = WarmStart::kProjected;
+  int previous_solutions = 32;  ///< pairs kept by the projected warm start
   /// With warping, a step is solved with the element rotations at its start (one linear solve,
   /// where a turn within the step costs no energy). When the rotations at its end would add more
   /// elastic energy than the step dissipates (fast turns, stiff bodies), it is solved again with
@@ -80,8 +84,15 @@ class DirectSolver;
 /// among the threads of the region they run in (their own with settings.threads > 1).
 class ConjugateGradientSolver {
  public:
+  /// `in_sequence`: the system is the next of the sequence whose solutions the solver keeps
+  /// (a body's steps): with the projected warm start, its initial guess on the free nodes comes
+  /// from them, and its solution joins them. A change of the matrix's coefficients or of the
+  /// constrained nodes starts a new sequence.
   SolveReport solve(const SystemMatrix& a, const ConstraintMask& constrained,
-                    const Eigen::VectorXd& b, const SolverSettings& settings, Eigen::VectorXd& x);
+                    const Eigen::VectorXd& b, const SolverSettings& settings, Eigen::VectorXd& x,
+                    bool in_sequence = false);
+  /// Forgets the stored solutions (the body was moved, or its material changed).
+  void clearPreviousSolutions() { previous_.clear(); }
 
  private:
   void refreshPreconditioner(const SystemMatrix& a, const ConstraintMask& constrained,
@@ -90,8 +101,8 @@ class ConjugateGradientSolver {
                     Eigen::VectorXd& z);
   /// The iterations from the first residual on; run by each thread of a parallel region.
   void iterate(const SystemMatrix& a, const ConstraintMask& constrained,
-               const SolverSettings& settings, double reference, Eigen::VectorXd& x,
-               SolveReport& report);
+               const SolverSettings& settings, double reference, int min_iterations,
+               Eigen::VectorXd& x, SolveReport& report);
 
   static constexpr int kChunkNodes = 256;  ///< nodes per partial sum of a dot product
 
@@ -102,6 +113,10 @@ class ConjugateGradientSolver {
   std::vector<double> pq_partials_, rr_partials_, rz_partials_;
   std::unique_ptr<RigidModeCoarseSpace> coarse_;
   std::unique_ptr<DirectSolver> factorization_;  ///< Preconditioner::kFactorization
+  PreviousSolutions previous_;                   ///< WarmStart::kProjected
+  Eigen::VectorXd free_rhs_;  ///< b - A x_c on the free nodes: what the stored solutions solved
+  ConstraintMask previous_constraints_;
+  double previous_mass_coefficient_ = 0.0, previous_stiffness_coefficient_ = 0.0;
   ConstraintMask factorized_constraints_;
   int solves_since_coarse_refresh_ = 0;
   double coarse_mass_coefficient_ = 0.0, coarse_stiffness_coefficient_ = 0.0;
