@@ -462,8 +462,8 @@ void Body::predictVelocity(Eigen::VectorXd& guess) const {
 }
 
 void Body::setStepRightHandSide(double h) {
-  // b = M v - h (K' x + f0' - f_ext - M g)
-  elasticity_->stiffness().multiply(x_, scratch_);
+  // b = M v - h (K' x + f0' - f_ext - M g); K' x on the solver's threads.
+  systemMatrix(0.0, 1.0).multiply(x_, scratch_);
   const Eigen::VectorXd& f0 = elasticity_->forceOffset();
   for (int i = 0; i < numNodes(); ++i) {
     Eigen::Vector3d load = external_forces_.segment<3>(3 * i);

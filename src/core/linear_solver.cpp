@@ -254,7 +254,6 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
   if (project) {
     if (previous_.capacity() != settings.previous_solutions || previous_.size() != b.size()) {
       previous_.reserve(settings.previous_solutions, static_cast<int>(b.size()));
-      free_rhs_.resize(b.size());
     }
     // The stored pairs solved another system: start afresh.
     if (a.mass_coefficient != previous_mass_coefficient_ ||
@@ -265,8 +264,8 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
       previous_stiffness_coefficient_ = a.stiffness_coefficient;
       previous_constraints_ = constrained;
     }
-    free_rhs_ = r_;
-    projected = previous_.guess(free_rhs_, constrained, x);
+    // r_ is b - A x_c on the free nodes: what the stored solutions solved, and this one will.
+    projected = previous_.guess(r_, constrained, x, a.threads);
   }
 
   a.multiply(x, q_);
@@ -289,7 +288,7 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
     iterate(a, constrained, settings, reference, projected ? 1 : 0, x, report);
   }
   report.converged = report.relative_residual <= settings.tolerance;
-  if (project && report.converged) previous_.add(x, free_rhs_, constrained);
+  if (project && report.converged) previous_.add(x, constrained);
   return report;
 }
 

@@ -15,6 +15,14 @@ namespace dc = deformable_sim::core;
 
 namespace {
 
+// Stores the pair (x, b) as the solver does: a guess for b, then its solution.
+void store(dc::PreviousSolutions& previous, const Eigen::VectorXd& x, const Eigen::VectorXd& b,
+           const std::vector<std::uint8_t>& constrained) {
+  Eigen::VectorXd scratch = x;
+  previous.guess(b, constrained, scratch);
+  previous.add(x, constrained);
+}
+
 // A symmetric positive definite matrix of 3 n unknowns.
 Eigen::MatrixXd spd(int nodes) {
   const Eigen::MatrixXd b = Eigen::MatrixXd::Random(3 * nodes, 3 * nodes);
@@ -35,9 +43,9 @@ TEST(PreviousSolutions, CombineIntoTheSolutionOfARightHandSideTheirsSpan) {
   std::vector<Eigen::VectorXd> solutions;
   for (int k = 0; k < 3; ++k) {
     solutions.push_back(Eigen::VectorXd::Random(3 * nodes));
-    previous.add(solutions.back(), a * solutions.back(), free);
+    store(previous, solutions.back(), a * solutions.back(), free);
   }
-  previous.add(Eigen::VectorXd::Ones(3 * nodes), Eigen::VectorXd::Zero(3 * nodes), free);
+  store(previous, Eigen::VectorXd::Ones(3 * nodes), Eigen::VectorXd::Zero(3 * nodes), free);
   EXPECT_EQ(previous.count(), 3);  // a zero right-hand side says nothing: not stored
   const Eigen::VectorXd expected = 0.5 * solutions[0] - 2.0 * solutions[1] + solutions[2];
   ASSERT_TRUE(previous.guess(a * expected, free, x));
@@ -59,7 +67,7 @@ TEST(PreviousSolutions, TheOldestGivesWayWhenFull) {
   std::vector<Eigen::VectorXd> solutions;
   for (int k = 0; k < 3; ++k) {
     solutions.push_back(Eigen::VectorXd::Random(3 * nodes));
-    previous.add(solutions.back(), a * solutions.back(), free);
+    store(previous, solutions.back(), a * solutions.back(), free);
   }
   EXPECT_EQ(previous.count(), 2);
   Eigen::VectorXd x(3 * nodes);
@@ -81,14 +89,14 @@ TEST(PreviousSolutions, AClearedStoreIsANewOneBitForBit) {
   fresh.reserve(3, 3 * nodes);
   for (int k = 0; k < 4; ++k) {  // fills and wraps around
     const Eigen::VectorXd s = Eigen::VectorXd::Random(3 * nodes);
-    used.add(s, a * s, free);
+    store(used, s, a * s, free);
   }
   used.clear();
   EXPECT_EQ(used.count(), 0);
   for (int k = 0; k < 2; ++k) {
     const Eigen::VectorXd s = Eigen::VectorXd::Random(3 * nodes);
-    used.add(s, a * s, free);
-    fresh.add(s, a * s, free);
+    store(used, s, a * s, free);
+    store(fresh, s, a * s, free);
   }
   const Eigen::VectorXd b = Eigen::VectorXd::Random(3 * nodes);
   Eigen::VectorXd x_used(3 * nodes), x_fresh(3 * nodes);
@@ -104,7 +112,7 @@ TEST(PreviousSolutions, ConstrainedEntriesAreLeftAlone) {
   dc::PreviousSolutions previous;
   previous.reserve(2, 3 * nodes);
   const Eigen::VectorXd s = Eigen::VectorXd::Random(3 * nodes);
-  previous.add(s, a * s, constrained);
+  store(previous, s, a * s, constrained);
   Eigen::VectorXd x = Eigen::VectorXd::Constant(3 * nodes, 9.0);
   ASSERT_TRUE(previous.guess(a * s, constrained, x));
   EXPECT_EQ(x.segment<3>(3), Eigen::Vector3d::Constant(9.0));  // the prescribed value stays
@@ -152,4 +160,36 @@ TEST(PreviousSolutions, APushedBeamTakesFewerIterationsToTheSameMotion) {
   EXPECT_LT(projected_iterations, 0.8 * extrapolated_iterations)  // measured: 0.71
       << projected_iterations << " against " << extrapolated_iterations;
   EXPECT_LT((projected - extrapolated).norm(), 1e-4 * extrapolated.norm());
+}
+
+TEST(PreviousSolutions, TheSameBitsOnAnyThreadCount) {
+  // 1 000 nodes: four chunks of partial sums.
+  const int n = 3000;
+  const std::vector<std::uint8_t> free(n / 3, 0);
+  dc::PreviousSolutions one, two;
+  one.reserve(8, n);
+  two.reserve(8, n);
+  Eigen::VectorXd x_one = Eigen::VectorXd::Zero(n), x_two = Eigen::VectorXd::Zero(n);
+  for (int k = 0; k < 12; ++k) {
+    const Eigen::VectorXd b = Eigen::VectorXd::Random(n), s = Eigen::VectorXd::Random(n);
+    EXPECT_EQ(one.guess(b, free, x_one, 1), k > 0);
+    EXPECT_EQ(two.guess(b, free, x_two, 2), k > 0);
+    EXPECT_EQ(x_one, x_two) << k;
+    one.add(s, free);
+    two.add(s, free);
+  }
+  EXPECT_EQ(one.count(), 8);
+}
+
+TEST(PreviousSolutions, NothingIsStoredWithoutAGuess) {
+  const std::vector<std::uint8_t> free(2, 0);
+  dc::PreviousSolutions previous;
+  previous.reserve(4, 6);
+  previous.add(Eigen::VectorXd::Ones(6), free);
+  EXPECT_EQ(previous.count(), 0);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(6);
+  previous.guess(Eigen::VectorXd::Ones(6), free, x);
+  previous.add(Eigen::VectorXd::Ones(6), free);
+  previous.add(Eigen::VectorXd::Ones(6), free);  // the guess's b is stored once only
+  EXPECT_EQ(previous.count(), 1);
 }

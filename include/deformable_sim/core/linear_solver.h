@@ -114,7 +114,6 @@ class ConjugateGradientSolver {
   std::unique_ptr<RigidModeCoarseSpace> coarse_;
   std::unique_ptr<DirectSolver> factorization_;  ///< Preconditioner::kFactorization
   PreviousSolutions previous_;                   ///< WarmStart::kProjected
-  Eigen::VectorXd free_rhs_;  ///< b - A x_c on the free nodes: what the stored solutions solved
   ConstraintMask previous_constraints_;
   double previous_mass_coefficient_ = 0.0, previous_stiffness_coefficient_ = 0.0;
   ConstraintMask factorized_constraints_;

@@ -4,7 +4,7 @@
 // techniques for iterative solution of Ax = b with successive right-hand sides", 1998). Each pair
 // was solved with a matrix of its own (the warped stiffness turns with the body), so the fit is a
 // guess, not a solution; over a smooth motion it is a far better one than an extrapolation in
-// time, and it costs no product with A: three passes over the stored vectors a solve.
+// time, and it costs no product with A: two passes over the stored vectors a solve.
 #pragma once
 
 #include <Eigen/Core>
@@ -25,28 +25,36 @@ class PreviousSolutions {
   void clear() {
     count_ = 0;
     next_ = 0;
+    pending_ = false;
   }
 
   /// Writes into x, on the nodes not constrained (3 entries a node), the combination of the
-  /// stored solutions whose right-hand sides best fit b. False, x untouched, when none is stored
-  /// or the fit fails.
+  /// stored solutions whose right-hand sides best fit b, and remembers b for add(). False, x
+  /// untouched, when none is stored or the fit fails. Sums run over fixed chunks of entries on
+  /// `threads` threads: the same bits on any count.
   bool guess(const Eigen::VectorXd& b, const std::vector<std::uint8_t>& constrained,
-             Eigen::VectorXd& x);
+             Eigen::VectorXd& x, int threads = 1);
 
-  /// Stores the pair (x, b), x taken as zero on constrained nodes, in place of the oldest pair
-  /// when full. A zero b is not stored (it says nothing of the system).
-  void add(const Eigen::VectorXd& x, const Eigen::VectorXd& b,
-           const std::vector<std::uint8_t>& constrained);
+  /// Stores x, taken as zero on constrained nodes, as the solution of the last guess's b, in
+  /// place of the oldest pair when full. Nothing is stored without a guess since the last add,
+  /// or for a zero b (it says nothing of the system).
+  void add(const Eigen::VectorXd& x, const std::vector<std::uint8_t>& constrained);
 
  private:
+  static constexpr int kChunk = 768;  ///< entries a partial sum covers
+
   int count_ = 0;
   int next_ = 0;                      ///< the column the next pair goes to
   Eigen::MatrixXd solutions_;         ///< one pair a column (ring order)
   Eigen::MatrixXd right_hand_sides_;  ///< b of each stored solution
   Eigen::MatrixXd gram_;              ///< b_i . b_j
   Eigen::MatrixXd system_;            ///< the regularized Gram matrix, factorized in place
-  Eigen::VectorXd fit_;               ///< b_i . b, then the coefficients of the guess
+  Eigen::MatrixXd partials_;          ///< per chunk: b_i . b over its entries, then b . b
+  Eigen::VectorXd dots_;              ///< b_i . b (i < count_), then b . b, of the pending b
+  Eigen::VectorXd coefficients_;
   Eigen::VectorXd combination_;
+  Eigen::VectorXd pending_rhs_;  ///< b of the last guess
+  bool pending_ = false;
 };
 
 }  // namespace deformable_sim::core
