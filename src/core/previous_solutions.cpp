@@ -43,7 +43,8 @@ bool PreviousSolutions::guess(const Eigen::VectorXd& b,
   if (m == 0) return false;
   // Normal equations of min |b - B alpha|: B^T B is singular or nearly so when the right-hand
   // sides repeat (a body at rest); a shift of 1e-14 of its largest entry keeps it definite and
-  // leaves out only directions that could not lower the residual below the solver's tolerance.
+  // damps only directions in which the stored right-hand sides span less than 1e-7 of the
+  // largest of them, below the solver's tolerance.
   auto system = system_.topLeftCorner(m, m);
   system = gram_.topLeftCorner(m, m);
   const double largest = system.diagonal().maxCoeff();
