@@ -243,8 +243,7 @@ void Body::setState(const Eigen::VectorXd& positions, const Eigen::VectorXd& vel
   }
   x_ = positions;
   v_ = velocities;
-  history_size_ = 0;
-  cg_.clearPreviousSolutions();
+  restartWarmStart();
   rotations_current_ = false;
 }
 
@@ -280,8 +279,7 @@ void Body::returnToRememberedState() {
   }
   x_ = remembered_positions_;
   v_.setZero();
-  history_size_ = 0;
-  cg_.clearPreviousSolutions();
+  restartWarmStart();
   rotations_current_ = false;
 }
 
@@ -438,6 +436,11 @@ SolveReport Body::solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eigen::
   }
   matrix_changed_ = false;
   return report;
+}
+
+void Body::restartWarmStart() {
+  history_size_ = 0;
+  cg_.clearPreviousSolutions();
 }
 
 void Body::predictVelocity(Eigen::VectorXd& guess) const {
@@ -667,8 +670,7 @@ StaticReport Body::solveStatic(const StaticSettings& settings) {
                        (!effects_.warping || report.last_change <= settings.tolerance);
   }
   v_.setZero();
-  history_size_ = 0;
-  cg_.clearPreviousSolutions();
+  restartWarmStart();
   // Reactions at equilibrium, with the stiffness of the final configuration.
   updateStiffness();
   elasticity_->stiffness().multiply(x_, scratch_);

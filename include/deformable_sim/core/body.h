@@ -228,6 +228,9 @@ class Body {
   SystemMatrix systemMatrix(double mass_coefficient, double stiffness_coefficient) const;
   /// The solver's initial guess for the next velocity (SolverSettings::warm_start).
   void predictVelocity(Eigen::VectorXd& guess) const;
+  /// Forgets the velocities and solutions the warm start draws on (the body moved, or came to
+  /// rest by other means than a step).
+  void restartWarmStart();
   StepReport stepReduced(double dt);
   StaticReport solveStaticReduced(const StaticSettings& settings);
   /// Sums the external forces into load_resultant_ if they may have changed.
