@@ -25,6 +25,14 @@ void keepConstrained(const ConstraintMask& constrained, const Eigen::VectorXd& x
   }
 }
 
+// Whether x is non-zero on some constrained node: fixed nodes that move (a grasp), not a clamp.
+bool prescribesMotion(const ConstraintMask& constrained, const Eigen::VectorXd& x) {
+  for (size_t i = 0; i < constrained.size(); ++i) {
+    if (constrained[i] && !x.segment<3>(3 * i).isZero(0.0)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 namespace {
@@ -40,7 +48,7 @@ void multiplyRows(const SystemMatrix& a, int begin, int end, const Eigen::Vector
 }  // namespace
 
 void SystemMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  constexpr int kRows = 256;  // rows a thread takes at a time
+  constexpr int kRows = 32;  // rows a thread takes at a time
   const int num_rows = stiffness->numBlockRows();
   parallelFor(threads, 0, (num_rows + kRows - 1) / kRows, [&](int c) {
     multiplyRows(*this, c * kRows, std::min(num_rows, (c + 1) * kRows), x, y);
@@ -52,15 +60,15 @@ void ConjugateGradientSolver::refreshPreconditioner(const SystemMatrix& a,
                                                     const SolverSettings& settings) {
   const int num_nodes = a.stiffness->numBlockRows();
   const std::vector<Eigen::Matrix3d>& blocks = a.stiffness->blocks();
-  for (int i = 0; i < num_nodes; ++i) {
+  parallelFor(a.threads, 0, num_nodes, [&](int i) {
     if (constrained[i]) {
       inverse_diagonal_[i].setZero();  // keeps every search direction zero on constrained nodes
-      continue;
+      return;
     }
     Eigen::Matrix3d d = a.stiffness_coefficient * blocks[a.stiffness->diagonalIndex(i)];
     if (a.mass_coefficient != 0.0) d.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
     inverse_diagonal_[i] = d.inverse();
-  }
+  });
   if (settings.preconditioner == SolverSettings::Preconditioner::kFactorization) {
     const bool fresh = !factorization_;
     if (fresh) factorization_ = std::make_unique<DirectSolver>();
@@ -141,10 +149,12 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
     const int begin = 3 * kChunkNodes * c;
     return v.segment(begin, 3 * chunkEnd(c) - begin);
   };
+  // Block-Jacobi on chunk c, and its part of r . z.
   auto blockJacobi = [&](int c) {
     for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
       z_.segment<3>(3 * i).noalias() = inverse_diagonal_[i] * r_.segment<3>(3 * i);
     }
+    rz_partials_[c] = chunk(r_, c).dot(chunk(z_, c));
   };
   while ((residual > settings.tolerance || iterations < min_iterations) &&
          iterations < settings.max_iterations) {
@@ -165,10 +175,11 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
       chunk(r_, c) -= alpha * chunk(q_, c);
       rr_partials_[c] = chunk(r_, c).squaredNorm();
     });
-    // z = B r.
+    // z = B r, and r . z.
     if (factorization_) {
 #pragma omp single
       factorization_->applyInverse(r_, z_);
+      shareLoop(0, num_chunks, [&](int c) { rz_partials_[c] = chunk(r_, c).dot(chunk(z_, c)); });
     } else if (coarse_) {
       shareLoop(0, coarse_->numAggregates(),
                 [&](int g) { coarse_->restrictTo(g, constrained, r_); });
@@ -180,18 +191,18 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
     } else {
       shareLoop(0, num_chunks, blockJacobi);
     }
-    // The coarse correction's prolongation, and r . z.
+    // With the coarse correction z = z_J + P z_c, r . z = r . z_J + (P^T r) . z_c: the coarse
+    // part is known as soon as z_c is, so the prolongation and the update of p take one pass.
+    const double rz_next = total(rz_partials_) + (coarse_ ? coarse_->correctionDot() : 0.0);
+    const double beta = rz_next / rz;
     shareLoop(0, num_chunks, [&](int c) {
       if (coarse_) {
         for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
           if (!constrained[i]) z_.segment<3>(3 * i) += coarse_->correction(i);
         }
       }
-      rz_partials_[c] = chunk(r_, c).dot(chunk(z_, c));
+      chunk(p_, c) = chunk(z_, c) + beta * chunk(p_, c);
     });
-    const double rz_next = total(rz_partials_);
-    const double beta = rz_next / rz;
-    shareLoop(0, num_chunks, [&](int c) { chunk(p_, c) = chunk(z_, c) + beta * chunk(p_, c); });
     rz = rz_next;
     residual = std::sqrt(total(rr_partials_)) / reference;
     ++iterations;
@@ -227,8 +238,12 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
   // Reference norm: the right-hand side of the free rows once the prescribed values are moved
   // over, i.e. the residual of x = 0 on the free nodes.
   keepConstrained(constrained, x, p_);
-  a.multiply(p_, q_);
-  r_ = b - q_;
+  if (prescribesMotion(constrained, x)) {
+    a.multiply(p_, q_);
+    r_ = b - q_;
+  } else {
+    r_ = b;  // A 0 = 0: no product needed
+  }
   zeroConstrained(constrained, r_);
   const double reference = r_.norm();
   SolveReport report;

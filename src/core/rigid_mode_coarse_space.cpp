@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "deformable_sim/core/linear_solver.h"
+#include "deformable_sim/core/parallel_for.h"
 
 namespace deformable_sim::core {
 
@@ -128,6 +129,7 @@ void RigidModeCoarseSpace::build(const BlockSparseMatrix& k, int rings) {
   offset_.resize(n);
   centroid_.resize(num_aggregates_);
   centroid_count_.resize(num_aggregates_);
+  largest_diagonal_.resize(num_aggregates_);
 }
 
 void RigidModeCoarseSpace::refresh(const SystemMatrix& a, const ConstraintMask& constrained,
@@ -155,30 +157,39 @@ void RigidModeCoarseSpace::refresh(const SystemMatrix& a, const ConstraintMask& 
     coarse_.setZero();
   }
   double* values = dense_ ? dense_coarse_.matrix().data() : coarse_.values();
-  double largest_diagonal = 0.0;
-  for (int i = 0; i < n; ++i) {
-    if (constrained[i]) continue;
-    const Eigen::Matrix3d di = crossMatrix(offset_[i]);
-    for (int s = k.rowStart()[i]; s < k.rowStart()[i + 1]; ++s) {
-      const int j = k.columns()[s];
-      if (constrained[j]) continue;
-      Eigen::Matrix3d aij = a.stiffness_coefficient * k.blocks()[s];
-      if (i == j && a.mass_coefficient != 0.0) {
-        aij.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
+  // Aggregate by aggregate on the solver's threads: the entries of an aggregate's rows are
+  // stored by that aggregate alone (the symmetric partner of each is not stored), and each sums
+  // its nodes' blocks in node order, as one loop over all nodes would: the same bits on any count.
+  parallelFor(a.threads, 0, num_aggregates_, [&](int g) {
+    double largest = 0.0;
+    for (int m = member_start_[g]; m < member_start_[g + 1]; ++m) {
+      const int i = members_[m];
+      if (constrained[i]) continue;
+      const Eigen::Matrix3d di = crossMatrix(offset_[i]);
+      for (int s = k.rowStart()[i]; s < k.rowStart()[i + 1]; ++s) {
+        const int j = k.columns()[s];
+        if (constrained[j]) continue;
+        Eigen::Matrix3d aij = a.stiffness_coefficient * k.blocks()[s];
+        if (i == j && a.mass_coefficient != 0.0) {
+          aij.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
+        }
+        Eigen::Matrix<double, 3, 6> t;  // A_ij P_j
+        t.leftCols<3>() = aij;
+        t.rightCols<3>().noalias() = -aij * crossMatrix(offset_[j]);
+        Eigen::Matrix<double, 6, 6> block;  // P_i^T A_ij P_j; -[d]x^T = [d]x
+        block.topRows<3>() = t;
+        block.bottomRows<3>().noalias() = di * t;
+        const int* slot = &coarse_value_[36 * coarse_block_[s]];
+        for (int e = 0; e < 36; ++e) {
+          if (slot[e] >= 0) values[slot[e]] += block(e / 6, e % 6);
+        }
+        if (i == j) largest = std::max(largest, aij.diagonal().maxCoeff());
       }
-      Eigen::Matrix<double, 3, 6> t;  // A_ij P_j
-      t.leftCols<3>() = aij;
-      t.rightCols<3>().noalias() = -aij * crossMatrix(offset_[j]);
-      Eigen::Matrix<double, 6, 6> block;  // P_i^T A_ij P_j; -[d]x^T = [d]x
-      block.topRows<3>() = t;
-      block.bottomRows<3>().noalias() = di * t;
-      const int* slot = &coarse_value_[36 * coarse_block_[s]];
-      for (int e = 0; e < 36; ++e) {
-        if (slot[e] >= 0) values[slot[e]] += block(e / 6, e % 6);
-      }
-      if (i == j) largest_diagonal = std::max(largest_diagonal, aij.diagonal().maxCoeff());
     }
-  }
+    largest_diagonal_[g] = largest;
+  });
+  double largest_diagonal = 0.0;
+  for (double largest : largest_diagonal_) largest_diagonal = std::max(largest_diagonal, largest);
   // Aggregates with constrained nodes can lose modes (all of them, or a rotation about the line
   // through their only free node): a tiny shift keeps A_c definite, and those modes carry no
   // residual, so it changes nothing else.

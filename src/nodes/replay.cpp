@@ -4,10 +4,12 @@
 
 #include <ros/time.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <string>
+#include <thread>
 
 namespace {
 
@@ -22,8 +24,8 @@ constexpr const char* kUsage =
     "  --node NAME         the node whose session to replay (when IN.bag holds several)\n"
     "  --solver, --tolerance, --max-iterations\n"
     "                      re-simulate with other solver settings: what would have happened\n"
-    "  --threads N         threads for the simulation (default: as recorded); the results are\n"
-    "                      the same bits on any count\n"
+    "  --threads N         threads for the simulation (default: the machine's cores); the\n"
+    "                      results are the same bits on any count\n"
     "  --quiet             no progress bar\n";
 
 bool number(const char* text, double& value) {
@@ -71,6 +73,11 @@ int main(int argc, char** argv) {
   if (options.input.empty()) {
     std::cerr << kUsage;
     return 2;
+  }
+  // The results are the same bits on any thread count, so an offline re-simulation takes every
+  // core the machine has, whatever the recording node ran on.
+  if (!options.threads) {
+    options.threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 64u));
   }
   ros::Time::init();
   try {

@@ -104,7 +104,7 @@ class ConjugateGradientSolver {
                const SolverSettings& settings, double reference, int min_iterations,
                Eigen::VectorXd& x, SolveReport& report);
 
-  static constexpr int kChunkNodes = 256;  ///< nodes per partial sum of a dot product
+  static constexpr int kChunkNodes = 32;  ///< nodes per partial sum of a dot product
 
   std::vector<Eigen::Matrix3d> inverse_diagonal_;
   Eigen::VectorXd r_, z_, p_, q_;

@@ -41,7 +41,7 @@ class PreviousSolutions {
   void add(const Eigen::VectorXd& x, const std::vector<std::uint8_t>& constrained);
 
  private:
-  static constexpr int kChunk = 768;  ///< entries a partial sum covers
+  static constexpr int kChunk = 96;  ///< entries a partial sum covers (32 nodes)
 
   int count_ = 0;
   int next_ = 0;                      ///< the column the next pair goes to

@@ -45,6 +45,9 @@ class RigidModeCoarseSpace {
   void restrictTo(int g, const ConstraintMask& constrained, const Eigen::VectorXd& r);
   void solveCoarse();
   Eigen::Vector3d correction(int i) const;
+  /// (P^T r) . z_c of the last restriction and coarse solve: r . (P z_c), the coarse
+  /// correction's share of r . z. The same bits on every thread.
+  double correctionDot() const { return coarse_rhs_.dot(modes_); }
   /// The three parts in turn, on the calling thread.
   void addCorrection(const ConstraintMask& constrained, const Eigen::VectorXd& r,
                      Eigen::VectorXd& z);
@@ -64,6 +67,7 @@ class RigidModeCoarseSpace {
   std::vector<Eigen::Vector3d> offset_;      ///< per node: position minus its aggregate's centroid
   std::vector<Eigen::Vector3d> centroid_;
   std::vector<int> centroid_count_;
+  std::vector<double> largest_diagonal_;  ///< per aggregate, of its nodes' diagonal blocks
   /// Per block of A (in the order of its storage): where block (agg(i), agg(j)) of A_c starts.
   std::vector<int> coarse_block_;
   PreorderedLdlt coarse_;  ///< A_c and its factorization (sparse storage)
