@@ -5,6 +5,11 @@
 #include <cmath>
 #include <numeric>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+#include "deformable_sim/core/cpu_features.h"
 #include "deformable_sim/core/parallel_for.h"
 #include "deformable_sim/core/rotation.h"
 
@@ -53,6 +58,7 @@ CorotationalElasticity::CorotationalElasticity(const Mesh& mesh,
   }
   setCellStiffness();
   // Sized here so that no step allocates them.
+  warped_.resize(tetrahedra_.size());
   const size_t chunks = (tetrahedra_.size() + cells_.size() + kChunkElements - 1) / kChunkElements;
   partial_sums_.resize(chunks);
   partial_energies_.resize(chunks);
@@ -90,11 +96,7 @@ void CorotationalElasticity::listIncidences(int num_nodes) {
   }
 }
 
-void CorotationalElasticity::setThreads(int threads) {
-  threads_ = threads;
-  warped_.resize(threads > 1 ? tetrahedra_.size() : 0);
-  warped_.shrink_to_fit();
-}
+void CorotationalElasticity::setThreads(int threads) { threads_ = threads; }
 
 void CorotationalElasticity::setMaterial(const LinearElasticMaterial& material) {
   validate(material);
@@ -237,94 +239,136 @@ CorotationalElasticity::WarpedElement CorotationalElasticity::warp(int e) const 
 }
 
 void CorotationalElasticity::assemble() {
-  // Every block sums its elements' contributions in element order, whichever way is taken.
-  std::vector<Eigen::Matrix3d>& blocks = stiffness_.blocks();
-  const std::vector<int>& row_start = stiffness_.rowStart();
-  const int num_nodes = stiffness_.numBlockRows();
-  if (threads_ == 1) {
-    // Element by element, each symmetric pair of blocks computed once and added to the upper
-    // one of the two; the lower ones are copied as transposes at the end.
-    for (int i = 0; i < num_nodes; ++i) {
-      for (int s = stiffness_.diagonalIndex(i); s < row_start[i + 1]; ++s) blocks[s].setZero();
-    }
-    force_offset_.setZero();
-    const int num_tetrahedra = static_cast<int>(tetrahedra_.size());
-    // The upper block of corners a and b of element e.
-    auto upperSlot = [&](int e, int a, int b) {
-      const Tetrahedron& t = tetrahedra_[e];
-      return t[a] <= t[b] ? block_index_[e][4 * a + b] : block_index_[e][4 * b + a];
-    };
-    for (int e = 0; e < num_tetrahedra; ++e) {
-      if (e + kPrefetchAhead < num_tetrahedra) {
-        // The blocks a later element adds into are scattered over four rows: ask for them now.
-        for (int a = 0; a < 4; ++a) {
-          for (int b = a; b < 4; ++b) {
-            const char* block =
-                reinterpret_cast<const char*>(blocks.data() + upperSlot(e + kPrefetchAhead, a, b));
-            __builtin_prefetch(block, 1);
-            __builtin_prefetch(block + sizeof(Eigen::Matrix3d) - 1, 1);
-          }
-        }
-      }
-      const WarpedElement w = warp(e);
-      const Tetrahedron& t = tetrahedra_[e];
-      for (int a = 0; a < 4; ++a) {
-        blocks[block_index_[e][5 * a]] +=
-            stiffnessBlock(lambda_, mu_, w.gradients[a], w.gradients[a]);
-        for (int b = a + 1; b < 4; ++b) {
-          const Eigen::Matrix3d k = stiffnessBlock(lambda_, mu_, w.gradients[a], w.gradients[b]);
-          if (t[a] < t[b]) {
-            blocks[block_index_[e][4 * a + b]] += k;
-          } else {
-            blocks[block_index_[e][4 * b + a]] += k.transpose();
-          }
-        }
-        force_offset_.segment<3>(3 * t[a]) -= w.offsets[a];
-      }
-    }
-    copyLowerBlocks();
+  // Row by row, on any number of threads: rows are disjoint, so no two threads add into one
+  // block, and each row sums its diagonal and upper blocks in element order. (Element by element
+  // on one thread was slower than this once the blocks were computed 4-wide.)
+#if defined(__x86_64__)
+  if (hasAvx2Fma()) {
+    parallelFor(threads_, 0, static_cast<int>(tetrahedra_.size()), [&](int e) { warpAvx2(e); });
+    parallelFor(threads_, 0, stiffness_.numBlockRows(), [&](int i) { assembleRowAvx2(i); });
     addCells();
     return;
   }
-  // On several threads, row by row: rows are disjoint, so no two threads add into one block.
-  // Each row sums its diagonal and upper blocks in element order, as the element path does;
-  // the lower ones are then copied as transposes.
+#endif
   parallelFor(threads_, 0, static_cast<int>(tetrahedra_.size()),
               [&](int e) { warped_[e] = warp(e); });
-  parallelFor(threads_, 0, num_nodes, [&](int i) {
-    for (int s = stiffness_.diagonalIndex(i); s < row_start[i + 1]; ++s) blocks[s].setZero();
-    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
-    const int last = static_cast<int>(incidences_.size()) - 1;
-    for (int k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k) {
-      const char* ahead = reinterpret_cast<const char*>(
-          &warped_[incidences_[std::min(k + kPrefetchAhead, last)] / 4]);
-      for (size_t byte = 0; byte < sizeof(WarpedElement); byte += 64)
-        __builtin_prefetch(ahead + byte);
-      const int e = incidences_[k] / 4, a = incidences_[k] % 4;
-      const WarpedElement& w = warped_[e];
-      for (int b = 0; b < 4; ++b) {
-        if (tetrahedra_[e][b] < i) continue;
-        blocks[block_index_[e][4 * a + b]] +=
-            stiffnessBlock(lambda_, mu_, w.gradients[a], w.gradients[b]);
-      }
-      offset -= w.offsets[a];
-    }
-    force_offset_.segment<3>(3 * i) = offset;
-  });
-  copyLowerBlocks();
+  parallelFor(threads_, 0, stiffness_.numBlockRows(), [&](int i) { assembleRowPortable(i); });
   addCells();
 }
 
-void CorotationalElasticity::copyLowerBlocks() {
-  // Once every upper block is summed: the lower ones are their exact transposes.
+void CorotationalElasticity::assembleRowPortable(int i) {
   std::vector<Eigen::Matrix3d>& blocks = stiffness_.blocks();
-  const std::vector<int>& row_start = stiffness_.rowStart();
-  const std::vector<int>& transpose = stiffness_.transposeIndex();
-  parallelFor(threads_, 0, stiffness_.numBlockRows(), [&](int i) {
-    for (int s = row_start[i]; s < stiffness_.diagonalIndex(i); ++s) {
-      blocks[s] = blocks[transpose[s]].transpose();
+  const int diagonal = stiffness_.diagonalIndex(i), row_end = stiffness_.rowStart()[i + 1];
+  for (int s = diagonal; s < row_end; ++s) blocks[s].setZero();
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  const int last = static_cast<int>(incidences_.size()) - 1;
+  for (int k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k) {
+    prefetchWarped(incidences_[std::min(k + kPrefetchAhead, last)] / 4);
+    const int e = incidences_[k] / 4, a = incidences_[k] % 4;
+    const WarpedElement& w = warped_[e];
+    for (int b = 0; b < 4; ++b) {
+      if (tetrahedra_[e][b] < i) continue;
+      blocks[block_index_[e][4 * a + b]] +=
+          stiffnessBlock(lambda_, mu_, w.gradients[a], w.gradients[b]);
     }
-  });
+    offset -= w.offsets[a];
+  }
+  force_offset_.segment<3>(3 * i) = offset;
+  // Row i's upper blocks are summed: their transposes are the lower blocks of later rows.
+  const std::vector<int>& transpose = stiffness_.transposeIndex();
+  for (int s = diagonal + 1; s < row_end; ++s) blocks[transpose[s]] = blocks[s].transpose();
+}
+
+#if defined(__x86_64__)
+// stiffnessBlock entry by entry (lambda (gi_r gj_c) + mu (gj_r gi_c), then mu gi.gj on the
+// diagonal), four entries a vector: a block's 9 column-major entries are lanes 0-3, 4-7 and 8,
+// so that each block is read and written with two vector loads and stores and one scalar.
+__attribute__((target("avx2,fma"))) void CorotationalElasticity::assembleRowAvx2(int i) {
+  std::vector<Eigen::Matrix3d>& blocks = stiffness_.blocks();
+  const int diagonal = stiffness_.diagonalIndex(i), row_end = stiffness_.rowStart()[i + 1];
+  for (int s = diagonal; s < row_end; ++s) blocks[s].setZero();
+  const __m256d lambda = _mm256_set1_pd(lambda_), mu = _mm256_set1_pd(mu_);
+  const __m256d first_lane = _mm256_setr_pd(1.0, 0.0, 0.0, 0.0);
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  const int last = static_cast<int>(incidences_.size()) - 1;
+  for (int k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k) {
+    prefetchWarped(incidences_[std::min(k + kPrefetchAhead, last)] / 4);
+    const int e = incidences_[k] / 4, a = incidences_[k] % 4;
+    const WarpedElement& w = warped_[e];
+    const double* gi = w.gradients[a].data();
+    // Lane 3 of a load is the next vector's first entry (or the first offset's): never used.
+    const __m256d vi = _mm256_loadu_pd(gi);
+    const __m256d i0120 = _mm256_permute4x64_pd(vi, 0x24), i0001 = _mm256_permute4x64_pd(vi, 0x40);
+    const __m256d i1201 = _mm256_permute4x64_pd(vi, 0x49), i1122 = _mm256_permute4x64_pd(vi, 0xA5);
+    for (int b = 0; b < 4; ++b) {
+      if (tetrahedra_[e][b] < i) continue;
+      const double* gj = w.gradients[b].data();
+      const __m256d vj = _mm256_loadu_pd(gj);
+      const __m256d j0001 = _mm256_permute4x64_pd(vj, 0x40),
+                    j0120 = _mm256_permute4x64_pd(vj, 0x24);
+      const __m256d j1122 = _mm256_permute4x64_pd(vj, 0xA5),
+                    j1201 = _mm256_permute4x64_pd(vj, 0x49);
+      const double dot = gi[0] * gj[0] + gi[1] * gj[1] + gi[2] * gj[2];
+      const __m256d diagonal_term = _mm256_mul_pd(_mm256_set1_pd(mu_ * dot), first_lane);
+      // Entries (0,0) (1,0) (2,0) (0,1), then (1,1) (2,1) (0,2) (1,2), then (2,2).
+      __m256d k0 = _mm256_fmadd_pd(lambda, _mm256_mul_pd(i0120, j0001),
+                                   _mm256_mul_pd(mu, _mm256_mul_pd(j0120, i0001)));
+      __m256d k1 = _mm256_fmadd_pd(lambda, _mm256_mul_pd(i1201, j1122),
+                                   _mm256_mul_pd(mu, _mm256_mul_pd(j1201, i1122)));
+      const double k2 = std::fma(lambda_, gi[2] * gj[2], mu_ * (gj[2] * gi[2])) + mu_ * dot;
+      k0 = _mm256_add_pd(k0, diagonal_term);
+      k1 = _mm256_add_pd(k1, diagonal_term);
+      double* block = blocks[block_index_[e][4 * a + b]].data();
+      _mm256_storeu_pd(block, _mm256_add_pd(_mm256_loadu_pd(block), k0));
+      _mm256_storeu_pd(block + 4, _mm256_add_pd(_mm256_loadu_pd(block + 4), k1));
+      block[8] += k2;
+    }
+    offset -= w.offsets[a];
+  }
+  force_offset_.segment<3>(3 * i) = offset;
+  const std::vector<int>& transpose = stiffness_.transposeIndex();
+  for (int s = diagonal + 1; s < row_end; ++s) blocks[transpose[s]] = blocks[s].transpose();
+}
+#endif
+
+#if defined(__x86_64__)
+namespace {
+// R v from R's columns c0, c1, c2 (fourth lanes unused).
+__attribute__((target("avx2,fma"), always_inline)) inline __m256d rotateAvx2(__m256d c0, __m256d c1,
+                                                                             __m256d c2,
+                                                                             const double* v) {
+  const __m256d t = _mm256_mul_pd(c0, _mm256_broadcast_sd(v));
+  return _mm256_fmadd_pd(c2, _mm256_broadcast_sd(v + 2),
+                         _mm256_fmadd_pd(c1, _mm256_broadcast_sd(v + 1), t));
+}
+}  // namespace
+
+// warp(e) into warped_[e], 4-wide: R v = R_0 v_0 + R_1 v_1 + R_2 v_2 over R's columns (the last
+// read from entry 5 and rotated down a lane, so that no load leaves R). The eight results are
+// stored in order, each store's fourth lane overwritten by the next; the last one stores three.
+__attribute__((target("avx2,fma"))) void CorotationalElasticity::warpAvx2(int e) {
+  const double* r = rotations_[e].data();
+  const __m256d c0 = _mm256_loadu_pd(r), c1 = _mm256_loadu_pd(r + 3);
+  const __m256d c2 = _mm256_permute4x64_pd(_mm256_loadu_pd(r + 5), 0x39);
+
+  const __m256d root_volume = _mm256_set1_pd(std::sqrt(rest_[e].volume));
+  static_assert(sizeof(WarpedElement) == 24 * sizeof(double), "gradients then offsets, unpadded");
+  double* out = warped_[e].gradients[0].data();
+  for (int a = 0; a < 4; ++a) {
+    _mm256_storeu_pd(
+        out + 3 * a,
+        _mm256_mul_pd(root_volume, rotateAvx2(c0, c1, c2, rest_[e].gradients[a].data())));
+  }
+  for (int a = 0; a < 3; ++a)
+    _mm256_storeu_pd(out + 12 + 3 * a, rotateAvx2(c0, c1, c2, rest_forces_[e][a].data()));
+  _mm256_maskstore_pd(out + 21, _mm256_setr_epi64x(-1, -1, -1, 0),
+                      rotateAvx2(c0, c1, c2, rest_forces_[e][3].data()));
+}
+#endif
+
+void CorotationalElasticity::prefetchWarped(int e) const {
+  const char* ahead = reinterpret_cast<const char*>(&warped_[e]);
+  for (size_t byte = 0; byte < sizeof(WarpedElement); byte += 64) __builtin_prefetch(ahead + byte);
 }
 
 void CorotationalElasticity::addCells() {

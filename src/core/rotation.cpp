@@ -5,6 +5,8 @@
 #include <Eigen/SVD>
 #include <cmath>
 
+#include "deformable_sim/core/cpu_features.h"
+
 namespace deformable_sim::core {
 
 namespace {
@@ -82,8 +84,11 @@ Eigen::Matrix3d extractRotation(const Eigen::Matrix3d& deformation_gradient) {
   return extractRotationBySvd(deformation_gradient);  // not reached for det F > the threshold
 }
 
-void extractRotations(const Eigen::Matrix3d* deformation_gradients, Eigen::Matrix3d* rotations,
-                      int count) {
+namespace {
+
+// Inlined into each caller below, so that it is compiled for the caller's instruction set.
+__attribute__((always_inline)) inline void extractRotationsInLockstep(
+    const Eigen::Matrix3d* deformation_gradients, Eigen::Matrix3d* rotations, int count) {
   // The Newton-Schulz iteration of extractRotation for kRotationBatch matrices in lockstep, entry
   // by entry across them (x[k][l]: entry k, column-major, of matrix l), a form the compiler
   // vectorizes. Every matrix takes updates until all have converged; the extra ones keep a
@@ -148,6 +153,32 @@ void extractRotations(const Eigen::Matrix3d* deformation_gradients, Eigen::Matri
     }
     for (int k = 0; k < 9; ++k) rotations[l].data()[k] = x[k][l];
   }
+}
+
+void extractRotationsPortable(const Eigen::Matrix3d* deformation_gradients,
+                              Eigen::Matrix3d* rotations, int count) {
+  extractRotationsInLockstep(deformation_gradients, rotations, count);
+}
+
+#if defined(__x86_64__)
+// Four lanes: one 4-wide vector per entry.
+__attribute__((target("avx2,fma"))) void extractRotationsAvx2(
+    const Eigen::Matrix3d* deformation_gradients, Eigen::Matrix3d* rotations, int count) {
+  extractRotationsInLockstep(deformation_gradients, rotations, count);
+}
+#endif
+
+}  // namespace
+
+void extractRotations(const Eigen::Matrix3d* deformation_gradients, Eigen::Matrix3d* rotations,
+                      int count) {
+#if defined(__x86_64__)
+  if (hasAvx2Fma()) {
+    extractRotationsAvx2(deformation_gradients, rotations, count);
+    return;
+  }
+#endif
+  extractRotationsPortable(deformation_gradients, rotations, count);
 }
 
 }  // namespace deformable_sim::core

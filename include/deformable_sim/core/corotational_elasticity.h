@@ -43,9 +43,8 @@ class CorotationalElasticity {
   RotationUpdate updateRotations(const Eigen::VectorXd& x);
   void assemble();
 
-  /// Threads for the element and row loops (1: none started). One thread adds element by element,
-  /// several row by row; either way every block of K' sums its elements in element order, so the
-  /// results are identical.
+  /// Threads for the element and row loops (1: none started). K' is assembled row by row on any
+  /// count, every block summing its elements in element order, so the results are identical.
   void setThreads(int threads);
 
   double lambda() const { return lambda_; }                          ///< Lame's first parameter, Pa
@@ -72,8 +71,12 @@ class CorotationalElasticity {
   void listIncidences(int num_nodes);
   /// Each cell's rest stiffness and rest-force offset for the current material.
   void setCellStiffness();
+  /// Row i of K' (its diagonal and upper blocks, and their transposes into the rows below) and of
+  /// f0', from warped_. Rows are disjoint, so threads may take any of them at once.
+  void assembleRowPortable(int i);
+  void assembleRowAvx2(int i);  ///< the same with 4-wide vectors (other bits: FMA)
+  void prefetchWarped(int e) const;
   /// Adds the warped cells to K' and f0'.
-  void copyLowerBlocks();
   void addCells();
   static CellVectors currentCorners(const Cell& cell, const Eigen::VectorXd& x);
 
@@ -103,7 +106,8 @@ class CorotationalElasticity {
     std::array<Eigen::Vector3d, 4> gradients, offsets;
   };
   WarpedElement warp(int e) const;
-  /// Per element, for the row-by-row assembly on several threads.
+  void warpAvx2(int e);  ///< warped_[e] = warp(e) with 4-wide vectors (other bits: FMA)
+  /// Per element, for the row-by-row assembly.
   std::vector<WarpedElement> warped_;
   std::vector<Eigen::Matrix3d> rotations_;
   /// Tetrahedra: the energy V psi(R^T F - I); cells: 1/2 u^T Ke u with u_i = R^T x_i - x0_i.
