@@ -256,10 +256,26 @@ void CorotationalElasticity::assemble() {
   addCells();
 }
 
+void CorotationalElasticity::startRow(int i) {
+  std::vector<Eigen::Matrix3d>& blocks = stiffness_.blocks();
+  for (int s = stiffness_.diagonalIndex(i); s < stiffness_.rowStart()[i + 1]; ++s) {
+    blocks[s].setZero();
+  }
+}
+
+void CorotationalElasticity::finishRow(int i, const Eigen::Vector3d& offset) {
+  force_offset_.segment<3>(3 * i) = offset;
+  // Row i's upper blocks are summed: their transposes are the lower blocks of later rows.
+  std::vector<Eigen::Matrix3d>& blocks = stiffness_.blocks();
+  const std::vector<int>& transpose = stiffness_.transposeIndex();
+  for (int s = stiffness_.diagonalIndex(i) + 1; s < stiffness_.rowStart()[i + 1]; ++s) {
+    blocks[transpose[s]] = blocks[s].transpose();
+  }
+}
+
 void CorotationalElasticity::assembleRowPortable(int i) {
   std::vector<Eigen::Matrix3d>& blocks = stiffness_.blocks();
-  const int diagonal = stiffness_.diagonalIndex(i), row_end = stiffness_.rowStart()[i + 1];
-  for (int s = diagonal; s < row_end; ++s) blocks[s].setZero();
+  startRow(i);
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();
   const int last = static_cast<int>(incidences_.size()) - 1;
   for (int k = incidence_start_[i]; k < incidence_start_[i + 1]; ++k) {
@@ -273,10 +289,7 @@ void CorotationalElasticity::assembleRowPortable(int i) {
     }
     offset -= w.offsets[a];
   }
-  force_offset_.segment<3>(3 * i) = offset;
-  // Row i's upper blocks are summed: their transposes are the lower blocks of later rows.
-  const std::vector<int>& transpose = stiffness_.transposeIndex();
-  for (int s = diagonal + 1; s < row_end; ++s) blocks[transpose[s]] = blocks[s].transpose();
+  finishRow(i, offset);
 }
 
 #if defined(__x86_64__)
@@ -285,8 +298,7 @@ void CorotationalElasticity::assembleRowPortable(int i) {
 // so that each block is read and written with two vector loads and stores and one scalar.
 __attribute__((target("avx2,fma"))) void CorotationalElasticity::assembleRowAvx2(int i) {
   std::vector<Eigen::Matrix3d>& blocks = stiffness_.blocks();
-  const int diagonal = stiffness_.diagonalIndex(i), row_end = stiffness_.rowStart()[i + 1];
-  for (int s = diagonal; s < row_end; ++s) blocks[s].setZero();
+  startRow(i);
   const __m256d lambda = _mm256_set1_pd(lambda_), mu = _mm256_set1_pd(mu_);
   const __m256d first_lane = _mm256_setr_pd(1.0, 0.0, 0.0, 0.0);
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();
@@ -325,9 +337,7 @@ __attribute__((target("avx2,fma"))) void CorotationalElasticity::assembleRowAvx2
     }
     offset -= w.offsets[a];
   }
-  force_offset_.segment<3>(3 * i) = offset;
-  const std::vector<int>& transpose = stiffness_.transposeIndex();
-  for (int s = diagonal + 1; s < row_end; ++s) blocks[transpose[s]] = blocks[s].transpose();
+  finishRow(i, offset);
 }
 #endif
 

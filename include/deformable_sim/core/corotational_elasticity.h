@@ -75,6 +75,9 @@ class CorotationalElasticity {
   /// f0', from warped_. Rows are disjoint, so threads may take any of them at once.
   void assembleRowPortable(int i);
   void assembleRowAvx2(int i);  ///< the same with 4-wide vectors (other bits: FMA)
+  void startRow(int i);         ///< zeroes row i's diagonal and upper blocks
+  /// Stores row i of f0' and writes the transposes of its (summed) upper blocks below.
+  void finishRow(int i, const Eigen::Vector3d& offset);
   void prefetchWarped(int e) const;
   /// Adds the warped cells to K' and f0'.
   void addCells();
