@@ -1,5 +1,7 @@
 #include "deformable_sim/core/linear_solver.h"
 
+#include <omp.h>
+
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -116,12 +118,16 @@ void ConjugateGradientSolver::precondition(const ConstraintMask& constrained,
 
 namespace {
 
-// A loop shared by the threads of the enclosing parallel region (static schedule, a barrier at
-// its end), or run whole by the calling thread outside one.
+// A loop shared by the threads of the enclosing parallel region in contiguous, near-equal parts
+// (OpenMP's static schedule), ending at the barrier; run whole by the calling thread outside one.
 template <typename Function>
-void shareLoop(int begin, int end, Function&& body) {
-#pragma omp for schedule(static)
-  for (int i = begin; i < end; ++i) body(i);
+void shareLoop(SpinBarrier& barrier, int begin, int end, Function&& body) {
+  const int threads = omp_get_num_threads(), thread = omp_get_thread_num();
+  const int share = (end - begin) / threads, extra = (end - begin) % threads;
+  const int first = begin + thread * share + std::min(thread, extra);
+  const int last = first + share + (thread < extra ? 1 : 0);
+  for (int i = first; i < last; ++i) body(i);
+  barrier.arriveAndWait();
 }
 
 // The sum of per-chunk partial sums in chunk order: every thread gets the same bits.
@@ -140,6 +146,8 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
   // partials in the same order, so all take the same branches and meet at the same barriers.
   const int num_nodes = a.stiffness->numBlockRows();
   const int num_chunks = static_cast<int>(pq_partials_.size());
+  const bool first_thread = omp_get_thread_num() == 0;
+  SpinBarrier& barrier = team_->barrier;
   auto chunkEnd = [&](int c) { return std::min(num_nodes, (c + 1) * kChunkNodes); };
   double rz = total(rz_partials_);
   double residual = std::sqrt(total(rr_partials_)) / reference;
@@ -159,7 +167,7 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
   while ((residual > settings.tolerance || iterations < min_iterations) &&
          iterations < settings.max_iterations) {
     // q = A p (zero on constrained rows), and p . q.
-    shareLoop(0, num_chunks, [&](int c) {
+    shareLoop(barrier, 0, num_chunks, [&](int c) {
       multiplyRows(a, c * kChunkNodes, chunkEnd(c), p_, q_);
       for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
         if (constrained[i]) q_.segment<3>(3 * i).setZero();
@@ -170,32 +178,34 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
     if (!(pq > 0.0)) break;  // not positive definite along p (or NaN): stop, report below
     const double alpha = rz / pq;
     // x += alpha p, r -= alpha q, and |r|^2.
-    shareLoop(0, num_chunks, [&](int c) {
+    shareLoop(barrier, 0, num_chunks, [&](int c) {
       chunk(x, c) += alpha * chunk(p_, c);
       chunk(r_, c) -= alpha * chunk(q_, c);
       rr_partials_[c] = chunk(r_, c).squaredNorm();
     });
     // z = B r, and r . z.
     if (factorization_) {
-#pragma omp single
-      factorization_->applyInverse(r_, z_);
-      shareLoop(0, num_chunks, [&](int c) { rz_partials_[c] = chunk(r_, c).dot(chunk(z_, c)); });
+      if (first_thread) factorization_->applyInverse(r_, z_);
+      barrier.arriveAndWait();
+      shareLoop(barrier, 0, num_chunks,
+                [&](int c) { rz_partials_[c] = chunk(r_, c).dot(chunk(z_, c)); });
     } else if (coarse_) {
-      shareLoop(0, coarse_->numAggregates(),
+      shareLoop(barrier, 0, coarse_->numAggregates(),
                 [&](int g) { coarse_->restrictTo(g, constrained, r_); });
-      // One thread solves the coarse system while the others start on block-Jacobi.
-#pragma omp single nowait
-      coarse_->solveCoarse();
-#pragma omp for schedule(dynamic)
-      for (int c = 0; c < num_chunks; ++c) blockJacobi(c);
+      // One thread solves the coarse system while the others start on block-Jacobi's chunks.
+      if (first_thread) coarse_->solveCoarse();
+      std::atomic<int>& next_chunk = team_->next_chunk;
+      for (int c = next_chunk++; c < num_chunks; c = next_chunk++) blockJacobi(c);
+      barrier.arriveAndWait();
+      if (first_thread) next_chunk = 0;  // for the next iteration: barriers come first
     } else {
-      shareLoop(0, num_chunks, blockJacobi);
+      shareLoop(barrier, 0, num_chunks, blockJacobi);
     }
     // With the coarse correction z = z_J + P z_c, r . z = r . z_J + (P^T r) . z_c: the coarse
     // part is known as soon as z_c is, so the prolongation and the update of p take one pass.
     const double rz_next = total(rz_partials_) + (coarse_ ? coarse_->correctionDot() : 0.0);
     const double beta = rz_next / rz;
-    shareLoop(0, num_chunks, [&](int c) {
+    shareLoop(barrier, 0, num_chunks, [&](int c) {
       if (coarse_) {
         for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
           if (!constrained[i]) z_.segment<3>(3 * i) += coarse_->correction(i);
@@ -207,8 +217,7 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
     residual = std::sqrt(total(rr_partials_)) / reference;
     ++iterations;
   }
-#pragma omp master
-  {
+  if (first_thread) {
     report.iterations = iterations;
     report.relative_residual = residual;
   }
@@ -296,10 +305,17 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
     rr_partials_[c] = r_.segment(begin, size).squaredNorm();
   }
   // One parallel region for all the iterations: starting one costs more than a short loop.
+  team_->next_chunk = 0;
   if (a.threads > 1) {
 #pragma omp parallel num_threads(a.threads)
-    iterate(a, constrained, settings, reference, projected ? 1 : 0, x, report);
+    {
+      // The team OpenMP gave (it may be smaller than asked) is the one the barrier waits for.
+#pragma omp single
+      team_->barrier.reset(omp_get_num_threads());
+      iterate(a, constrained, settings, reference, projected ? 1 : 0, x, report);
+    }
   } else {
+    team_->barrier.reset(1);
     iterate(a, constrained, settings, reference, projected ? 1 : 0, x, report);
   }
   report.converged = report.relative_residual <= settings.tolerance;

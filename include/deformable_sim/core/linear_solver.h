@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "deformable_sim/core/preordered_ldlt.h"
 #include "deformable_sim/core/previous_solutions.h"
 #include "deformable_sim/core/rigid_mode_coarse_space.h"
+#include "deformable_sim/core/spin_barrier.h"
 
 namespace deformable_sim::core {
 
@@ -106,6 +108,13 @@ class ConjugateGradientSolver {
 
   static constexpr int kChunkNodes = 32;  ///< nodes per partial sum of a dot product
 
+  /// What the iterations' threads share besides the vectors (held by pointer: atomics do not
+  /// move, the solver does).
+  struct Team {
+    SpinBarrier barrier;
+    std::atomic<int> next_chunk{0};  ///< of block-Jacobi's loop, whose chunks threads claim
+  };
+
   std::vector<Eigen::Matrix3d> inverse_diagonal_;
   Eigen::VectorXd r_, z_, p_, q_;
   /// Per chunk of nodes: p . q, |r|^2 and r . z. Three buffers, so that no thread overwrites
@@ -113,7 +122,8 @@ class ConjugateGradientSolver {
   std::vector<double> pq_partials_, rr_partials_, rz_partials_;
   std::unique_ptr<RigidModeCoarseSpace> coarse_;
   std::unique_ptr<DirectSolver> factorization_;  ///< Preconditioner::kFactorization
-  PreviousSolutions previous_;                   ///< WarmStart::kProjected
+  std::unique_ptr<Team> team_ = std::make_unique<Team>();
+  PreviousSolutions previous_;  ///< WarmStart::kProjected
   ConstraintMask previous_constraints_;
   double previous_mass_coefficient_ = 0.0, previous_stiffness_coefficient_ = 0.0;
   ConstraintMask factorized_constraints_;
