@@ -84,17 +84,17 @@ void RigidModeCoarseSpace::build(const BlockSparseMatrix& k, int rings) {
       neighbours[aggregate_[i]].push_back(aggregate_[columns[s]]);
     }
   }
-  std::vector<int> coarse_row_start{0};
+  coarse_row_start_.assign(1, 0);
   std::vector<int> coarse_columns;
   for (std::vector<int>& row : neighbours) {
     std::sort(row.begin(), row.end());
     row.erase(std::unique(row.begin(), row.end()), row.end());
     coarse_columns.insert(coarse_columns.end(), row.begin(), row.end());
-    coarse_row_start.push_back(static_cast<int>(coarse_columns.size()));
+    coarse_row_start_.push_back(static_cast<int>(coarse_columns.size()));
   }
   auto coarseBlock = [&](int a, int b) {
-    const auto begin = coarse_columns.begin() + coarse_row_start[a];
-    const auto end = coarse_columns.begin() + coarse_row_start[a + 1];
+    const auto begin = coarse_columns.begin() + coarse_row_start_[a];
+    const auto end = coarse_columns.begin() + coarse_row_start_[a + 1];
     return static_cast<int>(std::lower_bound(begin, end, b) - coarse_columns.begin());
   };
   coarse_block_.resize(columns.size());
@@ -109,7 +109,7 @@ void RigidModeCoarseSpace::build(const BlockSparseMatrix& k, int rings) {
   std::vector<std::pair<int, int>> entries;
   entries.reserve(36 * coarse_columns.size());
   for (int a = 0; a < num_aggregates_; ++a) {
-    for (int s = coarse_row_start[a]; s < coarse_row_start[a + 1]; ++s) {
+    for (int s = coarse_row_start_[a]; s < coarse_row_start_[a + 1]; ++s) {
       for (int e = 0; e < 36; ++e)
         entries.emplace_back(6 * a + e / 6, 6 * coarse_columns[s] + e % 6);
     }
@@ -124,6 +124,12 @@ void RigidModeCoarseSpace::build(const BlockSparseMatrix& k, int rings) {
     }
     dense_coarse_.resize(size);
   }
+  // Blocks whose every entry is its symmetric partner's are not computed at all.
+  coarse_block_stored_.assign(coarse_columns.size(), 0);
+  for (size_t b = 0; b < coarse_columns.size(); ++b) {
+    for (int e = 0; e < 36; ++e) coarse_block_stored_[b] |= coarse_value_[36 * b + e] >= 0;
+  }
+  coarse_blocks_.resize(coarse_columns.size());
   coarse_rhs_.resize(size);
   modes_.resize(size);
   offset_.resize(n);
@@ -151,16 +157,15 @@ void RigidModeCoarseSpace::refresh(const SystemMatrix& a, const ConstraintMask& 
 
   // A_c = sum over blocks (i, j) of P_i^T A_ij P_j with P_i = [I, -[d_i]x]: the 3 x 6 map from
   // an aggregate's translation t and rotation w to node i's displacement t + w x d_i.
-  if (dense_) {
-    dense_coarse_.matrix().setZero();
-  } else {
-    coarse_.setZero();
-  }
+  // Every stored entry is written below: no zeroing. Aggregate by aggregate on the solver's
+  // threads: the blocks of an aggregate's rows are summed by that aggregate alone, each over its
+  // nodes' blocks in node order, as one loop over all nodes would: the same bits on any count.
+  // Summed as whole 6 x 6 blocks (contiguous, vectorized), each then stored once.
   double* values = dense_ ? dense_coarse_.matrix().data() : coarse_.values();
-  // Aggregate by aggregate on the solver's threads: the entries of an aggregate's rows are
-  // stored by that aggregate alone (the symmetric partner of each is not stored), and each sums
-  // its nodes' blocks in node order, as one loop over all nodes would: the same bits on any count.
   parallelFor(a.threads, 0, num_aggregates_, [&](int g) {
+    for (int b = coarse_row_start_[g]; b < coarse_row_start_[g + 1]; ++b) {
+      coarse_blocks_[b].setZero();
+    }
     double largest = 0.0;
     for (int m = member_start_[g]; m < member_start_[g + 1]; ++m) {
       const int i = members_[m];
@@ -168,7 +173,7 @@ void RigidModeCoarseSpace::refresh(const SystemMatrix& a, const ConstraintMask& 
       const Eigen::Matrix3d di = crossMatrix(offset_[i]);
       for (int s = k.rowStart()[i]; s < k.rowStart()[i + 1]; ++s) {
         const int j = k.columns()[s];
-        if (constrained[j]) continue;
+        if (constrained[j] || !coarse_block_stored_[coarse_block_[s]]) continue;
         Eigen::Matrix3d aij = a.stiffness_coefficient * k.blocks()[s];
         if (i == j && a.mass_coefficient != 0.0) {
           aij.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
@@ -176,14 +181,17 @@ void RigidModeCoarseSpace::refresh(const SystemMatrix& a, const ConstraintMask& 
         Eigen::Matrix<double, 3, 6> t;  // A_ij P_j
         t.leftCols<3>() = aij;
         t.rightCols<3>().noalias() = -aij * crossMatrix(offset_[j]);
-        Eigen::Matrix<double, 6, 6> block;  // P_i^T A_ij P_j; -[d]x^T = [d]x
-        block.topRows<3>() = t;
-        block.bottomRows<3>().noalias() = di * t;
-        const int* slot = &coarse_value_[36 * coarse_block_[s]];
-        for (int e = 0; e < 36; ++e) {
-          if (slot[e] >= 0) values[slot[e]] += block(e / 6, e % 6);
-        }
+        // P_i^T A_ij P_j; -[d]x^T = [d]x
+        Eigen::Matrix<double, 6, 6>& block = coarse_blocks_[coarse_block_[s]];
+        block.topRows<3>() += t;
+        block.bottomRows<3>().noalias() += di * t;
         if (i == j) largest = std::max(largest, aij.diagonal().maxCoeff());
+      }
+    }
+    for (int b = coarse_row_start_[g]; b < coarse_row_start_[g + 1]; ++b) {
+      const int* slot = &coarse_value_[36 * b];
+      for (int e = 0; e < 36; ++e) {
+        if (slot[e] >= 0) values[slot[e]] = coarse_blocks_[b](e / 6, e % 6);
       }
     }
     largest_diagonal_[g] = largest;

@@ -118,23 +118,14 @@ core::SceneSpec sceneSpec(const Scene& scene) {
   return spec;
 }
 
-double maxDifference(const std::vector<geometry_msgs::Point>& recorded, const Eigen::VectorXd& x) {
+// The largest difference between recorded points or vectors and the 3n entries of x.
+template <typename Entry>
+double maxDifference(const std::vector<Entry>& recorded, const Eigen::VectorXd& x) {
   double largest = 0.0;
   for (size_t i = 0; i < recorded.size(); ++i) {
-    largest =
-        std::max({largest, std::abs(recorded[i].x - x[3 * i]),
-                  std::abs(recorded[i].y - x[3 * i + 1]), std::abs(recorded[i].z - x[3 * i + 2])});
-  }
-  return largest;
-}
-
-double maxDifference(const std::vector<geometry_msgs::Vector3>& recorded,
-                     const Eigen::VectorXd& v) {
-  double largest = 0.0;
-  for (size_t i = 0; i < recorded.size(); ++i) {
-    largest =
-        std::max({largest, std::abs(recorded[i].x - v[3 * i]),
-                  std::abs(recorded[i].y - v[3 * i + 1]), std::abs(recorded[i].z - v[3 * i + 2])});
+    largest = std::max(largest, std::abs(recorded[i].x - x[3 * i]));
+    largest = std::max(largest, std::abs(recorded[i].y - x[3 * i + 1]));
+    largest = std::max(largest, std::abs(recorded[i].z - x[3 * i + 2]));
   }
   return largest;
 }

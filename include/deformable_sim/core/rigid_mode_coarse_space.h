@@ -68,8 +68,11 @@ class RigidModeCoarseSpace {
   std::vector<Eigen::Vector3d> centroid_;
   std::vector<int> centroid_count_;
   std::vector<double> largest_diagonal_;  ///< per aggregate, of its nodes' diagonal blocks
-  /// Per block of A (in the order of its storage): where block (agg(i), agg(j)) of A_c starts.
+  /// Per block of A (in the order of its storage): block (agg(i), agg(j)) of A_c.
   std::vector<int> coarse_block_;
+  std::vector<int> coarse_row_start_;  ///< the coarse blocks of aggregate g's rows, contiguous
+  std::vector<std::uint8_t> coarse_block_stored_;  ///< 0 where the symmetric partner is stored
+  std::vector<Eigen::Matrix<double, 6, 6>> coarse_blocks_;  ///< per coarse block: its sum
   PreorderedLdlt coarse_;  ///< A_c and its factorization (sparse storage)
   bool dense_ = false;
   DenseCholesky dense_coarse_;     ///< A_c and its factorization (dense storage)
