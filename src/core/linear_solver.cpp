@@ -101,21 +101,6 @@ void ConjugateGradientSolver::refreshPreconditioner(const SystemMatrix& a,
   }
 }
 
-// z = B r: block-Jacobi, plus the coarse correction (additive: the two parts see the same r, so
-// B stays symmetric positive definite and costs no extra product with A).
-void ConjugateGradientSolver::precondition(const ConstraintMask& constrained,
-                                           const Eigen::VectorXd& r, Eigen::VectorXd& z) {
-  if (factorization_) {
-    factorization_->applyInverse(r, z);
-    return;
-  }
-  const int num_nodes = static_cast<int>(inverse_diagonal_.size());
-  for (int i = 0; i < num_nodes; ++i) {
-    z.segment<3>(3 * i).noalias() = inverse_diagonal_[i] * r.segment<3>(3 * i);
-  }
-  if (coarse_) coarse_->addCorrection(constrained, r, z);
-}
-
 namespace {
 
 // A loop shared by the threads of the enclosing parallel region in contiguous, near-equal parts
@@ -140,8 +125,9 @@ double total(const std::vector<double>& partials) {
 }  // namespace
 
 void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMask& constrained,
-                                      const SolverSettings& settings, double reference,
-                                      int min_iterations, Eigen::VectorXd& x, SolveReport& report) {
+                                      const Eigen::VectorXd& b, const SolverSettings& settings,
+                                      double reference, int min_iterations, Eigen::VectorXd& x,
+                                      SolveReport& report) {
   // Run by every thread of the team with its own copy of the scalars: each sums the same
   // partials in the same order, so all take the same branches and meet at the same barriers.
   const int num_nodes = a.stiffness->numBlockRows();
@@ -149,8 +135,6 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
   const bool first_thread = omp_get_thread_num() == 0;
   SpinBarrier& barrier = team_->barrier;
   auto chunkEnd = [&](int c) { return std::min(num_nodes, (c + 1) * kChunkNodes); };
-  double rz = total(rz_partials_);
-  double residual = std::sqrt(total(rr_partials_)) / reference;
   int iterations = 0;
   // Chunk c of a vector: its nodes' entries, one contiguous (vectorized) segment.
   auto chunk = [&](Eigen::VectorXd& v, int c) {
@@ -164,6 +148,54 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
     }
     rz_partials_[c] = chunk(r_, c).dot(chunk(z_, c));
   };
+  // z = B r: block-Jacobi plus the coarse correction (additive: the two parts see the same r, so
+  // B stays symmetric positive definite and costs no extra product with A), and r . z: with the
+  // coarse space, block-Jacobi's part of it (the correction is added with the update of p).
+  auto precondition = [&]() {
+    if (factorization_) {
+      if (first_thread) factorization_->applyInverse(r_, z_);
+      barrier.arriveAndWait();
+      shareLoop(barrier, 0, num_chunks,
+                [&](int c) { rz_partials_[c] = chunk(r_, c).dot(chunk(z_, c)); });
+    } else if (coarse_) {
+      shareLoop(barrier, 0, coarse_->numAggregates(),
+                [&](int g) { coarse_->restrictTo(g, constrained, r_); });
+      // One thread solves the coarse system while the others start on block-Jacobi's chunks.
+      if (first_thread) coarse_->solveCoarse();
+      std::atomic<int>& next_chunk = team_->next_chunk;
+      for (int c = next_chunk++; c < num_chunks; c = next_chunk++) blockJacobi(c);
+      barrier.arriveAndWait();
+      if (first_thread) next_chunk = 0;  // for the next use: barriers come first
+    } else {
+      shareLoop(barrier, 0, num_chunks, blockJacobi);
+    }
+  };
+  // z + the coarse correction, on chunk c.
+  auto addCorrection = [&](int c) {
+    if (!coarse_) return;
+    for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
+      if (!constrained[i]) z_.segment<3>(3 * i) += coarse_->correction(i);
+    }
+  };
+
+  // The first residual r = b - A x (zero on constrained rows), its preconditioned z, p = z.
+  shareLoop(barrier, 0, num_chunks, [&](int c) {
+    multiplyRows(a, c * kChunkNodes, chunkEnd(c), x, q_);
+    for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
+      r_.segment<3>(3 * i) = constrained[i]
+                                 ? Eigen::Vector3d::Zero()
+                                 : Eigen::Vector3d(b.segment<3>(3 * i) - q_.segment<3>(3 * i));
+    }
+    rr_partials_[c] = chunk(r_, c).squaredNorm();
+  });
+  precondition();
+  shareLoop(barrier, 0, num_chunks, [&](int c) {
+    addCorrection(c);
+    chunk(p_, c) = chunk(z_, c);
+    rz_partials_[c] = chunk(r_, c).dot(chunk(z_, c));
+  });
+  double rz = total(rz_partials_);
+  double residual = std::sqrt(total(rr_partials_)) / reference;
   while ((residual > settings.tolerance || iterations < min_iterations) &&
          iterations < settings.max_iterations) {
     // q = A p (zero on constrained rows), and p . q.
@@ -183,34 +215,13 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
       chunk(r_, c) -= alpha * chunk(q_, c);
       rr_partials_[c] = chunk(r_, c).squaredNorm();
     });
-    // z = B r, and r . z.
-    if (factorization_) {
-      if (first_thread) factorization_->applyInverse(r_, z_);
-      barrier.arriveAndWait();
-      shareLoop(barrier, 0, num_chunks,
-                [&](int c) { rz_partials_[c] = chunk(r_, c).dot(chunk(z_, c)); });
-    } else if (coarse_) {
-      shareLoop(barrier, 0, coarse_->numAggregates(),
-                [&](int g) { coarse_->restrictTo(g, constrained, r_); });
-      // One thread solves the coarse system while the others start on block-Jacobi's chunks.
-      if (first_thread) coarse_->solveCoarse();
-      std::atomic<int>& next_chunk = team_->next_chunk;
-      for (int c = next_chunk++; c < num_chunks; c = next_chunk++) blockJacobi(c);
-      barrier.arriveAndWait();
-      if (first_thread) next_chunk = 0;  // for the next iteration: barriers come first
-    } else {
-      shareLoop(barrier, 0, num_chunks, blockJacobi);
-    }
+    precondition();
     // With the coarse correction z = z_J + P z_c, r . z = r . z_J + (P^T r) . z_c: the coarse
     // part is known as soon as z_c is, so the prolongation and the update of p take one pass.
     const double rz_next = total(rz_partials_) + (coarse_ ? coarse_->correctionDot() : 0.0);
     const double beta = rz_next / rz;
     shareLoop(barrier, 0, num_chunks, [&](int c) {
-      if (coarse_) {
-        for (int i = c * kChunkNodes; i < chunkEnd(c); ++i) {
-          if (!constrained[i]) z_.segment<3>(3 * i) += coarse_->correction(i);
-        }
-      }
+      addCorrection(c);
       chunk(p_, c) = chunk(z_, c) + beta * chunk(p_, c);
     });
     rz = rz_next;
@@ -292,18 +303,6 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
     projected = previous_.guess(r_, constrained, x, a.threads);
   }
 
-  a.multiply(x, q_);
-  r_ = b - q_;
-  zeroConstrained(constrained, r_);
-  precondition(constrained, r_, z_);
-  p_ = z_;
-  // The first r . z and |r|^2, summed in the chunks the iterations use.
-  for (size_t c = 0; c < rz_partials_.size(); ++c) {
-    const int begin = 3 * kChunkNodes * static_cast<int>(c);
-    const int size = std::min(3 * kChunkNodes, static_cast<int>(r_.size()) - begin);
-    rz_partials_[c] = r_.segment(begin, size).dot(z_.segment(begin, size));
-    rr_partials_[c] = r_.segment(begin, size).squaredNorm();
-  }
   // One parallel region for all the iterations: starting one costs more than a short loop.
   team_->next_chunk = 0;
   if (a.threads > 1) {
@@ -312,11 +311,11 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
       // The team OpenMP gave (it may be smaller than asked) is the one the barrier waits for.
 #pragma omp single
       team_->barrier.reset(omp_get_num_threads());
-      iterate(a, constrained, settings, reference, projected ? 1 : 0, x, report);
+      iterate(a, constrained, b, settings, reference, projected ? 1 : 0, x, report);
     }
   } else {
     team_->barrier.reset(1);
-    iterate(a, constrained, settings, reference, projected ? 1 : 0, x, report);
+    iterate(a, constrained, b, settings, reference, projected ? 1 : 0, x, report);
   }
   report.converged = report.relative_residual <= settings.tolerance;
   if (project && report.converged) previous_.add(x, constrained);

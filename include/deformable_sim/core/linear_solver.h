@@ -99,10 +99,9 @@ class ConjugateGradientSolver {
  private:
   void refreshPreconditioner(const SystemMatrix& a, const ConstraintMask& constrained,
                              const SolverSettings& settings);
-  void precondition(const ConstraintMask& constrained, const Eigen::VectorXd& r,
-                    Eigen::VectorXd& z);
-  /// The iterations from the first residual on; run by each thread of a parallel region.
-  void iterate(const SystemMatrix& a, const ConstraintMask& constrained,
+  /// The first residual r = b - A x and the iterations from it; run by each thread of a
+  /// parallel region.
+  void iterate(const SystemMatrix& a, const ConstraintMask& constrained, const Eigen::VectorXd& b,
                const SolverSettings& settings, double reference, int min_iterations,
                Eigen::VectorXd& x, SolveReport& report);
 
