@@ -1,6 +1,8 @@
 #include "deformable_sim/core/linear_solver.h"
 
+#if defined(_OPENMP)
 #include <omp.h>
+#endif
 
 #include <Eigen/LU>
 #include <algorithm>
@@ -11,6 +13,24 @@
 namespace deformable_sim::core {
 
 namespace {
+
+// The calling thread's team: its size and this thread's place in it (1 and 0 outside a parallel
+// region, or in a build without OpenMP).
+int teamSize() {
+#if defined(_OPENMP)
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
+
+int threadInTeam() {
+#if defined(_OPENMP)
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
 
 void zeroConstrained(const ConstraintMask& constrained, Eigen::VectorXd& v) {
   for (size_t i = 0; i < constrained.size(); ++i) {
@@ -107,7 +127,7 @@ namespace {
 // (OpenMP's static schedule), ending at the barrier; run whole by the calling thread outside one.
 template <typename Function>
 void shareLoop(SpinBarrier& barrier, int begin, int end, Function&& body) {
-  const int threads = omp_get_num_threads(), thread = omp_get_thread_num();
+  const int threads = teamSize(), thread = threadInTeam();
   const int share = (end - begin) / threads, extra = (end - begin) % threads;
   const int first = begin + thread * share + std::min(thread, extra);
   const int last = first + share + (thread < extra ? 1 : 0);
@@ -132,7 +152,7 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
   // partials in the same order, so all take the same branches and meet at the same barriers.
   const int num_nodes = a.stiffness->numBlockRows();
   const int num_chunks = static_cast<int>(pq_partials_.size());
-  const bool first_thread = omp_get_thread_num() == 0;
+  const bool first_thread = threadInTeam() == 0;
   SpinBarrier& barrier = team_->barrier;
   auto chunkEnd = [&](int c) { return std::min(num_nodes, (c + 1) * kChunkNodes); };
   int iterations = 0;
@@ -310,7 +330,7 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
     {
       // The team OpenMP gave (it may be smaller than asked) is the one the barrier waits for.
 #pragma omp single
-      team_->barrier.reset(omp_get_num_threads());
+      team_->barrier.reset(teamSize());
       iterate(a, constrained, b, settings, reference, projected ? 1 : 0, x, report);
     }
   } else {

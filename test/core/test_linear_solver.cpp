@@ -6,14 +6,19 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <array>
+#include <atomic>
+#include <thread>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/corotational_elasticity.h"
 #include "deformable_sim/core/dense_cholesky.h"
 #include "deformable_sim/core/linear_solver.h"
 #include "deformable_sim/core/rigid_mode_coarse_space.h"
+#include "deformable_sim/core/spin_barrier.h"
 
 namespace dc = deformable_sim::core;
 
@@ -152,6 +157,30 @@ TEST(LinearSolver, CoarseCorrectionIsExactOnRigidMotions) {
           << "mode " << mode << ", " << system.mesh.numNodes() << " nodes";
     }
   }
+}
+
+TEST(SpinBarrier, NoThreadPassesBeforeAllHaveArrivedAndAllSeeWhatEachWrote) {
+  // Three threads (more than this machine's cores, so some wait descheduled) meet 2 000 times:
+  // each writes its round before a meeting and checks every other's after it; a second meeting
+  // keeps the next round's writes from racing the checks.
+  constexpr int kThreads = 3, kRounds = 2000;
+  dc::SpinBarrier barrier;
+  barrier.reset(kThreads);
+  std::array<int, kThreads> round{};
+  std::atomic<int> mismatches{0};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t) {
+    threads.emplace_back([&, t] {
+      for (int k = 1; k <= kRounds; ++k) {
+        round[t] = k;
+        barrier.arriveAndWait();
+        for (int other : round) mismatches += other != k;
+        barrier.arriveAndWait();
+      }
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  EXPECT_EQ(mismatches.load(), 0);
 }
 
 TEST(DenseCholesky, SolvesAsEigensCholesky) {

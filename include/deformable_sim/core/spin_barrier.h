@@ -2,12 +2,14 @@
 // threads meet five times an iteration, a few microseconds apart: libgomp's barrier makes a
 // futex system call at each one even when nobody sleeps (0.25 us against 0.04 us here for two
 // threads, ~20 us of a 0.43 ms step), and std::barrier puts waiters to sleep (measured slower
-// still). Waits longer than a few thousand spins (a thread descheduled) yield the core.
+// still). A wait longer than a few thousand spins (a thread descheduled) sleeps, and the last
+// thread to arrive wakes sleepers only when there are any.
 #pragma once
 
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
-#include <thread>
+#include <mutex>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
@@ -28,19 +30,31 @@ class SpinBarrier {
   void arriveAndWait() {
     // One counter of arrivals that never goes back (64 bits do not wrap): the k-th meeting is
     // complete when it reaches k * threads. One cache line, one atomic add a thread.
-    const std::uint64_t ticket = arrivals_.fetch_add(1, std::memory_order_acq_rel);
+    const std::uint64_t ticket = arrivals_.fetch_add(1, std::memory_order_seq_cst);
     const std::uint64_t complete = (ticket / threads_ + 1) * threads_;
-    for (int spins = 0; arrivals_.load(std::memory_order_acquire) < complete; ++spins) {
-      if (spins < kSpinsBeforeYield) {
-        pause();
-      } else {
-        std::this_thread::yield();
+    if (ticket + 1 == complete) {
+      // The last to arrive wakes those asleep, if any (seq_cst: a sleeper either counts itself
+      // before this load or sees the arrival in its own check).
+      if (sleepers_.load(std::memory_order_seq_cst) > 0) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        wake_.notify_all();
       }
+      return;
     }
+    for (int spins = 0; spins < kSpinsBeforeSleep; ++spins) {
+      if (arrivals_.load(std::memory_order_acquire) >= complete) return;
+      pause();
+    }
+    // A long wait (another thread descheduled, the cores oversubscribed): sleep, as spinning on
+    // would take the core from the thread waited for.
+    std::unique_lock<std::mutex> lock(mutex_);
+    sleepers_.fetch_add(1, std::memory_order_seq_cst);
+    wake_.wait(lock, [&] { return arrivals_.load(std::memory_order_seq_cst) >= complete; });
+    sleepers_.fetch_sub(1, std::memory_order_relaxed);
   }
 
  private:
-  static constexpr int kSpinsBeforeYield = 4096;
+  static constexpr int kSpinsBeforeSleep = 4096;  // ~0.1 ms
 
   static void pause() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -50,6 +64,9 @@ class SpinBarrier {
 
   std::uint64_t threads_ = 1;
   alignas(64) std::atomic<std::uint64_t> arrivals_{0};
+  alignas(64) std::atomic<int> sleepers_{0};
+  std::mutex mutex_;
+  std::condition_variable wake_;
 };
 
 }  // namespace deformable_sim::core
