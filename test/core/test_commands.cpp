@@ -214,6 +214,9 @@ TEST(DefaultScene, TheShippedSceneFileIsTheBuiltInScene) {
   EXPECT_EQ(file.effects.warping, built_in.effects.warping);
   EXPECT_EQ(file.effects.damping->mass, built_in.effects.damping->mass);
   EXPECT_EQ(file.effects.damping->stiffness, built_in.effects.damping->stiffness);
+  EXPECT_EQ(file.solver.method, built_in.solver.method);
+  EXPECT_EQ(file.solver.tolerance, built_in.solver.tolerance);
+  EXPECT_EQ(file.solver.max_iterations, built_in.solver.max_iterations);
   ASSERT_EQ(file.bodies.size(), 1u);
   const dc::BodySpec &a = file.bodies[0], &b = built_in.bodies[0];
   EXPECT_EQ(a.name, b.name);
