@@ -256,7 +256,8 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
 
 SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const ConstraintMask& constrained,
                                            const Eigen::VectorXd& b, const SolverSettings& settings,
-                                           Eigen::VectorXd& x, bool in_sequence) {
+                                           Eigen::VectorXd& x, bool in_sequence,
+                                           double reference_floor) {
   const int num_nodes = a.stiffness->numBlockRows();
   if (r_.size() != b.size()) {
     r_.resize(b.size());
@@ -285,19 +286,21 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
     r_ = b;  // A 0 = 0: no product needed
   }
   zeroConstrained(constrained, r_);
-  const double reference = r_.norm();
+  const double free_norm = r_.norm();
   SolveReport report;
-  if (!std::isfinite(reference)) {
+  if (!std::isfinite(free_norm)) {
     // A non-finite right-hand side: nothing to solve; say so rather than return a "solution".
     report.converged = false;
-    report.relative_residual = reference;
+    report.relative_residual = free_norm;
     return report;
   }
-  if (!(reference > 0.0)) {
+  if (!(free_norm > 0.0)) {
     // Free rows have a zero right-hand side: the solution is zero there.
     x = p_;
     return report;
   }
+  const double reference =
+      std::isfinite(reference_floor) ? std::max(free_norm, reference_floor) : free_norm;
   // A projected guess takes at least one iteration even when it meets the tolerance already:
   // in a steady motion it repeats the last solution's error, which would otherwise pass from
   // step to step unchecked and add up (a free fall then drifts from implicit Euler); one

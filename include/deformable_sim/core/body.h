@@ -218,13 +218,15 @@ class Body {
   /// adds the time of each half to `times` when given. Returns the inverted elements at x_.
   int updateStiffness(StepTimes* times = nullptr);
   /// rhs_ = M v - h (K' x + f0' - f_ext - M g - f_plastic), the step's right-hand side.
-  void setStepRightHandSide(double h);
+  /// Returns h |f_ext + M g + f_plastic| over the free nodes, the impulse of the step's loads.
+  double setStepRightHandSide(double h);
   /// Advances the state by h (a step, or a part of one split `depth` times).
   void advance(double h, int depth, StepReport& report);
   /// x = A^-1 b with prescribed values already in x on constrained nodes. `step_start`: the
-  /// first solve of a step (ConjugateGradientSolver's sequence of systems).
+  /// first solve of a step (ConjugateGradientSolver's sequence of systems); `reference_floor`:
+  /// the least norm CG measures its residual against.
   SolveReport solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                    bool step_start = false);
+                    bool step_start = false, double reference_floor = 0.0);
   SystemMatrix systemMatrix(double mass_coefficient, double stiffness_coefficient) const;
   /// The solver's initial guess for the next velocity (SolverSettings::warm_start).
   void predictVelocity(Eigen::VectorXd& guess) const;

@@ -28,7 +28,10 @@ struct SolverSettings {
   enum class Preconditioner { kBlockJacobi, kTwoLevel, kFactorization };
   Method method = Method::kConjugateGradient;
   Preconditioner preconditioner = Preconditioner::kTwoLevel;
-  double tolerance = 1.0e-6;  ///< conjugate gradient: relative residual ||r|| / ||b_free||
+  /// Conjugate gradient: relative residual ||r|| / max(||b_free||, reference floor); a step's
+  /// floor is the impulse of its loads, h ||f_ext + M g|| on the free nodes (see
+  /// ConjugateGradientSolver::solve).
+  double tolerance = 1.0e-6;
   int max_iterations = 1000;  ///< conjugate gradient: iteration cap
   /// Two-level and factorization: the coarse operator or the factorization is rebuilt every
   /// this many solves (and whenever the mass or stiffness coefficient changes); in between the
@@ -58,7 +61,8 @@ struct SolverSettings {
 
 struct SolveReport {
   int iterations = 0;              ///< CG iterations (0 for the direct solver)
-  double relative_residual = 0.0;  ///< ||b - A x|| / ||b_free|| over the free rows
+  /// ||b - A x|| over the free rows / max(||b_free||, the solve's reference floor)
+  double relative_residual = 0.0;
   bool converged = true;
 };
 
@@ -91,10 +95,13 @@ class ConjugateGradientSolver {
   /// `in_sequence`: the system is the next of the sequence whose solutions the solver keeps
   /// (a body's steps): with the projected warm start, its initial guess on the free nodes comes
   /// from them, and its solution joins them. A change of the matrix's coefficients or of the
-  /// constrained nodes starts a new sequence.
+  /// constrained nodes starts a new sequence. `reference_floor`: the residual is measured
+  /// against max(||b_free||, reference_floor). A body at rest under load has a right-hand side
+  /// of rounding errors (its forces cancel); relative to that alone, CG would chase the
+  /// rounding for dozens of iterations a step.
   SolveReport solve(const SystemMatrix& a, const ConstraintMask& constrained,
                     const Eigen::VectorXd& b, const SolverSettings& settings, Eigen::VectorXd& x,
-                    bool in_sequence = false);
+                    bool in_sequence = false, double reference_floor = 0.0);
   /// Forgets the stored solutions (the body was moved, or its material changed).
   void clearPreviousSolutions() { previous_.clear(); }
 
