@@ -60,7 +60,7 @@ struct SolverSettings {
 };
 
 struct SolveReport {
-  int iterations = 0;              ///< CG iterations (0 for the direct solver)
+  int iterations = 0;  ///< CG iterations (0 for the direct solver)
   /// ||b - A x|| over the free rows / max(||b_free||, the solve's reference floor)
   double relative_residual = 0.0;
   bool converged = true;
