@@ -103,18 +103,9 @@ void fillState(const core::Body& body, BodyState& message) {
   message.node_ids.assign(body.mesh().node_numbers.begin(), body.mesh().node_numbers.end());
   message.positions.resize(n);
   message.velocities.resize(n);
-  // Entry by entry in one loop (a message a step: the replay writes thousands a second).
-  const double* x = body.positions().data();
-  const double* v = body.velocities().data();
   for (int i = 0; i < n; ++i) {
-    geometry_msgs::Point& p = message.positions[i];
-    p.x = x[3 * i];
-    p.y = x[3 * i + 1];
-    p.z = x[3 * i + 2];
-    geometry_msgs::Vector3& u = message.velocities[i];
-    u.x = v[3 * i];
-    u.y = v[3 * i + 1];
-    u.z = v[3 * i + 2];
+    message.positions[i] = toPoint(body.positions().segment<3>(3 * i));
+    message.velocities[i] = toVector3(body.velocities().segment<3>(3 * i));
   }
 }
 
