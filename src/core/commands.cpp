@@ -137,13 +137,6 @@ int CommandProcessor::apply(const WrenchCommand& command) {
       (command.point && !command.point->allFinite())) {
     throw CommandError("wrench from '" + command.source + "' has a NaN or infinite value");
   }
-  if (command.force.norm() > limits_.max_force || command.torque.norm() > limits_.max_torque) {
-    throw CommandError("wrench from '" + command.source + "' exceeds the limits (|force| " +
-                       std::to_string(command.force.norm()) + " N of at most " +
-                       std::to_string(limits_.max_force) + ", |torque| " +
-                       std::to_string(command.torque.norm()) + " N m of at most " +
-                       std::to_string(limits_.max_torque) + ")");
-  }
   if (command.force.isZero(0.0) && command.torque.isZero(0.0)) {
     // A zero wrench clears its source; nothing to resolve (the target may be gone).
     const auto previous = wrenches_.find(command.source);
@@ -160,6 +153,14 @@ int CommandProcessor::apply(const WrenchCommand& command) {
   }
   const int b = findBody(command.body, command.nodes);
   const Body& body = simulation_.bodies()[b];
+  const WrenchBounds bounds = wrenchBounds(body, limits_);
+  if (command.force.norm() > bounds.force || command.torque.norm() > bounds.torque) {
+    throw CommandError("wrench from '" + command.source + "' exceeds the limits of body '" +
+                       body.name() + "' (|force| " + std::to_string(command.force.norm()) +
+                       " N of at most " + std::to_string(bounds.force) + ", |torque| " +
+                       std::to_string(command.torque.norm()) + " N m of at most " +
+                       std::to_string(bounds.torque) + ")");
+  }
   ActiveWrench active;
   active.body = b;
   active.nodes = resolve(body, command.nodes);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "deformable_sim/core/command_limits.h"
 #include "deformable_sim/core/selection.h"
 #include "deformable_sim/core/shape.h"
 #include "deformable_sim/core/simulation.h"
@@ -85,13 +86,6 @@ struct Wrench {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
-};
-
-/// Bounds beyond which a command is refused as absurd rather than applied.
-struct CommandLimits {
-  double max_force = 1.0e4;           ///< N, magnitude of a wrench's force
-  double max_torque = 1.0e4;          ///< N m
-  double max_target_distance = 10.0;  ///< m, how far a target may be from the node now
 };
 
 /// A wrench in effect, as applied: for markers and the record.

@@ -33,4 +33,11 @@ struct PlacedShape {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< shape frame in the world
 };
 
+/// The same shape in the same place, bit for bit.
+inline bool operator==(const PlacedShape& a, const PlacedShape& b) {
+  return a.name == b.name && a.shape.kind == b.shape.kind && a.shape.size == b.shape.size &&
+         a.shape.radius == b.shape.radius && a.shape.length == b.shape.length &&
+         a.pose.matrix() == b.pose.matrix();
+}
+
 }  // namespace deformable_sim::core

@@ -1,0 +1,71 @@
+// What the node publishes of a running session: ~state and tf every tick, ~mesh and ~markers at
+// ~marker_rate, ~stats at ~stats_rate, ~reactions/<body>, and /diagnostics. rviz is told to
+// forget old markers when it connects and when the node stops (DELETEALL).
+#pragma once
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/ros.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <visualization_msgs/Marker.h>
+
+#include <vector>
+
+#include "deformable_sim/BodyState.h"
+#include "deformable_sim/core/periodic_schedule.h"
+#include "deformable_sim/core/session.h"
+#include "deformable_sim/ros/node_parameters.h"
+#include "deformable_sim/ros/refusal_log.h"
+
+namespace deformable_sim::ros_layer {
+
+/// How the node's last tick went, for ~stats and /diagnostics.
+struct TickStatus {
+  bool paused = false;
+  double step_time_s = 0.0;  ///< wall time of the tick's steps
+  double real_time_factor = 0.0;
+  long recoveries = 0;                    ///< the watchdog's, all bodies, this episode
+  bool recent_recovery = false;           ///< one in the last 2 s
+  std::vector<core::StepReport> reports;  ///< of the last step, per body
+};
+
+class NodeOutputs {
+ public:
+  NodeOutputs(ros::NodeHandle& node, ros::NodeHandle& private_node, const NodeParameters& params,
+              const core::Session& session);
+
+  /// ~state, the bodies' tf frames and ~reactions, stamped `now`. tf is sent once a stamp: a
+  /// clock that has not moved since the last tick repeats no transform. True if tf was sent.
+  bool publishState(const core::Session& session, const ros::Time& now);
+  /// ~mesh, ~markers and ~stats when each is due, and /diagnostics.
+  void publishPeriodic(const core::Session& session, const TickStatus& status,
+                       const RefusalLog& refusals, const ros::Time& now);
+  /// DELETEALL on ~mesh and ~markers.
+  void clearMarkers();
+
+  tf2_ros::TransformBroadcaster& broadcaster() { return broadcaster_; }
+
+ private:
+  /// Whether tf may be sent at `now` (later than the last stamp sent); remembers `now` if so.
+  bool newStamp(const ros::Time& now);
+  void publishMarkers(const core::Session& session, const std_msgs::Header& header);
+  void publishStats(const core::Session& session, const TickStatus& status,
+                    const RefusalLog& refusals, const ros::Time& now);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& out);
+
+  const NodeParameters& params_;
+  ros::Publisher state_pub_, stats_pub_, mesh_pub_, markers_pub_;
+  std::vector<ros::Publisher> reaction_pubs_;  ///< per body: what its fixed nodes exert
+  tf2_ros::TransformBroadcaster broadcaster_;
+  diagnostic_updater::Updater diagnostics_;
+  core::PeriodicSchedule marker_schedule_, stats_schedule_;
+  ros::Time last_tf_stamp_;
+  std::vector<std::vector<core::Triangle>> surfaces_;
+  BodyState state_message_;
+  visualization_msgs::Marker mesh_message_;
+  std::vector<double> strain_;
+  const core::Session* session_ = nullptr;  ///< for the diagnostics callback
+  const TickStatus* status_ = nullptr;
+  const RefusalLog* refusals_ = nullptr;
+};
+
+}  // namespace deformable_sim::ros_layer

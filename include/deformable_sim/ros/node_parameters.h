@@ -1,0 +1,36 @@
+// The node's private parameters, read and checked once at start.
+#pragma once
+
+#include <ros/node_handle.h>
+
+#include <string>
+
+#include "deformable_sim/core/commands.h"
+#include "deformable_sim/core/scene.h"
+
+namespace deformable_sim::ros_layer {
+
+struct NodeParameters {
+  std::string scene_path;  ///< ~scene; empty: the built-in default scene
+  std::string scene_text;  ///< the scene file's text, for ~scene
+  core::SceneSpec scene;   ///< dt set from ~rate and ~substeps
+  std::string world_frame = "world";
+  std::string frame_prefix;  ///< default: the node's namespace
+  double rate_hz = 100.0;
+  int substeps = 1;
+  bool start_paused = false;
+  double wrench_timeout_s = 0.0;  ///< 0: wrenches stay until replaced
+  double stats_rate_hz = 10.0;
+  double marker_rate_hz = 30.0;
+  double strain_colour_scale = 0.1;
+  int max_steps_per_call = 1000;  ///< the most ~step takes in one call
+  core::CommandLimits limits;
+};
+
+/// Throws std::runtime_error naming the parameter (or the scene file's key) that is wrong.
+NodeParameters readNodeParameters(const ros::NodeHandle& private_node);
+
+/// The usage deformable_sim_node prints for --help: parameters, topics, services.
+extern const char* const kNodeUsage;
+
+}  // namespace deformable_sim::ros_layer

@@ -1,0 +1,149 @@
+#include "deformable_sim/ros/node_grasps.h"
+
+#include <geometry_msgs/WrenchStamped.h>
+
+#include "deformable_sim/core/pose_interpolation.h"
+#include "deformable_sim/core/rigid_frame.h"
+#include "deformable_sim/ros/conversions.h"
+
+namespace deformable_sim::ros_layer {
+
+uint32_t NodeGrasps::handle(const core::Session& session, const Grasp& message) {
+  if (message.action == Grasp::RELEASE) {
+    const auto found = session.commands().grasps().find(message.name);
+    if (found == session.commands().grasps().end()) {
+      throw core::CommandError("no grasp named '" + message.name + "'");
+    }
+    const auto nodes = static_cast<uint32_t>(found->second.nodes.size());
+    apply_(core::ReleaseGraspCommand{message.name});
+    frames_followed_.erase(message.name);
+    wrench_pubs_.erase(message.name);  // its topic goes with it: names do not pile up
+    return nodes;
+  }
+  if (message.action != Grasp::ATTACH) {
+    throw core::CommandError("action " + std::to_string(message.action) +
+                             " is neither ATTACH (0) nor RELEASE (1)");
+  }
+  const auto nodes = static_cast<uint32_t>(apply_(attachCommand(session.simulation(), message)));
+  frames_followed_[message.name] = withoutLeadingSlash(message.header.frame_id);
+  if (wrench_pubs_.count(message.name) == 0) {
+    wrench_pubs_[message.name] =
+        node_.advertise<geometry_msgs::WrenchStamped>("grasps/" + message.name + "/wrench", 10);
+  }
+  return nodes;
+}
+
+core::GraspCommand NodeGrasps::attachCommand(const core::Simulation& simulation,
+                                             const Grasp& message) {
+  const std::string name = "grasp '" + message.name + "': ";
+  const std::string frame = withoutLeadingSlash(message.header.frame_id);
+  if (frame.empty()) throw core::CommandError(name + "header.frame_id is empty: name the frame");
+  core::BodyFrame target;
+  try {
+    target = frames_.resolve(simulation, frame);
+  } catch (const core::CommandError& e) {
+    throw core::CommandError(name + e.what());
+  }
+  if (target.body >= 0 || frame == frames_.worldFrame()) {
+    throw core::CommandError(name + "'" + frame +
+                             "' is not a tf frame that can hold a body (it is the world or one "
+                             "of this node's frames)");
+  }
+  core::GraspCommand command;
+  command.name = message.name;
+  command.body = message.body;
+  command.frame = target.pose;
+  command.nodes.region_pose = target.pose;
+  switch (message.region) {
+    case Grasp::REGION_BOX:
+      command.nodes.box = core::Box{toEigen(message.box_min), toEigen(message.box_max)};
+      break;
+    case Grasp::REGION_SPHERE:
+      command.nodes.sphere = core::Sphere{toEigen(message.sphere_center), message.sphere_radius};
+      break;
+    case Grasp::REGION_LINK:
+      command.nodes = linkRegion(message, frame);
+      break;
+    default:
+      throw core::CommandError(name + "region " + std::to_string(message.region) +
+                               " is not REGION_BOX, REGION_SPHERE or REGION_LINK");
+  }
+  return command;
+}
+
+core::NodeTarget NodeGrasps::linkRegion(const Grasp& message, const std::string& frame) {
+  const std::string link = message.link.empty() ? frame : message.link;
+  const std::string name = "grasp '" + message.name + "': link '" + link + "': ";
+  core::NodeTarget region;
+  std::string error;
+  const std::optional<Eigen::Isometry3d> pose = frames_.lookup(link, &error);
+  if (!pose) throw core::CommandError(name + error);
+  try {
+    for (core::PlacedShape shape : links_.shapes(link)) {
+      shape.pose = *pose * shape.pose;
+      region.shapes.push_back(shape);
+    }
+  } catch (const core::CommandError& e) {
+    throw core::CommandError(name + e.what());
+  }
+  region.shape_margin = message.margin;
+  return region;
+}
+
+void NodeGrasps::planMoves(const core::CommandProcessor& commands) {
+  moves_.clear();
+  for (const auto& [name, frame] : frames_followed_) {
+    const Eigen::Isometry3d from = commands.grasps().at(name).frame;
+    std::string error;
+    std::optional<Eigen::Isometry3d> to = frames_.lookup(frame, &error);
+    if (!to) {
+      ROS_WARN_THROTTLE(1.0, "grasp '%s': frame '%s' not in tf now (%s); holding its last pose",
+                        name.c_str(), frame.c_str(), error.c_str());
+      to = from;
+    }
+    moves_[name] = {from, *to};
+  }
+}
+
+void NodeGrasps::move(int s, int steps) {
+  for (const auto& [name, poses] : moves_) {
+    const auto& [from, to] = poses;
+    apply_(core::MoveGraspCommand{
+        name, s == steps ? to : core::interpolatePose(from, to, static_cast<double>(s) / steps)});
+  }
+}
+
+void NodeGrasps::publish(const core::Session& session, const ros::Time& stamp,
+                         tf2_ros::TransformBroadcaster* broadcaster) {
+  std::vector<geometry_msgs::TransformStamped> objects;
+  for (const auto& [name, frame] : frames_followed_) {
+    const core::ActiveGrasp& grasp = session.commands().grasps().at(name);
+    const core::Wrench reaction = session.commands().graspReaction(name);
+    const Eigen::Matrix3d to_frame = grasp.frame.linear().transpose();
+    geometry_msgs::WrenchStamped wrench;
+    wrench.header.stamp = stamp;
+    wrench.header.frame_id = frame;
+    wrench.wrench.force = toVector3(to_frame * reaction.force);
+    wrench.wrench.torque = toVector3(to_frame * reaction.torque);
+    wrench_pubs_.at(name).publish(wrench);
+    // The object seen from the gripper: how it slips or sags in the hand.
+    const core::Body& body = session.simulation().bodies()[grasp.body];
+    geometry_msgs::TransformStamped object;
+    object.header.stamp = stamp;
+    object.header.frame_id = frame;
+    object.child_frame_id = frames_.prefix() + name + "/object";
+    object.transform = toTransform(
+        grasp.frame.inverse() *
+        toPose(core::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses())));
+    objects.push_back(object);
+  }
+  if (broadcaster && !objects.empty()) broadcaster->sendTransform(objects);
+}
+
+void NodeGrasps::clear() {
+  frames_followed_.clear();
+  wrench_pubs_.clear();
+  moves_.clear();
+}
+
+}  // namespace deformable_sim::ros_layer

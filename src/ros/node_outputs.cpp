@@ -1,0 +1,202 @@
+#include "deformable_sim/ros/node_outputs.h"
+
+#include <geometry_msgs/WrenchStamped.h>
+
+#include "deformable_sim/Stats.h"
+#include "deformable_sim/core/body_activity.h"
+#include "deformable_sim/core/strain.h"
+#include "deformable_sim/ros/body_frames.h"
+#include "deformable_sim/ros/conversions.h"
+#include "deformable_sim/ros/markers.h"
+
+namespace deformable_sim::ros_layer {
+
+namespace {
+
+visualization_msgs::Marker deleteAll() {
+  visualization_msgs::Marker marker;
+  marker.action = visualization_msgs::Marker::DELETEALL;
+  marker.pose.orientation.w = 1.0;
+  return marker;
+}
+
+visualization_msgs::MarkerArray deleteAllArray() {
+  visualization_msgs::MarkerArray array;
+  array.markers.push_back(deleteAll());
+  return array;
+}
+
+}  // namespace
+
+NodeOutputs::NodeOutputs(ros::NodeHandle& node, ros::NodeHandle& private_node,
+                         const NodeParameters& params, const core::Session& session)
+    : params_(params),
+      diagnostics_(node, private_node),
+      marker_schedule_(1.0 / params.marker_rate_hz),
+      stats_schedule_(1.0 / params.stats_rate_hz) {
+  state_pub_ = private_node.advertise<BodyState>("state", 10);
+  stats_pub_ = private_node.advertise<Stats>("stats", 10);
+  // A viewer that connects first forgets the markers of an earlier run of this node.
+  const ros::SubscriberStatusCallback clear_mesh = [](const ros::SingleSubscriberPublisher& p) {
+    p.publish(deleteAll());
+  };
+  const ros::SubscriberStatusCallback clear_markers = [](const ros::SingleSubscriberPublisher& p) {
+    p.publish(deleteAllArray());
+  };
+  mesh_pub_ = private_node.advertise<visualization_msgs::Marker>("mesh", 2, clear_mesh);
+  markers_pub_ =
+      private_node.advertise<visualization_msgs::MarkerArray>("markers", 2, clear_markers);
+  for (const core::Body& body : session.simulation().bodies()) {
+    reaction_pubs_.push_back(
+        private_node.advertise<geometry_msgs::WrenchStamped>("reactions/" + body.name(), 10));
+    surfaces_.push_back(core::extractSurface(body.mesh()));
+  }
+  diagnostics_.setHardwareID("deformable_sim");
+  diagnostics_.add("simulation", this, &NodeOutputs::diagnose);
+}
+
+bool NodeOutputs::newStamp(const ros::Time& now) {
+  if (!last_tf_stamp_.isZero() && now <= last_tf_stamp_ &&
+      now >= last_tf_stamp_ - ros::Duration(1.0))
+    return false;
+  last_tf_stamp_ = now;  // later, or a clock that went back (a looped bag): a new timeline
+  return true;
+}
+
+bool NodeOutputs::publishState(const core::Session& session, const ros::Time& now) {
+  const core::Simulation& sim = session.simulation();
+  for (const core::Body& body : sim.bodies()) {
+    fillState(body, state_message_);
+    state_message_.header.stamp = now;
+    state_message_.header.frame_id = params_.world_frame;
+    state_message_.episode = static_cast<uint64_t>(session.episode());
+    state_message_.step = static_cast<uint64_t>(sim.stepCount());
+    state_pub_.publish(state_message_);
+  }
+  const bool send_tf = newStamp(now);
+  if (send_tf) {
+    broadcaster_.sendTransform(
+        bodyFrames(sim.bodies(), params_.world_frame, params_.frame_prefix, now));
+  }
+  for (size_t b = 0; b < sim.bodies().size(); ++b) {
+    if (reaction_pubs_[b].getNumSubscribers() == 0) continue;
+    const core::Wrench reaction =
+        session.commands().fixedReaction(static_cast<int>(b), Eigen::Vector3d::Zero());
+    geometry_msgs::WrenchStamped wrench;
+    wrench.header.stamp = now;
+    wrench.header.frame_id = params_.world_frame;
+    wrench.wrench.force = toVector3(reaction.force);
+    wrench.wrench.torque = toVector3(reaction.torque);
+    reaction_pubs_[b].publish(wrench);
+  }
+  return send_tf;
+}
+
+void NodeOutputs::publishPeriodic(const core::Session& session, const TickStatus& status,
+                                  const RefusalLog& refusals, const ros::Time& now) {
+  if (marker_schedule_.due(now.toSec())) {
+    std_msgs::Header header;
+    header.stamp = now;
+    header.frame_id = params_.world_frame;
+    publishMarkers(session, header);
+  }
+  if (stats_schedule_.due(now.toSec())) publishStats(session, status, refusals, now);
+  session_ = &session;
+  status_ = &status;
+  refusals_ = &refusals;
+  diagnostics_.update();
+}
+
+void NodeOutputs::clearMarkers() {
+  mesh_pub_.publish(deleteAll());
+  markers_pub_.publish(deleteAllArray());
+}
+
+void NodeOutputs::publishMarkers(const core::Session& session, const std_msgs::Header& header) {
+  const std::vector<core::Body>& bodies = session.simulation().bodies();
+  if (mesh_pub_.getNumSubscribers() > 0) {
+    for (size_t b = 0; b < bodies.size(); ++b) {
+      const bool colour = bodies[b].effects().stress_colouring;
+      if (colour) core::nodalStrain(bodies[b], strain_);
+      fillSurfaceMarker(bodies[b], surfaces_[b], colour ? &strain_ : nullptr,
+                        params_.strain_colour_scale, mesh_message_);
+      mesh_message_.header = header;
+      mesh_pub_.publish(mesh_message_);
+    }
+  }
+  if (markers_pub_.getNumSubscribers() > 0) {
+    markers_pub_.publish(interactionMarkers(bodies, session.commands(), header));
+  }
+}
+
+void NodeOutputs::publishStats(const core::Session& session, const TickStatus& status,
+                               const RefusalLog& refusals, const ros::Time& now) {
+  const core::Simulation& sim = session.simulation();
+  Stats stats;
+  stats.header.stamp = now;
+  stats.header.frame_id = params_.world_frame;
+  stats.step = static_cast<uint64_t>(sim.stepCount());
+  stats.sim_time = sim.time();
+  stats.paused = status.paused;
+  stats.step_time = status.step_time_s;
+  stats.real_time_factor = status.real_time_factor;
+  stats.dropped_messages = refusals.count();
+  stats.last_refusal = refusals.last();
+  for (size_t b = 0; b < sim.bodies().size(); ++b) {
+    const core::Body& body = sim.bodies()[b];
+    const core::StepReport& report = status.reports[b];
+    const int index = static_cast<int>(b);
+    BodyStats s;
+    s.body = body.name();
+    s.model = core::modelName(body.model());
+    s.effects = core::activeEffects(sim, index);
+    s.solver_iterations = static_cast<uint32_t>(report.solve.iterations);
+    s.solves = static_cast<uint32_t>(report.solves);
+    s.splits = static_cast<uint32_t>(report.splits);
+    s.solver_residual = report.solve.relative_residual;
+    s.solver_converged = report.solve.converged;
+    s.kinetic_energy = body.kineticEnergy();
+    s.elastic_energy = body.elasticEnergy();
+    s.inverted_elements = static_cast<uint32_t>(report.inverted_elements);
+    s.fixed_nodes = static_cast<uint32_t>(body.numConstrained());
+    s.contacts = static_cast<uint32_t>(report.contacts);
+    s.recovered = report.recovered;
+    s.recoveries = static_cast<uint32_t>(sim.recoveries(index));
+    s.grasped_nodes = static_cast<uint32_t>(core::graspedNodes(session.commands(), index));
+    s.applied_wrenches = static_cast<uint32_t>(core::appliedWrenches(session.commands(), index));
+    stats.bodies.push_back(s);
+  }
+  stats_pub_.publish(stats);
+}
+
+void NodeOutputs::diagnose(diagnostic_updater::DiagnosticStatusWrapper& out) {
+  if (!session_) return;
+  const core::Simulation& sim = session_->simulation();
+  bool converged = true;
+  int inverted = 0;
+  for (const core::StepReport& r : status_->reports) {
+    converged = converged && r.solve.converged;
+    inverted += r.inverted_elements;
+  }
+  using Status = diagnostic_msgs::DiagnosticStatus;
+  if (status_->recent_recovery) {
+    out.summary(Status::WARN, "the watchdog undid a step that left a non-finite value");
+  } else if (!converged) {
+    out.summary(Status::WARN, "a solve did not reach its tolerance");
+  } else if (!status_->paused && status_->real_time_factor < 0.9 &&
+             sim.stepCount() > 10 * params_.substeps) {
+    out.summary(Status::WARN, "cannot keep real time");
+  } else {
+    out.summary(Status::OK, status_->paused ? "paused" : "running");
+  }
+  out.add("step", sim.stepCount());
+  out.add("simulated time (s)", sim.time());
+  out.add("real-time factor", status_->real_time_factor);
+  out.add("step time (ms)", 1e3 * status_->step_time_s);
+  out.add("inverted elements", inverted);
+  out.add("watchdog recoveries", status_->recoveries);
+  out.add("dropped messages", refusals_->count());
+  out.add("last refusal", refusals_->last());
+}
+
+}  // namespace deformable_sim::ros_layer

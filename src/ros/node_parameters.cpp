@@ -1,0 +1,116 @@
+#include "deformable_sim/ros/node_parameters.h"
+
+#include <ros/this_node.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "deformable_sim/core/default_scene.h"
+#include "deformable_sim/io/scene_file.h"
+#include "deformable_sim/ros/frame_resolver.h"
+
+namespace deformable_sim::ros_layer {
+
+const char* const kNodeUsage =
+    "usage: deformable_sim_node [__name:=NAME] [_PARAMETER:=VALUE ...]\n"
+    "  Steps a scene of deformable bodies on a timer; drive it with topics and services.\n"
+    "Parameters (private):\n"
+    "  ~scene PATH              scene YAML (default: the built-in cantilever)\n"
+    "  ~rate HZ                 timer rate; each tick advances 1/rate s (default: 1/(dt "
+    "substeps))\n"
+    "  ~substeps N              steps per tick (default 1)\n"
+    "  ~start_paused BOOL       start paused (default false)\n"
+    "  ~world_frame NAME        frame of positions (default world)\n"
+    "  ~frame_prefix PREFIX     prefix of body frames (default: the node's namespace)\n"
+    "  ~wrench_timeout S        drop a wrench whose sender is silent this long (default 0: never)\n"
+    "  ~stats_rate HZ, ~marker_rate HZ, ~strain_colour_scale S\n"
+    "  ~max_force N, ~max_torque NM   wrench bounds (default: 10 x the body's weight, and that\n"
+    "                           force times the body's size)\n"
+    "  ~max_target_distance M   how far a fixed-node target may be (default 10)\n"
+    "  ~max_steps_per_call N    the most ~step takes in one call (default 1000)\n"
+    "Subscribes: ~wrench ~node_wrench ~fixed_nodes ~grasp\n"
+    "Publishes:  ~state ~stats ~mesh ~markers ~applied ~scene ~reactions/<body>\n"
+    "            ~grasps/<name>/wrench /tf /diagnostics\n"
+    "Services:   ~reset ~pause ~resume ~step ~grasp; live tuning: dynamic_reconfigure\n";
+
+namespace {
+
+// Reads a private parameter, keeping `value` (the default) when it is not set.
+template <typename T>
+void param(const ros::NodeHandle& node, const std::string& name, T& value) {
+  node.param(name, value, value);
+}
+
+void require(bool ok, const std::string& message) {
+  if (!ok) throw std::runtime_error(message);
+}
+
+void readScene(const ros::NodeHandle& node, NodeParameters& p) {
+  param(node, "scene", p.scene_path);
+  if (!p.scene_path.empty()) {
+    std::ifstream file(p.scene_path);
+    std::stringstream text;
+    text << file.rdbuf();
+    p.scene_text = text.str();
+  }
+  try {
+    p.scene = p.scene_path.empty() ? core::defaultScene() : io::readSceneFile(p.scene_path);
+  } catch (const io::SceneError& e) {
+    throw std::runtime_error(std::string("~scene: ") + e.what());
+  }
+}
+
+void readFrames(const ros::NodeHandle& node, NodeParameters& p) {
+  param(node, "world_frame", p.world_frame);
+  p.world_frame = withoutLeadingSlash(p.world_frame);
+  // Several instances side by side: frames are prefixed by the node's namespace by default.
+  const std::string ns = withoutLeadingSlash(ros::this_node::getNamespace());
+  p.frame_prefix = ns.empty() ? "" : ns + "/";
+  param(node, "frame_prefix", p.frame_prefix);
+  p.frame_prefix = withoutLeadingSlash(p.frame_prefix);
+}
+
+void readTiming(const ros::NodeHandle& node, NodeParameters& p) {
+  param(node, "substeps", p.substeps);
+  require(p.substeps >= 1, "~substeps: must be >= 1");
+  p.rate_hz = 1.0 / (p.scene.dt * p.substeps);
+  param(node, "rate", p.rate_hz);
+  require(p.rate_hz > 0.0 && std::isfinite(p.rate_hz), "~rate: must be finite and > 0 Hz");
+  p.scene.dt = 1.0 / (p.rate_hz * p.substeps);
+  param(node, "start_paused", p.start_paused);
+  param(node, "wrench_timeout", p.wrench_timeout_s);
+  param(node, "stats_rate", p.stats_rate_hz);
+  param(node, "marker_rate", p.marker_rate_hz);
+  param(node, "max_steps_per_call", p.max_steps_per_call);
+  require(p.wrench_timeout_s >= 0.0, "~wrench_timeout: must be >= 0 s");
+  require(p.stats_rate_hz > 0.0, "~stats_rate: must be > 0 Hz");
+  require(p.marker_rate_hz > 0.0, "~marker_rate: must be > 0 Hz");
+  require(p.max_steps_per_call >= 1, "~max_steps_per_call: must be >= 1");
+}
+
+void readLimits(const ros::NodeHandle& node, NodeParameters& p) {
+  param(node, "strain_colour_scale", p.strain_colour_scale);
+  require(p.strain_colour_scale > 0.0, "~strain_colour_scale: must be > 0");
+  // Unset bounds stay 0: each body's own (core::wrenchBounds).
+  param(node, "max_force", p.limits.max_force);
+  param(node, "max_torque", p.limits.max_torque);
+  param(node, "max_target_distance", p.limits.max_target_distance);
+  require(p.limits.max_force >= 0.0 && p.limits.max_torque >= 0.0,
+          "~max_force, ~max_torque: must be > 0 (or unset: the body's own bound)");
+  require(p.limits.max_target_distance > 0.0, "~max_target_distance: must be > 0 m");
+}
+
+}  // namespace
+
+NodeParameters readNodeParameters(const ros::NodeHandle& private_node) {
+  NodeParameters p;
+  readScene(private_node, p);
+  readFrames(private_node, p);
+  readTiming(private_node, p);
+  readLimits(private_node, p);
+  return p;
+}
+
+}  // namespace deformable_sim::ros_layer

@@ -1,0 +1,80 @@
+#include "deformable_sim/ros/robot_links.h"
+
+#include <ros/console.h>
+#include <ros/node_handle.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "deformable_sim/io/urdf_shapes.h"
+
+namespace deformable_sim::ros_layer {
+
+const std::vector<core::PlacedShape>& RobotLinks::shapes(const std::string& link) {
+  load();
+  try {
+    return io::linkShapes(shapes_, link);
+  } catch (const io::UrdfError& e) {
+    throw core::CommandError(e.what());
+  }
+}
+
+void RobotLinks::load() {
+  if (loaded_) return;
+  std::string xml;
+  if (!urdf_file_.empty()) {
+    std::ifstream file(urdf_file_);
+    if (!file) throw core::CommandError(urdf_file_ + ": cannot open the URDF file");
+    std::stringstream text;
+    text << file.rdbuf();
+    xml = text.str();
+  } else if (!ros::NodeHandle().getParam("robot_description", xml) || xml.empty()) {
+    throw core::CommandError(
+        "no robot description: set the robot_description parameter or the scene's urdf.file");
+  }
+  std::vector<std::string> warnings;
+  try {
+    shapes_ = io::readCollisionShapes(xml, &warnings);
+  } catch (const io::UrdfError& e) {
+    throw core::CommandError(e.what());
+  }
+  for (const std::string& w : warnings) ROS_WARN("%s", w.c_str());
+  loaded_ = true;
+}
+
+LinkObstacles::LinkObstacles(const core::SceneSpec& scene, RobotLinks& links)
+    : fixed_(scene.obstacles) {
+  for (const std::string& link : scene.urdf_links) {
+    try {
+      for (const core::PlacedShape& shape : links.shapes(link)) {
+        linked_.push_back({link, shape, std::nullopt});
+      }
+    } catch (const core::CommandError& e) {
+      throw std::runtime_error(std::string("urdf.links: ") + e.what());
+    }
+  }
+}
+
+std::optional<std::vector<core::PlacedShape>> LinkObstacles::place(const FrameResolver& frames) {
+  std::vector<core::PlacedShape> obstacles = fixed_;
+  bool complete = true;
+  for (Placed& obstacle : linked_) {
+    std::string error;
+    if (const auto link = frames.lookup(obstacle.link, &error)) {
+      obstacle.placed = obstacle.local;
+      obstacle.placed->pose = *link * obstacle.local.pose;
+    } else {
+      ROS_WARN_THROTTLE(5.0, "obstacle link '%s' is not in tf yet (%s)", obstacle.link.c_str(),
+                        error.c_str());
+    }
+    if (obstacle.placed) {
+      obstacles.push_back(*obstacle.placed);
+    } else {
+      complete = false;
+    }
+  }
+  if (!complete) return std::nullopt;
+  return obstacles;
+}
+
+}  // namespace deformable_sim::ros_layer

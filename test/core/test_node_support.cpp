@@ -1,0 +1,220 @@
+// The ROS-free pieces the node is built from: body frames, the wrench bounds a body can take,
+// wrenches in far frames, output schedules, live tuning and lapsing wrenches.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "deformable_sim/core/body_frame_lookup.h"
+#include "deformable_sim/core/default_scene.h"
+#include "deformable_sim/core/live_settings.h"
+#include "deformable_sim/core/periodic_schedule.h"
+#include "deformable_sim/core/pose_interpolation.h"
+#include "deformable_sim/core/real_time_factor.h"
+#include "deformable_sim/core/wrench_timeouts.h"
+#include "deformable_sim/io/scene_file.h"
+
+namespace deformable_sim::core {
+namespace {
+
+Session defaultSession(CommandLimits limits = {}) {
+  const SceneSpec scene = defaultScene();
+  return Session(scene, io::readMeshes(scene, nullptr), limits);
+}
+
+std::string refusal(Session& session, const SessionCommand& command) {
+  try {
+    session.apply(command);
+  } catch (const CommandError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+WrenchCommand tipPush(double force_z, double torque_x = 0.0) {
+  WrenchCommand push;
+  push.source = "test";
+  push.body = "beam";
+  push.nodes.group = "tip";
+  push.force = {0.0, 0.0, force_z};
+  push.torque = {torque_x, 0.0, 0.0};
+  return push;
+}
+
+TEST(BodyFrames, NameBodiesAndGroupsAndNothingElse) {
+  Session session = defaultSession();
+  const std::vector<Body>& bodies = session.simulation().bodies();
+  const BodyFrame beam = findBodyFrame(bodies, "sim/", "sim/beam");
+  EXPECT_EQ(beam.body, 0);
+  EXPECT_TRUE(beam.group.empty());
+  EXPECT_NEAR(beam.pose.translation().x(), 0.25, 1e-12);  // the centroid of the 0.5 m beam
+  const BodyFrame tip = findBodyFrame(bodies, "sim/", "sim/beam/tip");
+  EXPECT_EQ(tip.group, "tip");
+  EXPECT_NEAR(tip.pose.translation().x(), 0.5, 1e-12);
+  EXPECT_EQ(findBodyFrame(bodies, "sim/", "beam").body, -1);  // without the prefix: not ours
+  EXPECT_EQ(findBodyFrame(bodies, "sim/", "gripper").body, -1);
+  try {
+    findBodyFrame(bodies, "sim/", "sim/beam/middle");
+    FAIL() << "an unknown group was accepted";
+  } catch (const CommandError& e) {
+    EXPECT_NE(std::string(e.what()).find("no group 'middle' (groups: tip)"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(WrenchNearPoint, ActsOnTheNearestBodyWithinItsRadius) {
+  Session session = defaultSession();
+  const WrenchCommand near = wrenchNearPoint(session.simulation(), "finger", {0.52, 0.0, 0.0},
+                                             {0.0, 0.0, -1.0}, Eigen::Vector3d::Zero());
+  EXPECT_EQ(near.body, "beam");
+  EXPECT_EQ(near.source, "finger");
+  ASSERT_TRUE(near.nodes.sphere.has_value());
+  EXPECT_DOUBLE_EQ(near.nodes.sphere->radius, 0.05);
+  EXPECT_GT(session.apply(near), 0);
+}
+
+TEST(WrenchNearPoint, AFarFrameIsRefusedWithTheFrameTheBodyItsDistanceAndRadius) {
+  Session session = defaultSession();
+  try {
+    wrenchNearPoint(session.simulation(), "far_frame", {3.5, 0.0, 0.0}, {0.0, 0.0, -1.0},
+                    Eigen::Vector3d::Zero());
+    FAIL() << "a frame 3 m from the body was accepted";
+  } catch (const CommandError& e) {
+    const std::string what = e.what();
+    for (const char* word : {"far_frame", "'beam'", "3 m", "wrench_radius 0.05 m"}) {
+      EXPECT_NE(what.find(word), std::string::npos) << word << " missing from: " << what;
+    }
+  }
+}
+
+TEST(WrenchBounds, DefaultToTenTimesTheBodysWeightAndThatForceTimesItsSize) {
+  Session session = defaultSession();
+  const Body& beam = session.simulation().bodies()[0];
+  const WrenchBounds bounds = wrenchBounds(beam, CommandLimits{});
+  const double weight = 0.5 * 0.1 * 0.1 * 100.0 * 9.81;  // 0.5 kg of foam
+  EXPECT_NEAR(bounds.force, 10.0 * weight, 1e-9);
+  EXPECT_NEAR(bounds.torque, 10.0 * weight * 0.5, 1e-9);  // the beam is 0.5 m long
+  const WrenchBounds set = wrenchBounds(beam, CommandLimits{100.0, 3.0, 10.0});
+  EXPECT_EQ(set.force, 100.0);
+  EXPECT_EQ(set.torque, 3.0);
+}
+
+TEST(WrenchBounds, AThrowingPushIsRefusedAndOneTheBodyCanTakeIsApplied) {
+  Session session = defaultSession();
+  const std::string refused = refusal(session, tipPush(-9000.0));
+  EXPECT_NE(refused.find("exceeds the limits of body 'beam'"), std::string::npos) << refused;
+  EXPECT_NE(refusal(session, tipPush(0.0, 30.0)), "");  // 30 N m > 24.5 N m
+  EXPECT_TRUE(session.commands().activeWrenches().empty());
+  EXPECT_EQ(refusal(session, tipPush(-49.0)), "");
+  std::vector<StepReport> reports;
+  for (int step = 0; step < 200; ++step) {
+    session.step(reports);
+    ASSERT_EQ(reports[0].inverted_elements, 0) << "at step " << step;
+  }
+  EXPECT_TRUE(session.simulation().bodies()[0].positions().allFinite());
+}
+
+TEST(PeriodicSchedule, KeepsTheAskedRateOnTicksOfAnotherRate) {
+  PeriodicSchedule schedule(1.0 / 30.0);
+  int due = 0;
+  for (int tick = 0; tick < 1000; ++tick) due += schedule.due(1000.0 + 0.01 * tick);
+  EXPECT_NEAR(due, 300, 1);  // 10 s of 100 Hz ticks: 30 Hz, not every fourth tick (25 Hz)
+}
+
+TEST(PeriodicSchedule, StartsAgainWhenTheClockGoesBackOrStalls) {
+  PeriodicSchedule schedule(0.1);
+  EXPECT_TRUE(schedule.due(50.0));
+  EXPECT_FALSE(schedule.due(50.05));
+  EXPECT_TRUE(schedule.due(10.0));  // a looped bag
+  EXPECT_FALSE(schedule.due(10.05));
+  EXPECT_TRUE(schedule.due(20.0));  // a long stall: one output, not a burst of a hundred
+  EXPECT_FALSE(schedule.due(20.01));
+}
+
+TEST(RealTimeFactor, IsSimulatedTimeOverClockTimeOfTheLastSecond) {
+  RealTimeFactor factor;
+  EXPECT_EQ(factor.value(), 0.0);
+  for (int k = 0; k <= 300; ++k) factor.sample(0.01 * k, 0.005 * k);
+  EXPECT_NEAR(factor.value(), 0.5, 1e-9);
+  factor.sample(1.0, 2.0);  // the clock went back: start again
+  EXPECT_EQ(factor.value(), 0.0);
+}
+
+TEST(WrenchTimeouts, ASilentSourceLapsesAndAZeroWrenchIsForgotten) {
+  WrenchTimeouts timeouts(0.5);
+  timeouts.heard("a", 1.0, false);
+  timeouts.heard("b", 1.2, false);
+  timeouts.heard("b", 1.3, true);  // b cleared its own wrench
+  EXPECT_TRUE(timeouts.expire(1.4).empty());
+  EXPECT_EQ(timeouts.expire(1.6), std::vector<std::string>{"a"});
+  EXPECT_TRUE(timeouts.expire(9.0).empty());
+  WrenchTimeouts never;
+  never.heard("a", 0.0, false);
+  EXPECT_TRUE(never.expire(1e9).empty());
+}
+
+TEST(LiveSettings, ChangeOnlyWhatDiffers) {
+  Session session = defaultSession();
+  const LiveSettings before = liveSettings(session.simulation().bodies()[0], 100.0);
+  EXPECT_EQ(before.youngs_modulus, 1.0e5);
+  EXPECT_TRUE(tuneCommands(session.simulation(), before, before, 1).empty());
+  LiveSettings after = before;
+  after.youngs_modulus = 2.0e5;
+  after.rate = 50.0;
+  const std::vector<TuneCommand> tunes = tuneCommands(session.simulation(), before, after, 2);
+  ASSERT_EQ(tunes.size(), 2u);
+  EXPECT_EQ(tunes[0].material->youngs_modulus, 2.0e5);
+  EXPECT_EQ(tunes[0].material->poisson_ratio, 0.3);
+  EXPECT_FALSE(tunes[0].damping || tunes[0].solver_tolerance || tunes[0].dt);
+  EXPECT_DOUBLE_EQ(*tunes[1].dt, 0.01);
+}
+
+TEST(LiveSettings, ImpossibleValuesAreRefusedNamingTheParameterNotClamped) {
+  Session session = defaultSession();
+  const LiveSettings before = liveSettings(session.simulation().bodies()[0], 100.0);
+  const auto refusedWith = [&](LiveSettings after) -> std::string {
+    try {
+      for (const TuneCommand& tune : tuneCommands(session.simulation(), before, after, 1)) {
+        session.apply(tune);
+      }
+    } catch (const CommandError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  LiveSettings bad = before;
+  bad.youngs_modulus = -5.0;
+  EXPECT_NE(refusedWith(bad).find("youngs_modulus is -5"), std::string::npos);
+  bad = before;
+  bad.poisson_ratio = 0.5;
+  EXPECT_NE(refusedWith(bad).find("poisson_ratio is 0.5"), std::string::npos);
+  bad = before;
+  bad.solver_tolerance = -1.0;
+  EXPECT_NE(refusedWith(bad).find("tolerance"), std::string::npos);
+  bad = before;
+  bad.rate = 0.0;
+  EXPECT_NE(refusedWith(bad).find("rate"), std::string::npos);
+  bad = before;
+  bad.body = "sponge";
+  EXPECT_NE(refusedWith(bad).find("no body named 'sponge'"), std::string::npos);
+  const Body& beam = session.simulation().bodies()[0];
+  EXPECT_EQ(beam.material().youngs_modulus, 1.0e5);  // nothing changed
+  EXPECT_EQ(beam.material().poisson_ratio, 0.3);
+  EXPECT_EQ(beam.solverSettings().tolerance, 1.0e-5);
+  EXPECT_EQ(session.simulation().dt(), 0.01);
+}
+
+TEST(PoseInterpolation, RunsFromOnePoseToTheOther) {
+  Eigen::Isometry3d from = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d to = Eigen::Isometry3d::Identity();
+  to.translate(Eigen::Vector3d(1.0, 2.0, 3.0));
+  to.rotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  EXPECT_TRUE(interpolatePose(from, to, 0.0).isApprox(from, 1e-12));
+  EXPECT_TRUE(interpolatePose(from, to, 1.0).isApprox(to, 1e-12));
+  const Eigen::Isometry3d half = interpolatePose(from, to, 0.5);
+  EXPECT_TRUE(half.translation().isApprox(Eigen::Vector3d(0.5, 1.0, 1.5), 1e-12));
+  EXPECT_NEAR(Eigen::AngleAxisd(half.linear()).angle(), M_PI / 4, 1e-12);
+}
+
+}  // namespace
+}  // namespace deformable_sim::core
