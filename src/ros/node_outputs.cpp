@@ -37,15 +37,8 @@ NodeOutputs::NodeOutputs(ros::NodeHandle& node, ros::NodeHandle& private_node,
   state_pub_ = private_node.advertise<BodyState>("state", 10);
   stats_pub_ = private_node.advertise<Stats>("stats", 10);
   // A viewer that connects first forgets the markers of an earlier run of this node.
-  const ros::SubscriberStatusCallback clear_mesh = [](const ros::SingleSubscriberPublisher& p) {
-    p.publish(deleteAll());
-  };
-  const ros::SubscriberStatusCallback clear_markers = [](const ros::SingleSubscriberPublisher& p) {
-    p.publish(deleteAllArray());
-  };
-  mesh_pub_ = private_node.advertise<visualization_msgs::Marker>("mesh", 2, clear_mesh);
-  markers_pub_ =
-      private_node.advertise<visualization_msgs::MarkerArray>("markers", 2, clear_markers);
+  mesh_pub_ = private_node.advertise<visualization_msgs::Marker>("mesh", 2);
+  markers_pub_ = private_node.advertise<visualization_msgs::MarkerArray>("markers", 2);
   for (const core::Body& body : session.simulation().bodies()) {
     reaction_pubs_.push_back(
         private_node.advertise<geometry_msgs::WrenchStamped>("reactions/" + body.name(), 10));
@@ -114,7 +107,12 @@ void NodeOutputs::clearMarkers() {
 
 void NodeOutputs::publishMarkers(const core::Session& session, const std_msgs::Header& header) {
   const std::vector<core::Body>& bodies = session.simulation().bodies();
-  if (mesh_pub_.getNumSubscribers() > 0) {
+  const uint32_t viewers = mesh_pub_.getNumSubscribers();
+  // A viewer that connected since forgets the meshes of an earlier run of this node (its
+  // ~markers start with a DELETEALL anyway).
+  if (viewers > mesh_viewers_) mesh_pub_.publish(deleteAll());
+  mesh_viewers_ = viewers;
+  if (viewers > 0) {
     for (size_t b = 0; b < bodies.size(); ++b) {
       const bool colour = bodies[b].effects().stress_colouring;
       if (colour) core::nodalStrain(bodies[b], strain_);

@@ -7,6 +7,7 @@ import unittest
 import rospy
 import rostest
 from rosgraph_msgs.msg import Clock
+from tf2_msgs.msg import TFMessage
 
 from sim_client import SimClient, connected
 
@@ -42,6 +43,25 @@ class SimTime(unittest.TestCase):
         self.assertAlmostEqual(sim.wait('state').step - after_one, 100, delta=3)
         # The state is stamped with the clock's time.
         self.assertAlmostEqual(sim.wait('state').header.stamp.to_sec(), self.now, delta=0.02)
+
+    def test_a_clock_that_jumps_repeats_no_transform(self):
+        """A clock coarser than the timer (rosbag play --clock -r 2) fires the timer several
+        times at one time; each stamp is sent once, else tf warns TF_REPEATED_DATA."""
+        sent = []
+        tf = rospy.Subscriber('/tf', TFMessage, lambda m: sent.extend(
+            (t.child_frame_id, t.header.stamp.to_nsec()) for t in m.transforms), queue_size=1000)
+        sim = SimClient()
+        self.run_clock(1.0, 1.0)  # time for the subscriptions to connect
+        start = sim.wait('state').step
+        for _ in range(40):  # 50 ms ticks: five timer periods each
+            self.tick(0.05)
+            time.sleep(0.02)
+        time.sleep(0.5)
+        tf.unregister()
+        beam = [s for s in sent if s[0] == 'beam']
+        self.assertGreater(len(beam), 20)
+        self.assertEqual(len(beam), len(set(beam)), 'a transform was sent twice with one stamp')
+        self.assertGreater(sim.wait('state').step, start + 40)  # a step a tick at least
 
 
 if __name__ == '__main__':

@@ -59,6 +59,7 @@ class NodeOutputs {
   diagnostic_updater::Updater diagnostics_;
   core::PeriodicSchedule marker_schedule_, stats_schedule_;
   ros::Time last_tf_stamp_;
+  uint32_t mesh_viewers_ = 0;  ///< ~mesh subscribers at the last publication
   std::vector<std::vector<core::Triangle>> surfaces_;
   BodyState state_message_;
   visualization_msgs::Marker mesh_message_;
