@@ -107,12 +107,11 @@ void NodeOutputs::clearMarkers() {
 
 void NodeOutputs::publishMarkers(const core::Session& session, const std_msgs::Header& header) {
   const std::vector<core::Body>& bodies = session.simulation().bodies();
-  const uint32_t viewers = mesh_pub_.getNumSubscribers();
-  // A viewer that connected since forgets the meshes of an earlier run of this node (its
-  // ~markers start with a DELETEALL anyway).
-  if (viewers > mesh_viewers_) mesh_pub_.publish(deleteAll());
-  mesh_viewers_ = viewers;
-  if (viewers > 0) {
+  if (mesh_pub_.getNumSubscribers() > 0) {
+    // rviz, still showing an earlier run of this node, forgets its meshes (~markers start with
+    // a DELETEALL anyway).
+    if (!mesh_cleared_) mesh_pub_.publish(deleteAll());
+    mesh_cleared_ = true;
     for (size_t b = 0; b < bodies.size(); ++b) {
       const bool colour = bodies[b].effects().stress_colouring;
       if (colour) core::nodalStrain(bodies[b], strain_);

@@ -10,6 +10,7 @@ import xmlrpc.client
 import rosgraph
 import rospy
 from std_srvs.srv import Trigger
+from visualization_msgs.msg import Marker
 
 from deformable_sim.msg import BodyState, Stats
 from deformable_sim.srv import Step
@@ -59,6 +60,15 @@ class SimClient:
     def state_at(self, step, timeout=10.0):
         return self.wait('state', lambda m: m.step == step, timeout)
 
+
+
+def surface_marker(topic, timeout=10.0):
+    """The first TRIANGLE_LIST on a node's ~mesh (a new node starts with a DELETEALL)."""
+    deadline = time.time() + timeout
+    while True:
+        marker = rospy.wait_for_message(topic, Marker, timeout=max(deadline - time.time(), 0.1))
+        if marker.action != Marker.DELETEALL:
+            return marker
 
 
 def connected(*publishers, timeout=10.0):

@@ -13,7 +13,7 @@ from geometry_msgs.msg import Point, TransformStamped, Vector3, WrenchStamped
 from visualization_msgs.msg import Marker
 
 from deformable_sim.msg import FixedNodes
-from sim_client import SimClient, all_finite, connected, positions
+from sim_client import SimClient, all_finite, connected, positions, surface_marker
 
 # The default scene: a 0.5 x 0.1 x 0.1 m box in 16 x 4 x 4 cells, six tetrahedra a cell.
 CELLS = (16, 4, 4)
@@ -35,7 +35,7 @@ class NodeInterface(unittest.TestCase):
         self.sim.resume()
 
     def test_mesh_marker_is_the_surface(self):
-        marker = rospy.wait_for_message('/deformable_sim/mesh', Marker, timeout=10.0)
+        marker = surface_marker('/deformable_sim/mesh')
         self.assertEqual(marker.type, Marker.TRIANGLE_LIST)
         self.assertEqual(marker.header.frame_id, 'world')
         self.assertGreater(marker.header.stamp.to_sec(), 0.0)

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The node's life as a ROS user sees it: --help starts nothing, outputs come at the rates asked
-for, and rviz is told to forget the markers of a run when a viewer connects and when it stops."""
+for, and rviz is told to forget the markers of an earlier run when a node starts and stops."""
 import signal
 import subprocess
 import threading
@@ -68,7 +68,7 @@ class NodeLifecycle(unittest.TestCase):
         self.assertAlmostEqual(rate(mesh, 10.0), 30.0, delta=1.0)
         self.assertAlmostEqual(rate(stats, 10.0), 10.0, delta=0.35)
 
-    def test_markers_are_cleared_on_connect_and_on_shutdown(self):
+    def test_markers_are_cleared_on_start_and_on_shutdown(self):
         node = subprocess.Popen(['rosrun', 'deformable_sim', 'deformable_sim_node',
                                  '__name:=short_lived'], stdout=subprocess.DEVNULL,
                                 stderr=subprocess.DEVNULL)

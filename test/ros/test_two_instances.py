@@ -8,7 +8,7 @@ import rostest
 import tf2_ros
 from visualization_msgs.msg import Marker
 
-from sim_client import SimClient
+from sim_client import SimClient, surface_marker
 
 
 class TwoInstances(unittest.TestCase):
@@ -25,10 +25,10 @@ class TwoInstances(unittest.TestCase):
         self.assertAlmostEqual(sponge.transform.translation.y, 0.6, delta=0.01)
         buffer.lookup_transform('world', 'right/sponge/top', rospy.Time(0), rospy.Duration(5.0))
         # The sponge's scene asks for stress colouring: a colour per vertex.
-        mesh = rospy.wait_for_message('/right/deformable_sim/mesh', Marker, timeout=10.0)
+        mesh = surface_marker('/right/deformable_sim/mesh')
         self.assertEqual(len(mesh.colors), len(mesh.points))
         self.assertEqual(mesh.ns, 'sponge')
-        plain = rospy.wait_for_message('/left/deformable_sim/mesh', Marker, timeout=10.0)
+        plain = surface_marker('/left/deformable_sim/mesh')
         self.assertEqual(len(plain.colors), 0)
         # Pausing one leaves the other running.
         left.pause()

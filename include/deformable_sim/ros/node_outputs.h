@@ -1,6 +1,6 @@
 // What the node publishes of a running session: ~state and tf every tick, ~mesh and ~markers at
 // ~marker_rate, ~stats at ~stats_rate, ~reactions/<body>, and /diagnostics. rviz is told to
-// forget old markers when it connects and when the node stops (DELETEALL).
+// forget old markers when the node starts and when it stops (DELETEALL).
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
@@ -59,7 +59,7 @@ class NodeOutputs {
   diagnostic_updater::Updater diagnostics_;
   core::PeriodicSchedule marker_schedule_, stats_schedule_;
   ros::Time last_tf_stamp_;
-  uint32_t mesh_viewers_ = 0;  ///< ~mesh subscribers at the last publication
+  bool mesh_cleared_ = false;  ///< the first publication on ~mesh was a DELETEALL
   std::vector<std::vector<core::Triangle>> surfaces_;
   BodyState state_message_;
   visualization_msgs::Marker mesh_message_;
