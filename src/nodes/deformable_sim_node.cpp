@@ -6,10 +6,30 @@
 #include <cstdio>
 #include <cstring>
 
-#include "deformable_sim/ros/node_parameters.h"
 #include "deformable_sim/ros/sim_node.h"
 
 namespace {
+
+constexpr const char* kUsage =
+    "usage: deformable_sim_node [__name:=NAME] [_PARAMETER:=VALUE ...]\n"
+    "  Steps a scene of deformable bodies on a timer; drive it with topics and services.\n"
+    "Parameters (private):\n"
+    "  ~scene PATH              scene YAML (default: the built-in cantilever)\n"
+    "  ~rate HZ                 each tick advances 1/rate s (default: 1/(dt substeps))\n"
+    "  ~substeps N              steps per tick (default 1)\n"
+    "  ~start_paused BOOL       start paused (default false)\n"
+    "  ~world_frame NAME        frame of positions (default world)\n"
+    "  ~frame_prefix PREFIX     prefix of body frames (default: the node's namespace)\n"
+    "  ~wrench_timeout S        drop a wrench whose sender is silent this long (default 0: never)\n"
+    "  ~stats_rate HZ, ~marker_rate HZ, ~strain_colour_scale S\n"
+    "  ~max_force N, ~max_torque NM   wrench bounds (default: 10 x the body's weight, and that\n"
+    "                           force times the body's size)\n"
+    "  ~max_target_distance M   how far a fixed-node target may be (default 10)\n"
+    "  ~max_steps_per_call N    the most ~step takes in one call (default 1000)\n"
+    "Subscribes: ~wrench ~node_wrench ~fixed_nodes ~grasp\n"
+    "Publishes:  ~state ~stats ~mesh ~markers ~applied ~scene ~reactions/<body>\n"
+    "            ~grasps/<name>/wrench /tf /diagnostics\n"
+    "Services:   ~reset ~pause ~resume ~step ~grasp; live tuning: dynamic_reconfigure\n";
 
 volatile std::sig_atomic_t stop_requested = 0;
 
@@ -20,7 +40,7 @@ void requestStop(int) { stop_requested = 1; }
 int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
-      std::fputs(deformable_sim::ros_layer::kNodeUsage, stdout);
+      std::fputs(kUsage, stdout);
       return 0;
     }
   }

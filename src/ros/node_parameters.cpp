@@ -13,28 +13,6 @@
 
 namespace deformable_sim::ros_layer {
 
-const char* const kNodeUsage =
-    "usage: deformable_sim_node [__name:=NAME] [_PARAMETER:=VALUE ...]\n"
-    "  Steps a scene of deformable bodies on a timer; drive it with topics and services.\n"
-    "Parameters (private):\n"
-    "  ~scene PATH              scene YAML (default: the built-in cantilever)\n"
-    "  ~rate HZ                 timer rate; each tick advances 1/rate s (default: 1/(dt "
-    "substeps))\n"
-    "  ~substeps N              steps per tick (default 1)\n"
-    "  ~start_paused BOOL       start paused (default false)\n"
-    "  ~world_frame NAME        frame of positions (default world)\n"
-    "  ~frame_prefix PREFIX     prefix of body frames (default: the node's namespace)\n"
-    "  ~wrench_timeout S        drop a wrench whose sender is silent this long (default 0: never)\n"
-    "  ~stats_rate HZ, ~marker_rate HZ, ~strain_colour_scale S\n"
-    "  ~max_force N, ~max_torque NM   wrench bounds (default: 10 x the body's weight, and that\n"
-    "                           force times the body's size)\n"
-    "  ~max_target_distance M   how far a fixed-node target may be (default 10)\n"
-    "  ~max_steps_per_call N    the most ~step takes in one call (default 1000)\n"
-    "Subscribes: ~wrench ~node_wrench ~fixed_nodes ~grasp\n"
-    "Publishes:  ~state ~stats ~mesh ~markers ~applied ~scene ~reactions/<body>\n"
-    "            ~grasps/<name>/wrench /tf /diagnostics\n"
-    "Services:   ~reset ~pause ~resume ~step ~grasp; live tuning: dynamic_reconfigure\n";
-
 namespace {
 
 // Reads a private parameter, keeping `value` (the default) when it is not set.

@@ -1,8 +1,8 @@
 #include "deformable_sim/ros/session_messages.h"
 
 #include <stdexcept>
-#include <type_traits>
 
+#include "deformable_sim/core/mesh_arrays.h"
 #include "deformable_sim/ros/conversions.h"
 
 namespace deformable_sim::ros_layer {
@@ -88,75 +88,86 @@ core::NodeTarget fromMessage(const AppliedNodes& m) {
   return t;
 }
 
+// Each command's fields into the message (its kind and what that kind uses).
+void record(const core::WrenchCommand& c, Applied& m) {
+  m.kind = Applied::WRENCH;
+  m.name = c.source;
+  m.body = c.body;
+  m.nodes = toMessage(c.nodes);
+  m.force = toVector3(c.force);
+  m.torque = toVector3(c.torque);
+  m.has_point = c.point.has_value();
+  if (c.point) m.point = toPoint(*c.point);
+}
+
+void record(const core::ClearWrenchCommand& c, Applied& m) {
+  m.kind = Applied::CLEAR_WRENCH;
+  m.name = c.source;
+}
+
+void record(const core::FixCommand& c, Applied& m) {
+  m.kind = c.fix ? Applied::FIX : Applied::RELEASE;
+  m.body = c.body;
+  m.nodes = toMessage(c.nodes);
+  for (const Eigen::Vector3d& p : c.targets) m.targets.push_back(toPoint(p));
+  m.has_translation = c.translation.has_value();
+  if (c.translation) m.translation = toVector3(*c.translation);
+}
+
+void record(const core::GraspCommand& c, Applied& m) {
+  m.kind = Applied::GRASP;
+  m.name = c.name;
+  m.body = c.body;
+  m.nodes = toMessage(c.nodes);
+  m.frame = toTransform(c.frame);
+}
+
+void record(const core::ReleaseGraspCommand& c, Applied& m) {
+  m.kind = Applied::RELEASE_GRASP;
+  m.name = c.name;
+}
+
+void record(const core::MoveGraspCommand& c, Applied& m) {
+  m.kind = Applied::MOVE_GRASP;
+  m.name = c.name;
+  m.frame = toTransform(c.frame);
+}
+
+void record(const core::SetObstaclesCommand& c, Applied& m) {
+  m.kind = Applied::OBSTACLES;
+  for (const core::PlacedShape& s : c.obstacles) m.obstacles.push_back(toMessage(s));
+}
+
+void record(const core::TuneCommand& c, Applied& m) {
+  m.kind = Applied::TUNE;
+  m.body = c.body;
+  m.has_material = c.material.has_value();
+  if (c.material) {
+    m.youngs_modulus = c.material->youngs_modulus;
+    m.poisson_ratio = c.material->poisson_ratio;
+    m.density = c.material->density;
+  }
+  m.has_damping = c.damping.has_value();
+  if (c.damping) {
+    m.damping_mass = c.damping->mass;
+    m.damping_stiffness = c.damping->stiffness;
+  }
+  m.has_solver_tolerance = c.solver_tolerance.has_value();
+  m.solver_tolerance = c.solver_tolerance.value_or(0.0);
+  m.has_solver_max_iterations = c.solver_max_iterations.has_value();
+  m.solver_max_iterations = c.solver_max_iterations.value_or(0);
+  m.has_dt = c.dt.has_value();
+  m.dt = c.dt.value_or(0.0);
+}
+
+void record(const core::ResetCommand&, Applied& m) { m.kind = Applied::RESET; }
+
 }  // namespace
 
 Applied toMessage(const core::SessionCommand& command) {
   Applied m;
   m.frame.rotation.w = 1.0;
-  std::visit(
-      [&m](const auto& c) {
-        using T = std::decay_t<decltype(c)>;
-        if constexpr (std::is_same_v<T, core::WrenchCommand>) {
-          m.kind = Applied::WRENCH;
-          m.name = c.source;
-          m.body = c.body;
-          m.nodes = toMessage(c.nodes);
-          m.force = toVector3(c.force);
-          m.torque = toVector3(c.torque);
-          m.has_point = c.point.has_value();
-          if (c.point) m.point = toPoint(*c.point);
-        } else if constexpr (std::is_same_v<T, core::ClearWrenchCommand>) {
-          m.kind = Applied::CLEAR_WRENCH;
-          m.name = c.source;
-        } else if constexpr (std::is_same_v<T, core::FixCommand>) {
-          m.kind = c.fix ? Applied::FIX : Applied::RELEASE;
-          m.body = c.body;
-          m.nodes = toMessage(c.nodes);
-          for (const Eigen::Vector3d& p : c.targets) m.targets.push_back(toPoint(p));
-          m.has_translation = c.translation.has_value();
-          if (c.translation) m.translation = toVector3(*c.translation);
-        } else if constexpr (std::is_same_v<T, core::GraspCommand>) {
-          m.kind = Applied::GRASP;
-          m.name = c.name;
-          m.body = c.body;
-          m.nodes = toMessage(c.nodes);
-          m.frame = toTransform(c.frame);
-        } else if constexpr (std::is_same_v<T, core::ReleaseGraspCommand>) {
-          m.kind = Applied::RELEASE_GRASP;
-          m.name = c.name;
-        } else if constexpr (std::is_same_v<T, core::MoveGraspCommand>) {
-          m.kind = Applied::MOVE_GRASP;
-          m.name = c.name;
-          m.frame = toTransform(c.frame);
-        } else if constexpr (std::is_same_v<T, core::SetObstaclesCommand>) {
-          m.kind = Applied::OBSTACLES;
-          for (const core::PlacedShape& s : c.obstacles) m.obstacles.push_back(toMessage(s));
-        } else if constexpr (std::is_same_v<T, core::TuneCommand>) {
-          m.kind = Applied::TUNE;
-          m.body = c.body;
-          m.has_material = c.material.has_value();
-          if (c.material) {
-            m.youngs_modulus = c.material->youngs_modulus;
-            m.poisson_ratio = c.material->poisson_ratio;
-            m.density = c.material->density;
-          }
-          m.has_damping = c.damping.has_value();
-          if (c.damping) {
-            m.damping_mass = c.damping->mass;
-            m.damping_stiffness = c.damping->stiffness;
-          }
-          m.has_solver_tolerance = c.solver_tolerance.has_value();
-          m.solver_tolerance = c.solver_tolerance.value_or(0.0);
-          m.has_solver_max_iterations = c.solver_max_iterations.has_value();
-          m.solver_max_iterations = c.solver_max_iterations.value_or(0);
-          m.has_dt = c.dt.has_value();
-          m.dt = c.dt.value_or(0.0);
-        } else {
-          static_assert(std::is_same_v<T, core::ResetCommand>);
-          m.kind = Applied::RESET;
-        }
-      },
-      command);
+  std::visit([&m](const auto& c) { record(c, m); }, command);
   return m;
 }
 
@@ -227,20 +238,14 @@ Scene toSceneMessage(const std::string& path, const std::string& yaml, double dt
   m.dt = dt;
   m.substeps = static_cast<uint32_t>(substeps);
   for (size_t b = 0; b < meshes.size(); ++b) {
-    const core::Mesh& mesh = meshes[b];
+    core::MeshArrays arrays = core::toArrays(meshes[b]);
     MeshData data;
     data.body = body_names[b];
-    data.node_ids.assign(mesh.node_numbers.begin(), mesh.node_numbers.end());
-    for (const Eigen::Vector3d& p : mesh.positions) {
-      data.rest_positions.insert(data.rest_positions.end(), {p.x(), p.y(), p.z()});
-    }
-    for (const core::Tetrahedron& t : mesh.tetrahedra) {
-      for (int i : t) data.tetrahedra.push_back(static_cast<uint32_t>(i));
-    }
-    for (const core::Cell& c : mesh.cells) {
-      data.cell_types.push_back(static_cast<uint8_t>(c.size()));
-      for (int k = 0; k < c.size(); ++k) data.cells.push_back(static_cast<uint32_t>(c.nodes[k]));
-    }
+    data.node_ids = std::move(arrays.node_numbers);
+    data.rest_positions = std::move(arrays.rest_positions);
+    data.tetrahedra = std::move(arrays.tetrahedra);
+    data.cell_types = std::move(arrays.cell_types);
+    data.cells = std::move(arrays.cells);
     m.meshes.push_back(std::move(data));
   }
   return m;
@@ -249,54 +254,10 @@ Scene toSceneMessage(const std::string& path, const std::string& yaml, double dt
 std::vector<core::Mesh> meshesFromMessage(const Scene& message) {
   std::vector<core::Mesh> meshes;
   for (const MeshData& data : message.meshes) {
-    const size_t n = data.node_ids.size();
-    if (data.rest_positions.size() != 3 * n || data.tetrahedra.size() % 4 != 0) {
-      throw std::invalid_argument("scene message: the mesh of body '" + data.body +
-                                  "' has arrays of inconsistent sizes");
-    }
-    core::Mesh mesh;
-    mesh.node_numbers.assign(data.node_ids.begin(), data.node_ids.end());
-    for (size_t i = 0; i < n; ++i) {
-      mesh.positions.emplace_back(data.rest_positions[3 * i], data.rest_positions[3 * i + 1],
-                                  data.rest_positions[3 * i + 2]);
-    }
-    for (size_t e = 0; e < data.tetrahedra.size(); e += 4) {
-      core::Tetrahedron t;
-      for (int k = 0; k < 4; ++k) {
-        if (data.tetrahedra[e + k] >= n) {
-          throw std::invalid_argument("scene message: the mesh of body '" + data.body +
-                                      "' refers to a node out of range");
-        }
-        t[k] = static_cast<int>(data.tetrahedra[e + k]);
-      }
-      mesh.tetrahedra.push_back(t);
-    }
-    size_t next = 0;
-    for (uint8_t size : data.cell_types) {
-      if (size != 5 && size != 6 && size != 8) {
-        throw std::invalid_argument("scene message: the mesh of body '" + data.body +
-                                    "' has a cell of unknown type " + std::to_string(size));
-      }
-      if (next + size > data.cells.size()) {
-        throw std::invalid_argument("scene message: the mesh of body '" + data.body +
-                                    "' has arrays of inconsistent sizes");
-      }
-      core::Cell cell{static_cast<core::CellType>(size), {}};
-      for (int k = 0; k < size; ++k) {
-        if (data.cells[next + k] >= n) {
-          throw std::invalid_argument("scene message: the mesh of body '" + data.body +
-                                      "' refers to a node out of range");
-        }
-        cell.nodes[k] = static_cast<int>(data.cells[next + k]);
-      }
-      next += size;
-      mesh.cells.push_back(cell);
-    }
-    if (next != data.cells.size()) {
-      throw std::invalid_argument("scene message: the mesh of body '" + data.body +
-                                  "' has arrays of inconsistent sizes");
-    }
-    meshes.push_back(std::move(mesh));
+    const core::MeshArrays arrays{data.node_ids, data.rest_positions, data.tetrahedra,
+                                  data.cell_types, data.cells};
+    meshes.push_back(
+        core::fromArrays(arrays, "scene message: the mesh of body '" + data.body + "'"));
   }
   return meshes;
 }

@@ -2,10 +2,12 @@
 
 #include <Eigen/Geometry>
 #include <map>
+#include <string>
 
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/loads.h"
 #include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/mesh_arrays.h"
 #include "deformable_sim/core/selection.h"
 
 namespace dc = deformable_sim::core;
@@ -88,4 +90,39 @@ TEST(Loads, TractionGivesConsistentNodalForcesWithTheRightResultant) {
   EXPECT_EQ(g[0], 1.0);
   EXPECT_EQ(g[3], 1.0);
   EXPECT_THROW(dc::addTotalForce({}, Eigen::Vector3d(1, 0, 0), g), std::invalid_argument);
+}
+
+TEST(MeshArrays, RoundTripEveryElementTypeAndRefuseWhatDoesNotFit) {
+  dc::Mesh mesh = dc::makeBoxMesh({0, 0, 0}, {1.0, 0.5, 0.25}, {2, 1, 1});
+  mesh.node_numbers.assign(mesh.positions.size(), 0);
+  for (size_t i = 0; i < mesh.node_numbers.size(); ++i) mesh.node_numbers[i] = 100 + 7 * i;
+  mesh.cells.push_back({dc::CellType::kHexahedron, {0, 1, 4, 3, 6, 7, 10, 9}});
+  mesh.cells.push_back({dc::CellType::kPyramid, {0, 1, 4, 3, 6}});
+  const dc::Mesh back = dc::fromArrays(dc::toArrays(mesh), "test");
+  EXPECT_EQ(back.positions, mesh.positions);
+  EXPECT_EQ(back.node_numbers, mesh.node_numbers);
+  EXPECT_EQ(back.tetrahedra, mesh.tetrahedra);
+  ASSERT_EQ(back.cells.size(), 2u);
+  EXPECT_EQ(back.cells[0].nodes, mesh.cells[0].nodes);
+  EXPECT_EQ(back.cells[1].type, dc::CellType::kPyramid);
+  const auto refusal = [](dc::MeshArrays arrays) -> std::string {
+    try {
+      dc::fromArrays(arrays, "the mesh of body 'b'");
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "";
+  };
+  dc::MeshArrays bad = dc::toArrays(mesh);
+  bad.rest_positions.pop_back();
+  EXPECT_EQ(refusal(bad), "the mesh of body 'b' has arrays of inconsistent sizes");
+  bad = dc::toArrays(mesh);
+  bad.tetrahedra[5] = 1000;
+  EXPECT_EQ(refusal(bad), "the mesh of body 'b' refers to a node out of range");
+  bad = dc::toArrays(mesh);
+  bad.cell_types[1] = 7;
+  EXPECT_EQ(refusal(bad), "the mesh of body 'b' has a cell of unknown type 7");
+  bad = dc::toArrays(mesh);
+  bad.cells.pop_back();
+  EXPECT_EQ(refusal(bad), "the mesh of body 'b' has arrays of inconsistent sizes");
 }

@@ -30,7 +30,4 @@ struct NodeParameters {
 /// Throws std::runtime_error naming the parameter (or the scene file's key) that is wrong.
 NodeParameters readNodeParameters(const ros::NodeHandle& private_node);
 
-/// The usage deformable_sim_node prints for --help: parameters, topics, services.
-extern const char* const kNodeUsage;
-
 }  // namespace deformable_sim::ros_layer
