@@ -91,4 +91,23 @@ WrenchCommand wrenchNearPoint(const Simulation& simulation, const std::string& f
   return command;
 }
 
+WrenchCommand wrenchInFrame(const Simulation& simulation, const std::string& frame,
+                            const BodyFrame& target, const Eigen::Vector3d& force,
+                            const Eigen::Vector3d& torque) {
+  const Eigen::Matrix3d rotation = target.pose.linear();
+  const Eigen::Vector3d origin = target.pose.translation();
+  if (target.body < 0) {
+    return wrenchNearPoint(simulation, frame, origin, rotation * force, rotation * torque);
+  }
+  WrenchCommand command;
+  command.source = frame;
+  command.body = simulation.bodies()[target.body].name();
+  command.nodes.group = target.group;
+  command.nodes.whole_body = target.group.empty();
+  command.force = rotation * force;
+  command.torque = rotation * torque;
+  command.point = origin;
+  return command;
+}
+
 }  // namespace deformable_sim::core

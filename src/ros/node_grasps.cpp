@@ -2,7 +2,6 @@
 
 #include <geometry_msgs/WrenchStamped.h>
 
-#include "deformable_sim/core/pose_interpolation.h"
 #include "deformable_sim/core/rigid_frame.h"
 #include "deformable_sim/ros/conversions.h"
 
@@ -16,7 +15,7 @@ uint32_t NodeGrasps::handle(const core::Session& session, const Grasp& message) 
     }
     const auto nodes = static_cast<uint32_t>(found->second.nodes.size());
     apply_(core::ReleaseGraspCommand{message.name});
-    frames_followed_.erase(message.name);
+    follower_.forget(message.name);
     wrench_pubs_.erase(message.name);  // its topic goes with it: names do not pile up
     return nodes;
   }
@@ -25,7 +24,7 @@ uint32_t NodeGrasps::handle(const core::Session& session, const Grasp& message) 
                              " is neither ATTACH (0) nor RELEASE (1)");
   }
   const auto nodes = static_cast<uint32_t>(apply_(attachCommand(session.simulation(), message)));
-  frames_followed_[message.name] = withoutLeadingSlash(message.header.frame_id);
+  follower_.follow(message.name, withoutLeadingSlash(message.header.frame_id));
   if (wrench_pubs_.count(message.name) == 0) {
     wrench_pubs_[message.name] =
         node_.advertise<geometry_msgs::WrenchStamped>("grasps/" + message.name + "/wrench", 10);
@@ -91,32 +90,21 @@ core::NodeTarget NodeGrasps::linkRegion(const Grasp& message, const std::string&
 }
 
 void NodeGrasps::planMoves(const core::CommandProcessor& commands) {
-  moves_.clear();
-  for (const auto& [name, frame] : frames_followed_) {
-    const Eigen::Isometry3d from = commands.grasps().at(name).frame;
-    std::string error;
-    std::optional<Eigen::Isometry3d> to = frames_.lookup(frame, &error);
-    if (!to) {
-      ROS_WARN_THROTTLE(1.0, "grasp '%s': frame '%s' not in tf now (%s); holding its last pose",
-                        name.c_str(), frame.c_str(), error.c_str());
-      to = from;
-    }
-    moves_[name] = {from, *to};
+  const auto pose = [this](const std::string& frame) { return frames_.lookup(frame, nullptr); };
+  for (const std::string& grasp : follower_.plan(commands, pose)) {
+    ROS_WARN_THROTTLE(1.0, "grasp '%s': frame '%s' is not in tf now; holding its last pose",
+                      grasp.c_str(), follower_.frames().at(grasp).c_str());
   }
 }
 
 void NodeGrasps::move(int s, int steps) {
-  for (const auto& [name, poses] : moves_) {
-    const auto& [from, to] = poses;
-    apply_(core::MoveGraspCommand{
-        name, s == steps ? to : core::interpolatePose(from, to, static_cast<double>(s) / steps)});
-  }
+  for (const core::MoveGraspCommand& move : follower_.moves(s, steps)) apply_(move);
 }
 
 void NodeGrasps::publish(const core::Session& session, const ros::Time& stamp,
                          tf2_ros::TransformBroadcaster* broadcaster) {
   std::vector<geometry_msgs::TransformStamped> objects;
-  for (const auto& [name, frame] : frames_followed_) {
+  for (const auto& [name, frame] : follower_.frames()) {
     const core::ActiveGrasp& grasp = session.commands().grasps().at(name);
     const core::Wrench reaction = session.commands().graspReaction(name);
     const Eigen::Matrix3d to_frame = grasp.frame.linear().transpose();
@@ -141,9 +129,8 @@ void NodeGrasps::publish(const core::Session& session, const ros::Time& stamp,
 }
 
 void NodeGrasps::clear() {
-  frames_followed_.clear();
+  follower_.clear();
   wrench_pubs_.clear();
-  moves_.clear();
 }
 
 }  // namespace deformable_sim::ros_layer

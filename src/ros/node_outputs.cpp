@@ -86,7 +86,7 @@ bool NodeOutputs::publishState(const core::Session& session, const ros::Time& no
 }
 
 void NodeOutputs::publishPeriodic(const core::Session& session, const TickStatus& status,
-                                  const RefusalLog& refusals, const ros::Time& now) {
+                                  const core::RefusalLog& refusals, const ros::Time& now) {
   if (marker_schedule_.due(now.toSec())) {
     std_msgs::Header header;
     header.stamp = now;
@@ -127,7 +127,7 @@ void NodeOutputs::publishMarkers(const core::Session& session, const std_msgs::H
 }
 
 void NodeOutputs::publishStats(const core::Session& session, const TickStatus& status,
-                               const RefusalLog& refusals, const ros::Time& now) {
+                               const core::RefusalLog& refusals, const ros::Time& now) {
   const core::Simulation& sim = session.simulation();
   Stats stats;
   stats.header.stamp = now;
@@ -169,28 +169,14 @@ void NodeOutputs::publishStats(const core::Session& session, const TickStatus& s
 void NodeOutputs::diagnose(diagnostic_updater::DiagnosticStatusWrapper& out) {
   if (!session_) return;
   const core::Simulation& sim = session_->simulation();
-  bool converged = true;
-  int inverted = 0;
-  for (const core::StepReport& r : status_->reports) {
-    converged = converged && r.solve.converged;
-    inverted += r.inverted_elements;
-  }
+  const core::Health health = core::health(*status_, sim, params_.substeps);
   using Status = diagnostic_msgs::DiagnosticStatus;
-  if (status_->recent_recovery) {
-    out.summary(Status::WARN, "the watchdog undid a step that left a non-finite value");
-  } else if (!converged) {
-    out.summary(Status::WARN, "a solve did not reach its tolerance");
-  } else if (!status_->paused && status_->real_time_factor < 0.9 &&
-             sim.stepCount() > 10 * params_.substeps) {
-    out.summary(Status::WARN, "cannot keep real time");
-  } else {
-    out.summary(Status::OK, status_->paused ? "paused" : "running");
-  }
+  out.summary(health.ok ? Status::OK : Status::WARN, health.summary);
   out.add("step", sim.stepCount());
   out.add("simulated time (s)", sim.time());
   out.add("real-time factor", status_->real_time_factor);
   out.add("step time (ms)", 1e3 * status_->step_time_s);
-  out.add("inverted elements", inverted);
+  out.add("inverted elements", health.inverted_elements);
   out.add("watchdog recoveries", status_->recoveries);
   out.add("dropped messages", refusals_->count());
   out.add("last refusal", refusals_->last());

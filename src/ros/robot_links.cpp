@@ -42,38 +42,15 @@ void RobotLinks::load() {
   loaded_ = true;
 }
 
-LinkObstacles::LinkObstacles(const core::SceneSpec& scene, RobotLinks& links)
-    : fixed_(scene.obstacles) {
+core::LinkedObstacles sceneObstacles(const core::SceneSpec& scene, RobotLinks& links) {
+  core::LinkedObstacles obstacles(scene.obstacles);
   for (const std::string& link : scene.urdf_links) {
     try {
-      for (const core::PlacedShape& shape : links.shapes(link)) {
-        linked_.push_back({link, shape, std::nullopt});
-      }
+      for (const core::PlacedShape& shape : links.shapes(link)) obstacles.attach(link, shape);
     } catch (const core::CommandError& e) {
       throw std::runtime_error(std::string("urdf.links: ") + e.what());
     }
   }
-}
-
-std::optional<std::vector<core::PlacedShape>> LinkObstacles::place(const FrameResolver& frames) {
-  std::vector<core::PlacedShape> obstacles = fixed_;
-  bool complete = true;
-  for (Placed& obstacle : linked_) {
-    std::string error;
-    if (const auto link = frames.lookup(obstacle.link, &error)) {
-      obstacle.placed = obstacle.local;
-      obstacle.placed->pose = *link * obstacle.local.pose;
-    } else {
-      ROS_WARN_THROTTLE(5.0, "obstacle link '%s' is not in tf yet (%s)", obstacle.link.c_str(),
-                        error.c_str());
-    }
-    if (obstacle.placed) {
-      obstacles.push_back(*obstacle.placed);
-    } else {
-      complete = false;
-    }
-  }
-  if (!complete) return std::nullopt;
   return obstacles;
 }
 

@@ -15,9 +15,9 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
       wrench_timeouts_(params_.wrench_timeout_s),
       tf_listener_(tf_buffer_),
       frames_(tf_buffer_, params_.world_frame, params_.frame_prefix),
-      robot_links_(params_.scene.urdf_file) {
+      robot_links_(params_.scene.urdf_file),
+      obstacles_(sceneObstacles(params_.scene, robot_links_)) {
   startSession();
-  if (!params_.scene.urdf_links.empty()) link_obstacles_.emplace(params_.scene, robot_links_);
   status_.paused = params_.start_paused;
   applied_pub_ = private_node.advertise<Applied>("applied", 1000);
   scene_pub_ = private_node.advertise<Scene>("scene", 1, true);  // latched: a bag holds it
@@ -147,7 +147,14 @@ void SimNode::advance(int steps) {
 bool SimNode::updateObstacles() {
   if (!sim().contact()) return true;
   std::optional<std::vector<core::PlacedShape>> obstacles =
-      link_obstacles_ ? link_obstacles_->place(frames_) : params_.scene.obstacles;
+      obstacles_.place([this](const std::string& link) {
+        std::string error;
+        const std::optional<Eigen::Isometry3d> pose = frames_.lookup(link, &error);
+        if (!pose)
+          ROS_WARN_THROTTLE(5.0, "obstacle link '%s' is not in tf (%s)", link.c_str(),
+                            error.c_str());
+        return pose;
+      });
   if (!obstacles) return false;
   if (*obstacles != requested_obstacles_) {  // recorded (and applied) only when tf moved one
     try {
@@ -166,7 +173,7 @@ void SimNode::publishState(const ros::Time& now) {
 }
 
 void SimNode::refuse(const std::string& topic, const std::string& reason) {
-  const std::string warning = refusals_.refuse(topic, reason, ros::WallTime::now());
+  const std::string warning = refusals_.refuse(topic, reason, ros::WallTime::now().toSec());
   if (!warning.empty()) ROS_WARN("%s", warning.c_str());
 }
 
@@ -174,35 +181,20 @@ void SimNode::onWrench(const geometry_msgs::WrenchStamped::ConstPtr& message) {
   const std::string frame = withoutLeadingSlash(message->header.frame_id);
   const Eigen::Vector3d force = toEigen(message->wrench.force);
   const Eigen::Vector3d torque = toEigen(message->wrench.torque);
+  const bool zero = force.isZero(0.0) && torque.isZero(0.0);
   try {
     if (frame.empty()) {
       throw core::CommandError(
           "header.frame_id is empty: name a body, a node group (<body>/<group>) or a tf frame");
     }
-    core::WrenchCommand command;
-    command.source = frame;
     // A zero wrench removes the frame's wrench without resolving the frame (it may have left tf);
     // one that removes nothing must name a frame a wrench could act on, like any other wrench.
-    const bool clears = force.isZero(0.0) && torque.isZero(0.0) &&
-                        session_->commands().activeWrenches().count(frame) > 0;
-    if (!clears) {
-      const core::BodyFrame target = frames_.resolve(sim(), frame);
-      const Eigen::Matrix3d rotation = target.pose.linear();
-      if (target.body < 0) {  // another tf frame: the nodes of the nearest body
-        command = core::wrenchNearPoint(sim(), frame, target.pose.translation(), rotation * force,
-                                        rotation * torque);
-      } else {
-        command.force = rotation * force;
-        command.torque = rotation * torque;
-        command.point = target.pose.translation();
-        command.body = sim().bodies()[target.body].name();
-        command.nodes.group = target.group;
-        command.nodes.whole_body = target.group.empty();
-      }
+    if (zero && session_->commands().activeWrenches().count(frame) > 0) {
+      apply(core::ClearWrenchCommand{frame});
+    } else {
+      apply(core::wrenchInFrame(sim(), frame, frames_.resolve(sim(), frame), force, torque));
     }
-    apply(command);
-    wrench_timeouts_.heard(frame, ros::Time::now().toSec(),
-                           command.force.isZero(0.0) && command.torque.isZero(0.0));
+    wrench_timeouts_.heard(frame, ros::Time::now().toSec(), zero);
   } catch (const core::CommandError& e) {
     refuse("~wrench", e.what());
   }

@@ -7,10 +7,14 @@
 
 #include "deformable_sim/core/body_frame_lookup.h"
 #include "deformable_sim/core/default_scene.h"
+#include "deformable_sim/core/grasp_follower.h"
+#include "deformable_sim/core/linked_obstacles.h"
 #include "deformable_sim/core/live_settings.h"
 #include "deformable_sim/core/periodic_schedule.h"
 #include "deformable_sim/core/pose_interpolation.h"
 #include "deformable_sim/core/real_time_factor.h"
+#include "deformable_sim/core/refusal_log.h"
+#include "deformable_sim/core/tick_status.h"
 #include "deformable_sim/core/wrench_timeouts.h"
 #include "deformable_sim/io/scene_file.h"
 
@@ -87,6 +91,25 @@ TEST(WrenchNearPoint, AFarFrameIsRefusedWithTheFrameTheBodyItsDistanceAndRadius)
   }
 }
 
+TEST(WrenchInFrame, TurnsTheWrenchIntoTheWorldAndActsAtTheFramesOrigin) {
+  Session session = defaultSession();
+  BodyFrame tip = findBodyFrame(session.simulation().bodies(), "", "beam/tip");
+  tip.pose.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const WrenchCommand command =
+      wrenchInFrame(session.simulation(), "beam/tip", tip, {1.0, 0.0, 0.0}, {0.0, 0.0, 0.0});
+  EXPECT_EQ(command.body, "beam");
+  EXPECT_EQ(command.nodes.group, "tip");
+  EXPECT_FALSE(command.nodes.whole_body);
+  EXPECT_TRUE(command.force.isApprox(Eigen::Vector3d(0.0, 1.0, 0.0), 1e-15));  // x turned to y
+  EXPECT_NEAR(command.point->x(), 0.5, 1e-12);
+  BodyFrame elsewhere;  // a tf frame 2 cm beyond the tip
+  elsewhere.pose.translation() = Eigen::Vector3d(0.52, 0.0, 0.0);
+  const WrenchCommand near = wrenchInFrame(session.simulation(), "finger", elsewhere,
+                                           {0.0, 0.0, -1.0}, Eigen::Vector3d::Zero());
+  EXPECT_TRUE(near.nodes.sphere.has_value());
+  EXPECT_EQ(near.source, "finger");
+}
+
 TEST(WrenchBounds, DefaultToTenTimesTheBodysWeightAndThatForceTimesItsSize) {
   Session session = defaultSession();
   const Body& beam = session.simulation().bodies()[0];
@@ -153,6 +176,42 @@ TEST(WrenchTimeouts, ASilentSourceLapsesAndAZeroWrenchIsForgotten) {
   EXPECT_TRUE(never.expire(1e9).empty());
 }
 
+TEST(RefusalLog, CountsEveryRefusalAndWarnsOnceASecondPerTopic) {
+  RefusalLog log;
+  EXPECT_EQ(log.refuse("~wrench", "NaN", 10.0), "~wrench: NaN (message dropped)");
+  EXPECT_EQ(log.refuse("~wrench", "NaN", 10.2), "");
+  EXPECT_EQ(log.refuse("~wrench", "huge", 10.4), "");
+  EXPECT_NE(log.refuse("~grasp", "unknown frame", 10.5), "");  // another topic: not throttled
+  EXPECT_EQ(log.refuse("~wrench", "NaN", 11.1),
+            "~wrench: NaN (message dropped; 2 more dropped on ~wrench since the last warning)");
+  EXPECT_EQ(log.count(), 5u);
+  EXPECT_EQ(log.last(), "~wrench: NaN");
+}
+
+TEST(Health, WarnsOfRecoveriesMissedTolerancesAndLostRealTimeInThatOrder) {
+  Session session = defaultSession();
+  TickStatus status;
+  status.reports.resize(1);
+  status.reports[0].solve.converged = true;
+  status.reports[0].inverted_elements = 3;
+  status.real_time_factor = 0.5;  // but only 0 steps so far: starting up, not slow
+  Health h = health(status, session.simulation(), 1);
+  EXPECT_TRUE(h.ok);
+  EXPECT_EQ(h.summary, "running");
+  EXPECT_EQ(h.inverted_elements, 3);
+  for (int k = 0; k < 11; ++k) session.step(status.reports);
+  EXPECT_EQ(health(status, session.simulation(), 1).summary, "cannot keep real time");
+  EXPECT_TRUE(health(status, session.simulation(), 2).ok);  // 11 steps: 5 ticks of 2 substeps
+  status.paused = true;
+  EXPECT_EQ(health(status, session.simulation(), 1).summary, "paused");
+  status.reports[0].solve.converged = false;
+  EXPECT_EQ(health(status, session.simulation(), 1).summary, "a solve did not reach its tolerance");
+  status.recent_recovery = true;
+  h = health(status, session.simulation(), 1);
+  EXPECT_FALSE(h.ok);
+  EXPECT_EQ(h.summary, "the watchdog undid a step that left a non-finite value");
+}
+
 TEST(LiveSettings, ChangeOnlyWhatDiffers) {
   Session session = defaultSession();
   const LiveSettings before = liveSettings(session.simulation().bodies()[0], 100.0);
@@ -202,6 +261,61 @@ TEST(LiveSettings, ImpossibleValuesAreRefusedNamingTheParameterNotClamped) {
   EXPECT_EQ(beam.material().poisson_ratio, 0.3);
   EXPECT_EQ(beam.solverSettings().tolerance, 1.0e-5);
   EXPECT_EQ(session.simulation().dt(), 0.01);
+}
+
+TEST(GraspFollower, MovesEachGraspEvenlyToItsFramesPoseAndHoldsALostOne) {
+  Session session = defaultSession();
+  GraspCommand grasp;
+  grasp.name = "hand";
+  grasp.body = "beam";
+  grasp.nodes.group = "tip";
+  grasp.frame.translation() = Eigen::Vector3d(0.5, 0.0, 0.0);
+  session.apply(grasp);
+  grasp.name = "other";
+  grasp.nodes.group.clear();
+  grasp.nodes.sphere = Sphere{{0.25, 0.0, 0.0}, 0.03};
+  session.apply(grasp);
+  GraspFollower follower;
+  follower.follow("hand", "gripper");
+  follower.follow("other", "lost_frame");
+  const auto pose = [](const std::string& frame) -> std::optional<Eigen::Isometry3d> {
+    if (frame != "gripper") return std::nullopt;
+    Eigen::Isometry3d to = Eigen::Isometry3d::Identity();
+    to.translation() = Eigen::Vector3d(0.5, 0.0, 0.4);
+    return to;
+  };
+  EXPECT_EQ(follower.plan(session.commands(), pose), std::vector<std::string>{"other"});
+  const std::vector<MoveGraspCommand> first = follower.moves(1, 4);
+  ASSERT_EQ(first.size(), 2u);
+  EXPECT_EQ(first[0].name, "hand");
+  EXPECT_NEAR(first[0].frame.translation().z(), 0.1, 1e-15);
+  EXPECT_NEAR(first[1].frame.translation().x(), 0.5, 1e-15);  // held where it was
+  EXPECT_EQ(follower.moves(4, 4)[0].frame.translation().z(), 0.4);
+  follower.forget("other");
+  EXPECT_EQ(follower.moves(4, 4).size(), 1u);
+}
+
+TEST(LinkedObstacles, PlaceShapesWithTheirFramesAndWaitForEveryFrame) {
+  PlacedShape floor;
+  floor.name = "floor";
+  PlacedShape finger;
+  finger.name = "finger";
+  finger.pose.translation() = Eigen::Vector3d(0.0, 0.0, 0.1);  // in the link's frame
+  LinkedObstacles obstacles({floor});
+  obstacles.attach("link", finger);
+  std::optional<Eigen::Isometry3d> link;
+  const auto pose = [&link](const std::string&) { return link; };
+  EXPECT_FALSE(obstacles.place(pose));  // never placed yet: no stepping
+  link = Eigen::Isometry3d::Identity();
+  link->translation() = Eigen::Vector3d(1.0, 0.0, 0.0);
+  std::optional<std::vector<PlacedShape>> placed = obstacles.place(pose);
+  ASSERT_TRUE(placed && placed->size() == 2u);
+  EXPECT_EQ((*placed)[0].name, "floor");
+  EXPECT_TRUE((*placed)[1].pose.translation().isApprox(Eigen::Vector3d(1.0, 0.0, 0.1)));
+  link.reset();  // tf lost the link: it stays where it was
+  placed = obstacles.place(pose);
+  ASSERT_TRUE(placed);
+  EXPECT_TRUE((*placed)[1].pose.translation().isApprox(Eigen::Vector3d(1.0, 0.0, 0.1)));
 }
 
 TEST(PoseInterpolation, RunsFromOnePoseToTheOther) {

@@ -44,4 +44,10 @@ WrenchCommand wrenchNearPoint(const Simulation& simulation, const std::string& f
                               const Eigen::Vector3d& point, const Eigen::Vector3d& force,
                               const Eigen::Vector3d& torque);
 
+/// A wrench given in `frame` (posed by `target`): on the frame's body or group, acting at the
+/// frame's origin; for any other frame, wrenchNearPoint at its origin. The source is `frame`.
+WrenchCommand wrenchInFrame(const Simulation& simulation, const std::string& frame,
+                            const BodyFrame& target, const Eigen::Vector3d& force,
+                            const Eigen::Vector3d& torque);
+
 }  // namespace deformable_sim::core

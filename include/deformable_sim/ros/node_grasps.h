@@ -9,9 +9,9 @@
 #include <functional>
 #include <map>
 #include <string>
-#include <utility>
 
 #include "deformable_sim/Grasp.h"
+#include "deformable_sim/core/grasp_follower.h"
 #include "deformable_sim/core/session.h"
 #include "deformable_sim/ros/frame_resolver.h"
 #include "deformable_sim/ros/robot_links.h"
@@ -47,9 +47,8 @@ class NodeGrasps {
   const FrameResolver& frames_;
   RobotLinks& links_;
   Apply apply_;
-  std::map<std::string, std::string> frames_followed_;  ///< grasp -> tf frame it follows
+  core::GraspFollower follower_;
   std::map<std::string, ros::Publisher> wrench_pubs_;
-  std::map<std::string, std::pair<Eigen::Isometry3d, Eigen::Isometry3d>> moves_;  ///< from, to
 };
 
 }  // namespace deformable_sim::ros_layer

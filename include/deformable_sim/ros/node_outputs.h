@@ -12,21 +12,14 @@
 
 #include "deformable_sim/BodyState.h"
 #include "deformable_sim/core/periodic_schedule.h"
+#include "deformable_sim/core/refusal_log.h"
 #include "deformable_sim/core/session.h"
+#include "deformable_sim/core/tick_status.h"
 #include "deformable_sim/ros/node_parameters.h"
-#include "deformable_sim/ros/refusal_log.h"
 
 namespace deformable_sim::ros_layer {
 
-/// How the node's last tick went, for ~stats and /diagnostics.
-struct TickStatus {
-  bool paused = false;
-  double step_time_s = 0.0;  ///< wall time of the tick's steps
-  double real_time_factor = 0.0;
-  long recoveries = 0;                    ///< the watchdog's, all bodies, this episode
-  bool recent_recovery = false;           ///< one in the last 2 s
-  std::vector<core::StepReport> reports;  ///< of the last step, per body
-};
+using core::TickStatus;
 
 class NodeOutputs {
  public:
@@ -38,7 +31,7 @@ class NodeOutputs {
   bool publishState(const core::Session& session, const ros::Time& now);
   /// ~mesh, ~markers and ~stats when each is due, and /diagnostics.
   void publishPeriodic(const core::Session& session, const TickStatus& status,
-                       const RefusalLog& refusals, const ros::Time& now);
+                       const core::RefusalLog& refusals, const ros::Time& now);
   /// DELETEALL on ~mesh and ~markers.
   void clearMarkers();
 
@@ -49,7 +42,7 @@ class NodeOutputs {
   bool newStamp(const ros::Time& now);
   void publishMarkers(const core::Session& session, const std_msgs::Header& header);
   void publishStats(const core::Session& session, const TickStatus& status,
-                    const RefusalLog& refusals, const ros::Time& now);
+                    const core::RefusalLog& refusals, const ros::Time& now);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& out);
 
   const NodeParameters& params_;
@@ -66,7 +59,7 @@ class NodeOutputs {
   std::vector<double> strain_;
   const core::Session* session_ = nullptr;  ///< for the diagnostics callback
   const TickStatus* status_ = nullptr;
-  const RefusalLog* refusals_ = nullptr;
+  const core::RefusalLog* refusals_ = nullptr;
 };
 
 }  // namespace deformable_sim::ros_layer

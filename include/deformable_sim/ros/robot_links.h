@@ -1,16 +1,16 @@
 // The robot's links as the node sees them: their collision shapes, read once from the robot
-// description (the scene's urdf.file, else the robot_description parameter), posed by tf. They
-// are the obstacles a scene names (urdf.links) and the regions of REGION_LINK grasps.
+// description (the scene's urdf.file, else the robot_description parameter). They are the
+// obstacles a scene names (urdf.links) and the regions of REGION_LINK grasps.
 #pragma once
 
 #include <map>
-#include <optional>
 #include <string>
 #include <vector>
 
+#include "deformable_sim/core/commands.h"
+#include "deformable_sim/core/linked_obstacles.h"
 #include "deformable_sim/core/scene.h"
 #include "deformable_sim/core/shape.h"
-#include "deformable_sim/ros/frame_resolver.h"
 
 namespace deformable_sim::ros_layer {
 
@@ -31,24 +31,8 @@ class RobotLinks {
   std::map<std::string, std::vector<core::PlacedShape>> shapes_;  ///< link -> shapes
 };
 
-/// The scene's obstacles: its own fixed ones and those of the robot links it names, posed by tf.
-class LinkObstacles {
- public:
-  /// Throws std::runtime_error (urdf.links: ...) when a link's shapes cannot be had.
-  LinkObstacles(const core::SceneSpec& scene, RobotLinks& links);
-
-  /// Every obstacle in the world as tf has the links now (a link tf lost keeps its last pose);
-  /// nullopt while tf has not yet placed every link.
-  std::optional<std::vector<core::PlacedShape>> place(const FrameResolver& frames);
-
- private:
-  struct Placed {
-    std::string link;
-    core::PlacedShape local;                  ///< pose in the link's frame
-    std::optional<core::PlacedShape> placed;  ///< in the world, once tf had the link
-  };
-  std::vector<core::PlacedShape> fixed_;
-  std::vector<Placed> linked_;
-};
+/// The scene's obstacles with those of the robot links it names (urdf.links), in their links'
+/// frames. Throws std::runtime_error (urdf.links: ...) when a link's shapes cannot be had.
+core::LinkedObstacles sceneObstacles(const core::SceneSpec& scene, RobotLinks& links);
 
 }  // namespace deformable_sim::ros_layer

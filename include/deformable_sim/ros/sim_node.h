@@ -21,6 +21,7 @@
 #include "deformable_sim/SetGrasp.h"
 #include "deformable_sim/Step.h"
 #include "deformable_sim/core/real_time_factor.h"
+#include "deformable_sim/core/refusal_log.h"
 #include "deformable_sim/core/session.h"
 #include "deformable_sim/core/wrench_timeouts.h"
 #include "deformable_sim/ros/frame_resolver.h"
@@ -28,7 +29,6 @@
 #include "deformable_sim/ros/node_grasps.h"
 #include "deformable_sim/ros/node_outputs.h"
 #include "deformable_sim/ros/node_parameters.h"
-#include "deformable_sim/ros/refusal_log.h"
 #include "deformable_sim/ros/robot_links.h"
 
 namespace deformable_sim::ros_layer {
@@ -72,14 +72,14 @@ class SimNode {
   TickStatus status_;
   core::RealTimeFactor real_time_factor_;
   core::WrenchTimeouts wrench_timeouts_;
-  RefusalLog refusals_;
+  core::RefusalLog refusals_;
   ros::WallTime last_recovery_;  ///< zero: never
 
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   FrameResolver frames_;
   RobotLinks robot_links_;
-  std::optional<LinkObstacles> link_obstacles_;
+  core::LinkedObstacles obstacles_;
   std::unique_ptr<NodeOutputs> outputs_;
   std::unique_ptr<NodeGrasps> grasps_;
   std::unique_ptr<LiveTuning> tuning_;

@@ -1,13 +1,12 @@
-#include "deformable_sim/ros/refusal_log.h"
+#include "deformable_sim/core/refusal_log.h"
 
-namespace deformable_sim::ros_layer {
+namespace deformable_sim::core {
 
-std::string RefusalLog::refuse(const std::string& topic, const std::string& reason,
-                               ros::WallTime now) {
+std::string RefusalLog::refuse(const std::string& topic, const std::string& reason, double now) {
   ++count_;
   last_ = topic + ": " + reason;
   TopicLog& log = topics_[topic];
-  if (!log.last_warning.isZero() && (now - log.last_warning).toSec() < period_s_) {
+  if (log.warned && now - log.last_warning < period_s_) {
     ++log.silenced;
     return "";
   }
@@ -18,8 +17,9 @@ std::string RefusalLog::refuse(const std::string& topic, const std::string& reas
   }
   warning += ")";
   log.last_warning = now;
+  log.warned = true;
   log.silenced = 0;
   return warning;
 }
 
-}  // namespace deformable_sim::ros_layer
+}  // namespace deformable_sim::core

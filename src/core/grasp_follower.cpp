@@ -1,0 +1,32 @@
+#include "deformable_sim/core/grasp_follower.h"
+
+#include "deformable_sim/core/pose_interpolation.h"
+
+namespace deformable_sim::core {
+
+std::vector<std::string> GraspFollower::plan(const CommandProcessor& commands,
+                                             const FramePose& pose) {
+  std::vector<std::string> lost;
+  moves_.clear();
+  for (const auto& [grasp, frame] : frames_) {
+    const Eigen::Isometry3d from = commands.grasps().at(grasp).frame;
+    std::optional<Eigen::Isometry3d> to = pose(frame);
+    if (!to) {
+      lost.push_back(grasp);
+      to = from;
+    }
+    moves_.emplace(grasp, std::make_pair(from, *to));
+  }
+  return lost;
+}
+
+std::vector<MoveGraspCommand> GraspFollower::moves(int s, int steps) const {
+  std::vector<MoveGraspCommand> moves;
+  for (const auto& [grasp, poses] : moves_) {
+    const auto& [from, to] = poses;
+    moves.push_back({grasp, s == steps ? to : interpolatePose(from, to, double(s) / steps)});
+  }
+  return moves;
+}
+
+}  // namespace deformable_sim::core
