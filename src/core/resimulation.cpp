@@ -1,8 +1,8 @@
 #include "deformable_sim/core/resimulation.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <variant>
 
 namespace deformable_sim::core {
@@ -90,6 +90,8 @@ long Resimulation::endStep(long episode) const {
 }
 
 ResimulationReport Resimulation::run(const Observer& observer, ProgressBar* progress) {
+  if (ran_) throw std::logic_error("a Resimulation runs once: its session is where it ended");
+  ran_ = true;
   observer_ = &observer;
   progress_ = progress;
   if (from_start_) compare();

@@ -2,8 +2,9 @@
 // states it went through, is run again and compared step by step.
 #include <gtest/gtest.h>
 
-#include <algorithm>
+#include <stdexcept>
 #include <utility>
+#include <variant>
 
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/resimulation.h"
@@ -126,6 +127,7 @@ TEST(Resimulation, ARecordedLogIsReSimulatedBitForBit) {
   EXPECT_EQ(report.first_difference_step, -1);
   EXPECT_EQ(report.refused_commands, 0);
   EXPECT_GT(report.solver_iterations, 0);
+  EXPECT_THROW(resimulation.run(), std::logic_error);  // its session is at the end
 }
 
 TEST(Resimulation, OtherSolverLimitsGiveAnotherResultFromWhereTheyMatter) {

@@ -92,9 +92,9 @@ class Resimulation {
   /// The session re-simulated (its simulation is replaced at every reset).
   const Session& session() const { return session_; }
 
-  /// Runs the whole log once; `observer` hears of every compared state, `progress` (may be
-  /// null) of every step. Throws ResimulationError for a log out of order or a recorded state
-  /// with another number of nodes than its body.
+  /// Runs the whole log (once: a second call throws std::logic_error); `observer` hears of every
+  /// compared state, `progress` (may be null) of every step. Throws ResimulationError for a log out
+  /// of order or a recorded state with another number of nodes than its body.
   ResimulationReport run(const Observer& observer = {}, ProgressBar* progress = nullptr);
 
  private:
@@ -120,6 +120,7 @@ class Resimulation {
   std::map<std::pair<long, long>, std::vector<const RecordedState*>> states_by_step_;
   std::map<long, long> end_steps_;  ///< per recorded episode: the last step to re-simulate
   long planned_steps_ = 0;
+  bool ran_ = false;
   std::vector<StepReport> step_reports_;
   ResimulationReport report_;
   const Observer* observer_ = nullptr;
