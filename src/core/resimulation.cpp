@@ -38,15 +38,24 @@ Resimulation::Resimulation(SceneSpec spec, std::vector<Mesh> meshes, Recording r
   overrideSolver();
 }
 
+// The first (episode, step) the recording holds: of its first state, or of its first command
+// when it holds no states.
+std::pair<long, long> Resimulation::recordingStart() const {
+  if (!recording_.states.empty()) {
+    const auto& [episode, step, body] = recording_.states.begin()->first;
+    return {episode, step};
+  }
+  if (!recording_.log.empty()) return {recording_.log.front().episode, 0};
+  return {0, 0};
+}
+
 void Resimulation::findStart() {
-  const auto& states = recording_.states;
-  from_start_ = states.empty() || (std::get<0>(states.begin()->first) == 0 &&
-                                   std::get<1>(states.begin()->first) == 0);
+  const auto [episode, step] = recordingStart();
+  from_start_ = episode == 0 && step == 0;
   if (from_start_) return;
   const auto& log = recording_.log;
   while (first_command_ < log.size() && !isReset(log[first_command_])) ++first_command_;
   if (first_command_ == log.size()) {
-    const auto& [episode, step, body] = states.begin()->first;
     throw ResimulationError("the recording starts at step " + std::to_string(step) +
                             " of episode " + std::to_string(episode) +
                             " and holds no reset: record from the session's start or from a "

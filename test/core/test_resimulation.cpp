@@ -192,6 +192,24 @@ TEST(Resimulation, ALogThatStartsMidEpisodeWithoutAResetIsRefused) {
   }
 }
 
+TEST(Resimulation, ALogWithoutStatesStartsWhereItsCommandsDo) {
+  RecordedSession recorded;
+  recorded.run(3);
+  recorded.apply(dc::ResetCommand{});
+  recorded.run(2);
+  recorded.recording() = dc::Recording{};  // from here on, in episode 1
+  recorded.apply(dc::ResetCommand{});
+  recorded.apply(push(0.5));
+  recorded.run(6);
+  recorded.apply(dc::ClearWrenchCommand{"push"});
+  dc::Recording commands_only = recorded.recording();
+  commands_only.states.clear();
+  const dc::ResimulationReport report = resimulate(commands_only);
+  EXPECT_EQ(report.steps, 6);
+  EXPECT_EQ(report.refused_commands, 0);
+  EXPECT_EQ(report.compared_states, 0);
+}
+
 TEST(Resimulation, AnOutOfOrderLogIsAnError) {
   RecordedSession recorded;
   recordSession(recorded);

@@ -98,6 +98,7 @@ class Resimulation {
   ResimulationReport run(const Observer& observer = {}, ProgressBar* progress = nullptr);
 
  private:
+  std::pair<long, long> recordingStart() const;
   void findStart();
   void indexStates();
   void planSteps();
