@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "deformable_sim/bench/bench_context.h"
-#include "deformable_sim/bench/progress_bar.h"
 #include "deformable_sim/bench/result_csv.h"
 #include "deformable_sim/bench/sweep_plan.h"
 #include "deformable_sim/bench/sweep_runner.h"
+#include "deformable_sim/core/progress_bar.h"
 
 namespace {
 
@@ -82,9 +82,10 @@ int main(int argc, char** argv) {
     }
     std::ostream& out = options.out.empty() ? std::cout : file;
     bench::writeCsvHeader(out);
-    bench::ProgressBar progress(static_cast<int>(settings.size()), stderr);
+    deformable_sim::core::ProgressBar progress(static_cast<long>(settings.size()), stderr,
+                                               "settings");
     for (size_t k = 0; k < settings.size(); ++k) {
-      progress.update(static_cast<int>(k), bench::describe(settings[k]));
+      progress.update(static_cast<long>(k), bench::describe(settings[k]));
       for (const bench::BenchRow& row : bench::runSetting(settings[k], context, options.repeat)) {
         bench::writeCsvRow(row, out);
       }

@@ -2,7 +2,8 @@
 """Record a session with rosbag (wrenches, fixed-node changes, a grasp of a moving tf frame, live
 tuning) and re-simulate it with deformable_sim_replay: recorded and re-simulated states are
 identical bit for bit. Other solver settings give another result; truncated, foreign and non-bag
-files give a clear error, not a crash."""
+files give a clear error, not a crash. The session is recorded a while after the node started, as
+a user would: the re-simulated bag must still start where its states do."""
 import math
 import os
 import re
@@ -27,12 +28,16 @@ from deformable_sim.msg import Applied, FixedNodes, Grasp
 from sim_client import SimClient, connected
 
 NODE = '/deformable_sim'
+# How long after the node's start the recording begins: the node stamps its latched ~scene when
+# it starts, so a bag written at that stamp would start this long before its first state.
+NODE_AGE_AT_RECORDING = 4.0
 TOPICS = [NODE + '/scene', NODE + '/applied', NODE + '/state']
 
 
-def replay(*arguments):
-    return subprocess.run(['rosrun', 'deformable_sim', 'deformable_sim_replay', '--quiet'] +
-                          list(arguments), capture_output=True, text=True, timeout=120)
+def replay(*arguments, quiet=True):
+    return subprocess.run(['rosrun', 'deformable_sim', 'deformable_sim_replay'] +
+                          (['--quiet'] if quiet else []) + list(arguments),
+                          capture_output=True, text=True, timeout=120)
 
 
 class Replay(unittest.TestCase):
@@ -42,6 +47,7 @@ class Replay(unittest.TestCase):
         cls.folder = tempfile.mkdtemp()
         cls.bag = os.path.join(cls.folder, 'session.bag')
         cls.sim = SimClient()
+        time.sleep(NODE_AGE_AT_RECORDING)
         cls.record_session()
 
     @classmethod
@@ -152,6 +158,20 @@ class Replay(unittest.TestCase):
         self.assertEqual(topics[NODE + '/state'].message_count, int(match.group(1)))
         self.assertGreater(topics[NODE + '/mesh'].message_count, 10)
         self.assertGreater(topics['/tf'].message_count, 10)
+        self.check_the_bag_starts_with_its_states(out)
+
+    def check_the_bag_starts_with_its_states(self, path):
+        with rosbag.Bag(path) as bag:
+            scene_times = [t.to_sec() for _, _, t in bag.read_messages(topics=[NODE + '/scene'])]
+            state_times = [t.to_sec() for _, _, t in bag.read_messages(topics=[NODE + '/state'])]
+            start = bag.get_start_time()
+        self.assertEqual(len(scene_times), 1)
+        first_state = min(state_times)
+        # The scene comes with the first state, not when the node started: no empty lead-in.
+        self.assertGreater(scene_times[0], first_state - 0.1,
+                           'the scene is %.1f s before the first state' %
+                           (first_state - scene_times[0]))
+        self.assertGreater(start, first_state - 0.1)
 
     def test_more_threads_re_simulate_the_same_bits(self):
         # The node ran on one thread; two sum everything in the same order.
@@ -166,6 +186,18 @@ class Replay(unittest.TestCase):
         match = re.search(r'largest difference (\S+) m in position', result.stdout)
         self.assertGreater(float(match.group(1)), 0.0)
         self.assertNotIn('bit-exact', result.stdout)
+
+    def test_help_prints_the_usage_and_succeeds(self):
+        for flag in ('--help', '-h'):
+            result = replay(flag, quiet=False)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            self.assertIn('usage: deformable_sim_replay IN.bag', result.stdout)
+            self.assertEqual(result.stderr, '')
+        result = replay(self.bag, '--no-such-option', quiet=False)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("bad argument '--no-such-option'", result.stderr)
+        self.assertIn('usage: deformable_sim_replay IN.bag', result.stderr)
+        self.assertEqual(result.stdout, '')
 
     def test_truncated_foreign_and_non_bags_are_refused_clearly(self):
         truncated = os.path.join(self.folder, 'truncated.bag')

@@ -1,12 +1,16 @@
 // Re-simulation of a recorded session: the scene (~scene) and the log of applied commands
-// (~applied) are read from a bag, run again offline as fast as the machine allows, written to a
-// new bag (state, mesh, tf), and compared with the states recorded (~state).
+// (~applied) are read from a bag, run again offline as fast as the machine allows (the core's
+// Resimulation), written to a new bag (state, mesh, tf), and compared with the states recorded
+// (~state).
 #pragma once
 
+#include <cstdio>
+#include <memory>
 #include <optional>
-#include <ostream>
 #include <stdexcept>
 #include <string>
+
+#include "deformable_sim/core/resimulation.h"
 
 namespace deformable_sim::ros_layer {
 
@@ -31,22 +35,33 @@ struct ReplayOptions {
 
 struct ReplayReport {
   std::string node;
-  long steps = 0;                        ///< steps re-simulated, all episodes
-  double simulated_time = 0.0;           ///< s
-  double wall_time = 0.0;                ///< s
-  int threads = 1;                       ///< threads the simulation ran on
-  long solver_iterations = 0;            ///< CG iterations, all steps and bodies
-  long compared_states = 0;              ///< recorded body states compared with the re-simulation
-  double max_position_difference = 0.0;  ///< m, largest over nodes and states
-  double max_velocity_difference = 0.0;  ///< m/s
-  long refused_commands = 0;             ///< recorded commands the re-simulation refused
-  long first_difference_episode = -1;    ///< where the states first differ (-1: nowhere)
-  long first_difference_step = -1;
+  int threads = 1;         ///< threads the simulation ran on
+  double wall_time = 0.0;  ///< s
+  core::ResimulationReport resimulation;
 };
 
-/// Throws ReplayError naming the problem: a bag that cannot be read (truncated, not a bag), one
-/// without a recorded scene, several nodes and none chosen, a log that does not start at a step 0.
-/// Writes a progress bar to `progress` (nullptr: none).
-ReplayReport replay(const ReplayOptions& options, std::ostream* progress);
+struct RecordedSession;
+
+class Replay {
+ public:
+  /// Reads the bag and builds the recorded scene. Throws ReplayError naming the problem: a bag
+  /// that cannot be read (truncated, not a bag), one without a recorded scene, several nodes and
+  /// none chosen, a scene that cannot be built, a log that starts neither at the node's start
+  /// nor at a reset.
+  explicit Replay(ReplayOptions options);
+  ~Replay();
+
+  /// Re-simulates the session once, writing the output bag if asked for and a progress bar to
+  /// `progress` (null: none). Throws ReplayError for a log out of order.
+  ReplayReport run(std::FILE* progress);
+
+ private:
+  core::SceneSpec sceneSpec() const;
+  core::ResimulationReport resimulate(std::FILE* progress);
+
+  ReplayOptions options_;
+  std::unique_ptr<RecordedSession> recorded_;
+  std::unique_ptr<core::Resimulation> resimulation_;
+};
 
 }  // namespace deformable_sim::ros_layer

@@ -1,0 +1,30 @@
+// A session recorded in a bag (the node's latched ~scene, its log ~applied and its ~state), read
+// into the core's types for a re-simulation.
+#pragma once
+
+#include <std_msgs/Header.h>
+
+#include <string>
+#include <vector>
+
+#include "deformable_sim/Scene.h"
+#include "deformable_sim/core/resimulation.h"
+
+namespace deformable_sim::ros_layer {
+
+struct RecordedSession {
+  std::string node;  ///< whose session it is, e.g. /deformable_sim
+  Scene scene;       ///< the first ~scene message
+  core::Recording recording;
+  /// The header of every recorded state; a state's `source` is its index here.
+  std::vector<std_msgs::Header> state_headers;
+  /// ~applied messages of a kind this build does not know: the re-simulation refuses them.
+  long unknown_commands = 0;
+};
+
+/// Reads the session of `node` (empty: the bag's only node) from the bag at `path`. Throws
+/// ReplayError naming the problem: a bag that cannot be read (truncated, not a bag), one without
+/// a recorded scene, several nodes and none chosen, messages of another version.
+RecordedSession readRecordedSession(const std::string& path, const std::string& node);
+
+}  // namespace deformable_sim::ros_layer

@@ -1,0 +1,57 @@
+// The bag a re-simulation writes, so that it plays back like the recording: the re-simulated
+// ~state, /tf and ~mesh at the times of the recorded states, and the ~scene they belong to.
+#pragma once
+
+#include <ros/time.h>
+#include <rosbag/bag.h>
+#include <std_msgs/Header.h>
+#include <visualization_msgs/Marker.h>
+
+#include <string>
+#include <vector>
+
+#include "deformable_sim/BodyState.h"
+#include "deformable_sim/Scene.h"
+#include "deformable_sim/core/resimulation.h"
+
+namespace deformable_sim::ros_layer {
+
+class ResimulatedBag {
+ public:
+  /// `bodies` give the surfaces of the meshes; `state_headers` are the recorded states' headers
+  /// (a compared state's `source` indexes them); both are read, not kept. `marker_rate` is in Hz
+  /// of simulated time. Throws ReplayError when the file cannot be written.
+  ResimulatedBag(const std::string& path, const std::string& node, const Scene& scene,
+                 const std::vector<core::Body>& bodies,
+                 const std::vector<std_msgs::Header>& state_headers, double marker_rate);
+
+  /// The re-simulated state (with the recorded one's header), the bodies' frames with the first
+  /// body, and its surface at the marker rate.
+  void write(const core::ComparedState& state);
+  /// Closes the bag (with the scene at its own stamp if no state came).
+  void close();
+
+ private:
+  void writeScene(const ros::Time& stamp);
+  void writeFrames(const core::ComparedState& state, const ros::Time& stamp);
+  void writeSurface(const core::ComparedState& state, const std_msgs::Header& header);
+  bool markerDue(const core::ComparedState& state);
+
+  rosbag::Bag bag_;
+  std::string node_;
+  const Scene& scene_;
+  const std::vector<std_msgs::Header>& state_headers_;
+  double marker_period_;                               ///< s of simulated time
+  std::vector<std::vector<core::Triangle>> surfaces_;  ///< per body
+  bool scene_written_ = false;
+  // Which step the last state belonged to, and whether that step gets markers.
+  long last_episode_ = -1, last_step_ = -1;
+  bool marker_due_ = false;
+  double next_marker_time_ = 0.0;  ///< s
+  // Kept between states so that their arrays are reused.
+  BodyState state_message_;
+  visualization_msgs::Marker mesh_message_;
+  std::vector<double> strain_;
+};
+
+}  // namespace deformable_sim::ros_layer

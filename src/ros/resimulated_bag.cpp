@@ -1,0 +1,88 @@
+#include "deformable_sim/ros/resimulated_bag.h"
+
+#include <rosbag/exceptions.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include "deformable_sim/core/strain.h"
+#include "deformable_sim/ros/body_frames.h"
+#include "deformable_sim/ros/conversions.h"
+#include "deformable_sim/ros/markers.h"
+#include "deformable_sim/ros/replay.h"
+
+namespace deformable_sim::ros_layer {
+
+namespace {
+
+// A bag cannot hold time zero: a header without a stamp goes first.
+ros::Time bagTime(const ros::Time& stamp) { return stamp.isZero() ? ros::TIME_MIN : stamp; }
+
+}  // namespace
+
+ResimulatedBag::ResimulatedBag(const std::string& path, const std::string& node, const Scene& scene,
+                               const std::vector<core::Body>& bodies,
+                               const std::vector<std_msgs::Header>& state_headers,
+                               double marker_rate)
+    : node_(node), scene_(scene), state_headers_(state_headers), marker_period_(1.0 / marker_rate) {
+  try {
+    bag_.open(path, rosbag::bagmode::Write);
+  } catch (const rosbag::BagException& e) {
+    throw ReplayError(path + ": cannot write: " + e.what());
+  }
+  for (const core::Body& body : bodies) surfaces_.push_back(core::extractSurface(body.mesh()));
+}
+
+void ResimulatedBag::write(const core::ComparedState& state) {
+  const std_msgs::Header& header = state_headers_[state.recorded.source];
+  const ros::Time stamp = bagTime(header.stamp);
+  // At the first state, not at the scene's own stamp (when the node started, which may be long
+  // before): the bag then starts where its states do.
+  if (!scene_written_) writeScene(stamp);
+  const core::Body& body = state.simulation.bodies()[state.body];
+  fillState(body, state_message_);
+  state_message_.header = header;
+  state_message_.episode = static_cast<uint64_t>(state.episode);
+  state_message_.step = static_cast<uint64_t>(state.step);
+  bag_.write(node_ + "/state", stamp, state_message_);
+  if (state.body == 0) writeFrames(state, stamp);
+  if (markerDue(state)) writeSurface(state, header);
+}
+
+void ResimulatedBag::close() {
+  if (!scene_written_) writeScene(bagTime(scene_.header.stamp));
+  bag_.close();
+}
+
+void ResimulatedBag::writeScene(const ros::Time& stamp) {
+  bag_.write(node_ + "/scene", stamp, scene_);
+  scene_written_ = true;
+}
+
+void ResimulatedBag::writeFrames(const core::ComparedState& state, const ros::Time& stamp) {
+  tf2_msgs::TFMessage tf;
+  tf.transforms =
+      bodyFrames(state.simulation.bodies(), scene_.world_frame, scene_.frame_prefix, stamp);
+  bag_.write("/tf", stamp, tf);
+}
+
+void ResimulatedBag::writeSurface(const core::ComparedState& state,
+                                  const std_msgs::Header& header) {
+  const core::Body& body = state.simulation.bodies()[state.body];
+  const bool colour = body.effects().stress_colouring;
+  if (colour) core::nodalStrain(body, strain_);
+  fillSurfaceMarker(body, surfaces_[state.body], colour ? &strain_ : nullptr, 0.1, mesh_message_);
+  mesh_message_.header = header;
+  bag_.write(node_ + "/mesh", bagTime(header.stamp), mesh_message_);
+}
+
+// Every body's surface at the steps that come at the marker rate, and at an episode's start.
+bool ResimulatedBag::markerDue(const core::ComparedState& state) {
+  if (state.episode == last_episode_ && state.step == last_step_) return marker_due_;
+  const double time = state.simulation.time();
+  marker_due_ = state.episode != last_episode_ || time >= next_marker_time_;
+  if (marker_due_) next_marker_time_ = time + marker_period_;
+  last_episode_ = state.episode;
+  last_step_ = state.step;
+  return marker_due_;
+}
+
+}  // namespace deformable_sim::ros_layer
