@@ -2,13 +2,14 @@
 
 #include <algorithm>
 
+#include "deformable_sim/core/strain.h"
 #include "deformable_sim/ros/conversions.h"
 
 namespace deformable_sim::ros_layer {
 
 namespace {
 
-std_msgs::ColorRGBA colour(float r, float g, float b, float a = 1.0f) {
+std_msgs::ColorRGBA rgba(float r, float g, float b, float a = 1.0f) {
   std_msgs::ColorRGBA c;
   c.r = r;
   c.g = g;
@@ -33,29 +34,39 @@ visualization_msgs::Marker marker(const std_msgs::Header& header, const std::str
 
 }  // namespace
 
-void fillSurfaceMarker(const core::Body& body, const std::vector<core::Triangle>& surface,
-                       const std::vector<double>* strain, double strain_scale,
-                       visualization_msgs::Marker& m) {
+SurfaceMarkers::SurfaceMarkers(const std::vector<core::Body>& bodies, double strain_scale)
+    : strain_scale_(strain_scale) {
+  for (const core::Body& body : bodies) surfaces_.push_back(core::extractSurface(body.mesh()));
+}
+
+const visualization_msgs::Marker& SurfaceMarkers::marker(const core::Body& body, int index,
+                                                         const std_msgs::Header& header) {
+  const bool colour = body.effects().stress_colouring;
+  if (colour) core::nodalStrain(body, strain_);
+  const std::vector<core::Triangle>& surface = surfaces_[index];
+  visualization_msgs::Marker& m = marker_;
+  m.header = header;
   m.ns = body.name();
   m.id = 0;
   m.type = visualization_msgs::Marker::TRIANGLE_LIST;
   m.action = visualization_msgs::Marker::ADD;
   m.pose.orientation.w = 1.0;
   m.scale.x = m.scale.y = m.scale.z = 1.0;
-  m.color = colour(1.0f, 0.55f, 0.1f);
+  m.color = rgba(1.0f, 0.55f, 0.1f);
   m.points.resize(3 * surface.size());
-  m.colors.resize(strain ? 3 * surface.size() : 0);
+  m.colors.resize(colour ? 3 * surface.size() : 0);
   const Eigen::VectorXd& x = body.positions();
   for (size_t t = 0; t < surface.size(); ++t) {
     for (int k = 0; k < 3; ++k) {
       const int node = surface[t][k];
       m.points[3 * t + k] = toPoint(x.segment<3>(3 * node));
-      if (strain) {
-        const float s = static_cast<float>(std::min(1.0, (*strain)[node] / strain_scale));
-        m.colors[3 * t + k] = colour(s, 0.2f, 1.0f - s);
+      if (colour) {
+        const float s = static_cast<float>(std::min(1.0, strain_[node] / strain_scale_));
+        m.colors[3 * t + k] = rgba(s, 0.2f, 1.0f - s);
       }
     }
   }
+  return m;
 }
 
 visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::Body>& bodies,
@@ -73,7 +84,7 @@ visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::Body>
     std::vector<bool> grasped(body.numNodes(), false);
     visualization_msgs::Marker held =
         marker(header, body.name() + "/grasped", 0, visualization_msgs::Marker::SPHERE_LIST, 0.012,
-               colour(0.95f, 0.85f, 0.1f));
+               rgba(0.95f, 0.85f, 0.1f));
     for (const auto& [name, grasp] : commands.grasps()) {
       if (grasp.body != static_cast<int>(b)) continue;
       for (int i : grasp.nodes) {
@@ -84,7 +95,7 @@ visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::Body>
     if (!held.points.empty()) array.markers.push_back(held);
     visualization_msgs::Marker fixed =
         marker(header, body.name() + "/fixed", 0, visualization_msgs::Marker::SPHERE_LIST, 0.015,
-               colour(0.9f, 0.1f, 0.1f));
+               rgba(0.9f, 0.1f, 0.1f));
     for (int i = 0; i < body.numNodes(); ++i) {
       if (body.isConstrained(i) && !grasped[i])
         fixed.points.push_back(toPoint(x.segment<3>(3 * i)));
@@ -94,7 +105,7 @@ visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::Body>
     for (const auto& [name, nodes] : body.groups()) {
       visualization_msgs::Marker group =
           marker(header, body.name() + "/groups", id++, visualization_msgs::Marker::POINTS, 0.01,
-                 colour(0.1f, 0.3f, 0.9f));
+                 rgba(0.1f, 0.3f, 0.9f));
       for (int i : nodes) group.points.push_back(toPoint(x.segment<3>(3 * i)));
       array.markers.push_back(group);
     }
@@ -103,7 +114,7 @@ visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::Body>
   for (const auto& [source, wrench] : commands.activeWrenches()) {
     if (wrench.force.isZero(0.0)) continue;
     visualization_msgs::Marker arrow = marker(
-        header, "wrenches", id++, visualization_msgs::Marker::ARROW, 0.0, colour(0.1f, 0.8f, 0.2f));
+        header, "wrenches", id++, visualization_msgs::Marker::ARROW, 0.0, rgba(0.1f, 0.8f, 0.2f));
     arrow.scale.x = 0.01;  // shaft diameter
     arrow.scale.y = 0.02;  // head diameter
     arrow.points.push_back(toPoint(wrench.point));

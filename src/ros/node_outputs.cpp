@@ -4,10 +4,8 @@
 
 #include "deformable_sim/Stats.h"
 #include "deformable_sim/core/body_activity.h"
-#include "deformable_sim/core/strain.h"
 #include "deformable_sim/ros/body_frames.h"
 #include "deformable_sim/ros/conversions.h"
-#include "deformable_sim/ros/markers.h"
 
 namespace deformable_sim::ros_layer {
 
@@ -33,7 +31,8 @@ NodeOutputs::NodeOutputs(ros::NodeHandle& node, ros::NodeHandle& private_node,
     : params_(params),
       diagnostics_(node, private_node),
       marker_schedule_(1.0 / params.marker_rate_hz),
-      stats_schedule_(1.0 / params.stats_rate_hz) {
+      stats_schedule_(1.0 / params.stats_rate_hz),
+      surfaces_(session.simulation().bodies(), params.strain_colour_scale) {
   state_pub_ = private_node.advertise<BodyState>("state", 10);
   stats_pub_ = private_node.advertise<Stats>("stats", 10);
   // A viewer that connects first forgets the markers of an earlier run of this node.
@@ -42,7 +41,6 @@ NodeOutputs::NodeOutputs(ros::NodeHandle& node, ros::NodeHandle& private_node,
   for (const core::Body& body : session.simulation().bodies()) {
     reaction_pubs_.push_back(
         private_node.advertise<geometry_msgs::WrenchStamped>("reactions/" + body.name(), 10));
-    surfaces_.push_back(core::extractSurface(body.mesh()));
   }
   diagnostics_.setHardwareID("deformable_sim");
   diagnostics_.add("simulation", this, &NodeOutputs::diagnose);
@@ -113,12 +111,7 @@ void NodeOutputs::publishMarkers(const core::Session& session, const std_msgs::H
     if (!mesh_cleared_) mesh_pub_.publish(deleteAll());
     mesh_cleared_ = true;
     for (size_t b = 0; b < bodies.size(); ++b) {
-      const bool colour = bodies[b].effects().stress_colouring;
-      if (colour) core::nodalStrain(bodies[b], strain_);
-      fillSurfaceMarker(bodies[b], surfaces_[b], colour ? &strain_ : nullptr,
-                        params_.strain_colour_scale, mesh_message_);
-      mesh_message_.header = header;
-      mesh_pub_.publish(mesh_message_);
+      mesh_pub_.publish(surfaces_.marker(bodies[b], static_cast<int>(b), header));
     }
   }
   if (markers_pub_.getNumSubscribers() > 0) {

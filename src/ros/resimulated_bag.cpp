@@ -3,7 +3,6 @@
 #include <rosbag/exceptions.h>
 #include <tf2_msgs/TFMessage.h>
 
-#include "deformable_sim/core/strain.h"
 #include "deformable_sim/ros/body_frames.h"
 #include "deformable_sim/ros/conversions.h"
 #include "deformable_sim/ros/markers.h"
@@ -22,13 +21,16 @@ ResimulatedBag::ResimulatedBag(const std::string& path, const std::string& node,
                                const std::vector<core::Body>& bodies,
                                const std::vector<std_msgs::Header>& state_headers,
                                double marker_rate)
-    : node_(node), scene_(scene), state_headers_(state_headers), marker_period_(1.0 / marker_rate) {
+    : node_(node),
+      scene_(scene),
+      state_headers_(state_headers),
+      marker_period_(1.0 / marker_rate),
+      surfaces_(bodies, 0.1) {
   try {
     bag_.open(path, rosbag::bagmode::Write);
   } catch (const rosbag::BagException& e) {
     throw ReplayError(path + ": cannot write: " + e.what());
   }
-  for (const core::Body& body : bodies) surfaces_.push_back(core::extractSurface(body.mesh()));
 }
 
 void ResimulatedBag::write(const core::ComparedState& state) {
@@ -67,11 +69,7 @@ void ResimulatedBag::writeFrames(const core::ComparedState& state, const ros::Ti
 void ResimulatedBag::writeSurface(const core::ComparedState& state,
                                   const std_msgs::Header& header) {
   const core::Body& body = state.simulation.bodies()[state.body];
-  const bool colour = body.effects().stress_colouring;
-  if (colour) core::nodalStrain(body, strain_);
-  fillSurfaceMarker(body, surfaces_[state.body], colour ? &strain_ : nullptr, 0.1, mesh_message_);
-  mesh_message_.header = header;
-  bag_.write(node_ + "/mesh", bagTime(header.stamp), mesh_message_);
+  bag_.write(node_ + "/mesh", bagTime(header.stamp), surfaces_.marker(body, state.body, header));
 }
 
 // Every body's surface at the steps that come at the marker rate, and at an episode's start.

@@ -14,12 +14,23 @@
 
 namespace deformable_sim::ros_layer {
 
-/// Fills `marker` (reused between calls) with the body's current surface: TRIANGLE_LIST, three
-/// points per triangle in the mesh's outward order, namespace = body name. With `strain` (one per
-/// node, dimensionless) the vertices are coloured from blue (0) to red (>= strain_scale).
-void fillSurfaceMarker(const core::Body& body, const std::vector<core::Triangle>& surface,
-                       const std::vector<double>* strain, double strain_scale,
-                       visualization_msgs::Marker& marker);
+/// The bodies' surfaces as rviz markers, for the node's ~mesh and the replay's output bag: a
+/// TRIANGLE_LIST a body, three points per triangle in the mesh's outward order, namespace = the
+/// body's name. A body with stress_colouring has its vertices coloured by their strain, from blue
+/// (0) to red (>= strain_scale).
+class SurfaceMarkers {
+ public:
+  SurfaceMarkers(const std::vector<core::Body>& bodies, double strain_scale);
+  /// The marker of `body`, the `index`th of the bodies, as it is now (reused between calls).
+  const visualization_msgs::Marker& marker(const core::Body& body, int index,
+                                           const std_msgs::Header& header);
+
+ private:
+  std::vector<std::vector<core::Triangle>> surfaces_;  ///< per body
+  double strain_scale_;
+  std::vector<double> strain_;
+  visualization_msgs::Marker marker_;
+};
 
 /// Markers of what acts on the bodies: fixed nodes (red spheres), grasped nodes (yellow spheres),
 /// node groups (blue points) and applied wrenches (green arrows from the application point, 0.1 m

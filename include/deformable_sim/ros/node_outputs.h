@@ -15,6 +15,7 @@
 #include "deformable_sim/core/refusal_log.h"
 #include "deformable_sim/core/session.h"
 #include "deformable_sim/core/tick_status.h"
+#include "deformable_sim/ros/markers.h"
 #include "deformable_sim/ros/node_parameters.h"
 
 namespace deformable_sim::ros_layer {
@@ -53,10 +54,8 @@ class NodeOutputs {
   core::PeriodicSchedule marker_schedule_, stats_schedule_;
   ros::Time last_tf_stamp_;
   bool mesh_cleared_ = false;  ///< the first publication on ~mesh was a DELETEALL
-  std::vector<std::vector<core::Triangle>> surfaces_;
+  SurfaceMarkers surfaces_;
   BodyState state_message_;
-  visualization_msgs::Marker mesh_message_;
-  std::vector<double> strain_;
   const core::Session* session_ = nullptr;  ///< for the diagnostics callback
   const TickStatus* status_ = nullptr;
   const core::RefusalLog* refusals_ = nullptr;

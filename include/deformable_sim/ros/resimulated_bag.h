@@ -13,6 +13,7 @@
 #include "deformable_sim/BodyState.h"
 #include "deformable_sim/Scene.h"
 #include "deformable_sim/core/resimulation.h"
+#include "deformable_sim/ros/markers.h"
 
 namespace deformable_sim::ros_layer {
 
@@ -41,17 +42,14 @@ class ResimulatedBag {
   std::string node_;
   const Scene& scene_;
   const std::vector<std_msgs::Header>& state_headers_;
-  double marker_period_;                               ///< s of simulated time
-  std::vector<std::vector<core::Triangle>> surfaces_;  ///< per body
+  double marker_period_;  ///< s of simulated time
+  SurfaceMarkers surfaces_;
   bool scene_written_ = false;
   // Which step the last state belonged to, and whether that step gets markers.
   long last_episode_ = -1, last_step_ = -1;
   bool marker_due_ = false;
   double next_marker_time_ = 0.0;  ///< s
-  // Kept between states so that their arrays are reused.
-  BodyState state_message_;
-  visualization_msgs::Marker mesh_message_;
-  std::vector<double> strain_;
+  BodyState state_message_;        ///< kept between states so that its arrays are reused
 };
 
 }  // namespace deformable_sim::ros_layer
