@@ -18,8 +18,10 @@
 #include "deformable_sim/core/simulation.h"
 #include "deformable_sim/core/strain.h"
 #include "deformable_sim/core/wrench.h"
+#include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
+using deformable_sim::test::boxMeshSimulation;
 
 namespace {
 
@@ -56,14 +58,6 @@ dc::NodeSelection boxSelection(const Eigen::Vector3d& min, const Eigen::Vector3d
 /// The nodes whose rest x lies at `x` (a beam's end face).
 dc::NodeSelection faceAtX(double x) {
   return boxSelection({x - 1e-9, -1e3, -1e3}, {x + 1e-9, 1e3, 1e3});
-}
-
-dc::Simulation build(const dc::SceneSpec& spec) {
-  std::vector<dc::Mesh> meshes;
-  for (const dc::BodySpec& body : spec.bodies) {
-    meshes.push_back(dc::makeBoxMesh(body.box_mesh->min, body.box_mesh->max, body.box_mesh->cells));
-  }
-  return dc::Simulation(spec, std::move(meshes));
 }
 
 bool finite(const dc::Body& body) {
@@ -224,7 +218,7 @@ SpinRun spin() {
   dc::SceneSpec spec = warpedScene();
   spec.bodies.push_back(
       boxBody("spinner", {-0.1, -0.05, -0.025}, {0.1, 0.05, 0.025}, {8, 4, 2}, kRubber));
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   const Eigen::Vector3d omega(0.0, 0.0, 20.0), drift(0.1, -0.05, 0.0);
   Eigen::VectorXd v(body.restPositions().size());
@@ -324,7 +318,7 @@ TwistRun twist() {
   dc::BodySpec beam = boxBody("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, kRubber);
   beam.fixed.push_back(faceAtX(0.0));
   spec.bodies.push_back(beam);
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   const std::vector<int> end = dc::selectNodes(body.mesh(), faceAtX(0.5));
   EnergyMeter meter(body);
@@ -398,7 +392,7 @@ TEST(HardCases, BlockPushedThroughItselfRecovers) {
   dc::BodySpec block = boxBody("block", {0, 0, 0}, {0.1, 0.1, 0.1}, {4, 4, 4}, kRubber);
   block.fixed.push_back(boxSelection({-1, -1, -1e-9}, {1, 1, 1e-9}));
   spec.bodies.push_back(block);
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   const std::vector<int> top =
       dc::selectNodes(body.mesh(), boxSelection({-1, -1, 0.1 - 1e-9}, {1, 1, 0.1 + 1e-9}));
@@ -453,8 +447,8 @@ TEST(HardCases, NearlyIncompressibleCantileverSagsToItsStaticState) {
       boxBody("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, {1.0e6, 0.499, 1000.0});
   beam.fixed.push_back(faceAtX(0.0));
   spec.bodies.push_back(beam);
-  dc::Simulation sim = build(spec);
-  dc::Simulation statics = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
+  dc::Simulation statics = boxMeshSimulation(spec);
   ASSERT_TRUE(statics.solveStatic()[0].converged);
   const dc::Body& reference = statics.bodies()[0];
   dc::Body& body = sim.bodies()[0];
@@ -498,7 +492,7 @@ TEST(HardCases, VerySoftAndVeryStiffBodiesTogether) {
       boxBody("stiff", {0, 0.45, -0.05}, {0.5, 0.55, 0.05}, {10, 2, 2}, {1.0e10, 0.3, 100.0});
   stiff.fixed.push_back(faceAtX(0.0));
   spec.bodies = {soft, stiff};
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   std::vector<EnergyMeter> meters{EnergyMeter(sim.bodies()[0]), EnergyMeter(sim.bodies()[1])};
 
   std::vector<dc::StepReport> reports;
@@ -569,7 +563,7 @@ SteelRun steel(double spin) {
   spec.dt = 1.0 / 30.0;
   spec.bodies.push_back(
       boxBody("steel", {0, 0, 0}, {0.02, 0.02, 0.02}, {3, 3, 3}, {2.0e11, 0.3, 7850.0}));
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   run.critical_dt = explicitStableStep(body);
   run.ratio = spec.dt / run.critical_dt;
@@ -650,7 +644,7 @@ ImpulseRun impulse() {
   dc::BodySpec beam = boxBody("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, kRubber);
   beam.fixed.push_back(faceAtX(0.0));
   spec.bodies.push_back(beam);
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   const std::vector<int> end = dc::selectNodes(body.mesh(), faceAtX(0.5));
   const double weight = mass(body) * 9.81;
@@ -735,7 +729,7 @@ void teleport(bool check_energy) {
   dc::BodySpec beam = boxBody("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, kRubber);
   beam.fixed.push_back(faceAtX(0.0));
   spec.bodies.push_back(beam);
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   const std::vector<int> end = dc::selectNodes(body.mesh(), faceAtX(0.5));
   body.fixNodes(end);
@@ -782,7 +776,7 @@ TEST(HardCases, AllNodesFixedMakesTheStepANoOp) {
   dc::SceneSpec spec = warpedScene();
   spec.effects.gravity = kGravity;
   spec.bodies.push_back(boxBody("held", {0, 0, 0}, {0.2, 0.1, 0.1}, {4, 2, 2}, kRubber));
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   // Held in a bent shape, so that K' x + f0' and gravity both push on every node.
   Eigen::VectorXd x = body.restPositions();
@@ -811,7 +805,7 @@ TEST(HardCases, FreeFallIsImplicitEulersExactly) {
   dc::SceneSpec spec = warpedScene();
   spec.effects.gravity = kGravity;
   spec.bodies.push_back(boxBody("falling", {0, 0, 0}, {0.2, 0.1, 0.1}, {4, 2, 2}, kRubber));
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   const Eigen::Vector3d c0 = centreOfMass(body);
   const double h = spec.dt, g = -kGravity.z();
