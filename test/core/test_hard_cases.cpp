@@ -60,6 +60,22 @@ dc::NodeSelection faceAtX(double x) {
   return boxSelection({x - 1e-9, -1e3, -1e3}, {x + 1e-9, 1e3, 1e3});
 }
 
+/// A beam of 10 x 2 x 2 cells along x from x = 0, clamped there.
+dc::BodySpec clampedBeam(const std::string& name, const Eigen::Vector3d& min,
+                         const Eigen::Vector3d& max, const dc::LinearElasticMaterial& material) {
+  dc::BodySpec beam = boxBody(name, min, max, {10, 2, 2}, material);
+  beam.fixed.push_back(faceAtX(0.0));
+  return beam;
+}
+
+/// warpedScene() with gravity and the built-in scene's damping: bodies sag and come to rest.
+dc::SceneSpec settlingScene() {
+  dc::SceneSpec spec = warpedScene();
+  spec.effects.gravity = kGravity;
+  spec.effects.damping = kSceneDamping;
+  return spec;
+}
+
 bool finite(const dc::Body& body) {
   return body.positions().allFinite() && body.velocities().allFinite();
 }
@@ -315,8 +331,7 @@ struct TwistRun {
 TwistRun twist() {
   TwistRun run;
   dc::SceneSpec spec = warpedScene();
-  dc::BodySpec beam = boxBody("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, kRubber);
-  beam.fixed.push_back(faceAtX(0.0));
+  dc::BodySpec beam = clampedBeam("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, kRubber);
   spec.bodies.push_back(beam);
   dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
@@ -440,12 +455,9 @@ TEST(HardCases, BlockPushedThroughItselfRecovers) {
 // A cantilever of a nearly incompressible material (nu = 0.499, lambda = 250 mu) sagging
 // under gravity from rest: it must settle where the quasi-static solve puts it.
 TEST(HardCases, NearlyIncompressibleCantileverSagsToItsStaticState) {
-  dc::SceneSpec spec = warpedScene();
-  spec.effects.gravity = kGravity;
-  spec.effects.damping = kSceneDamping;
+  dc::SceneSpec spec = settlingScene();
   dc::BodySpec beam =
-      boxBody("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, {1.0e6, 0.499, 1000.0});
-  beam.fixed.push_back(faceAtX(0.0));
+      clampedBeam("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {1.0e6, 0.499, 1000.0});
   spec.bodies.push_back(beam);
   dc::Simulation sim = boxMeshSimulation(spec);
   dc::Simulation statics = boxMeshSimulation(spec);
@@ -482,15 +494,11 @@ TEST(HardCases, NearlyIncompressibleCantileverSagsToItsStaticState) {
 
 // Two cantilevers in one simulation, E = 1e4 Pa and 1e10 Pa (a ratio of 1e6), under gravity.
 TEST(HardCases, VerySoftAndVeryStiffBodiesTogether) {
-  dc::SceneSpec spec = warpedScene();
-  spec.effects.gravity = kGravity;
-  spec.effects.damping = kSceneDamping;
+  dc::SceneSpec spec = settlingScene();
   dc::BodySpec soft =
-      boxBody("soft", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, {1.0e4, 0.3, 100.0});
-  soft.fixed.push_back(faceAtX(0.0));
+      clampedBeam("soft", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {1.0e4, 0.3, 100.0});
   dc::BodySpec stiff =
-      boxBody("stiff", {0, 0.45, -0.05}, {0.5, 0.55, 0.05}, {10, 2, 2}, {1.0e10, 0.3, 100.0});
-  stiff.fixed.push_back(faceAtX(0.0));
+      clampedBeam("stiff", {0, 0.45, -0.05}, {0.5, 0.55, 0.05}, {1.0e10, 0.3, 100.0});
   spec.bodies = {soft, stiff};
   dc::Simulation sim = boxMeshSimulation(spec);
   std::vector<EnergyMeter> meters{EnergyMeter(sim.bodies()[0]), EnergyMeter(sim.bodies()[1])};
@@ -641,8 +649,7 @@ struct ImpulseRun {
 ImpulseRun impulse() {
   ImpulseRun run;
   dc::SceneSpec spec = warpedScene();
-  dc::BodySpec beam = boxBody("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, kRubber);
-  beam.fixed.push_back(faceAtX(0.0));
+  dc::BodySpec beam = clampedBeam("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, kRubber);
   spec.bodies.push_back(beam);
   dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
@@ -723,11 +730,8 @@ namespace {
 
 /// Runs the case; asserts the energy bound only with `check_energy`.
 void teleport(bool check_energy) {
-  dc::SceneSpec spec = warpedScene();
-  spec.effects.gravity = kGravity;
-  spec.effects.damping = kSceneDamping;
-  dc::BodySpec beam = boxBody("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, kRubber);
-  beam.fixed.push_back(faceAtX(0.0));
+  dc::SceneSpec spec = settlingScene();
+  dc::BodySpec beam = clampedBeam("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, kRubber);
   spec.bodies.push_back(beam);
   dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
@@ -886,9 +890,7 @@ namespace {
 
 /// Runs the case; asserts the energy bound only with `check_energy`.
 void hangingTetrahedron(bool check_energy) {
-  dc::SceneSpec spec = warpedScene();
-  spec.effects.gravity = kGravity;
-  spec.effects.damping = kSceneDamping;
+  dc::SceneSpec spec = settlingScene();
   dc::BodySpec tet;
   tet.name = "tet";
   tet.material = kRubber;
@@ -960,9 +962,7 @@ TEST(HardCases, SliverElementsAreReportedAndSimulatedStably) {
 
   // Clamped at the bottom, sagging under gravity from rest: it must settle where the static solve
   // puts it, its energy never rising (gravity counted; the clamp does no work).
-  dc::SceneSpec spec = warpedScene();
-  spec.effects.gravity = kGravity;
-  spec.effects.damping = kSceneDamping;
+  dc::SceneSpec spec = settlingScene();
   dc::BodySpec cube;
   cube.name = "cube";
   cube.material = {1.0e5, 0.3, 1000.0};
