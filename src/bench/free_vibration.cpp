@@ -29,28 +29,15 @@ const std::vector<Eigen::Vector3d>& releasedShape(const std::string& mesh, Bench
   return shape;
 }
 
-}  // namespace
-
-CaseRun runFreeVibration(const BenchSetting& setting, BenchContext& context) {
-  const ReferenceBeam& beam = context.beam(setting.mesh);
-  const ReferenceResults& results = context.results();
-  const double f1_same_mesh =
-      results.value("C", "C3D4", setting.mesh, "bending mode 1", "f1_lumped_mass");
-  const double f1_converged =
-      results.value("C", "C3D20R", "hex20_L4", "bending mode 1", "f1_bending");
-  const std::vector<Eigen::Vector3d>& start = releasedShape(setting.mesh, context);
+// Releases the beam from `start` and records its tip's z displacement every `stride` ticks (the
+// start included) into `tip_uz`; the step times and memory into `run`.
+void simulateRelease(const BenchSetting& setting, const ReferenceBeam& beam,
+                     const std::vector<Eigen::Vector3d>& start, long ticks, long stride,
+                     CaseRun& run, std::vector<double>& tip_uz) {
   Eigen::VectorXd positions(3 * start.size());
   for (size_t i = 0; i < start.size(); ++i) positions.segment<3>(3 * i) = start[i];
-
-  const double expected_period = 1.0 / f1_same_mesh;
-  const long ticks = std::lround(std::ceil(kPeriodsSimulated * expected_period / setting.dt_s));
-  const long stride =
-      std::max(1L, std::lround(std::floor(expected_period / (kSamplesPerPeriod * setting.dt_s))));
-  CaseRun run;
   run.step_ms.reserve(ticks);
-  std::vector<double> tip_uz;
   tip_uz.reserve(ticks / stride + 1);
-
   core::BodyEffects effects;
   effects.warping = setting.warping;
   const std::size_t heap_before = liveHeapBytes();
@@ -62,11 +49,10 @@ CaseRun runFreeVibration(const BenchSetting& setting, BenchContext& context) {
     if (tick % stride == 0) tip_uz.push_back(beam.tipDisplacement(body).z());
   }
   run.memory_bytes = liveHeapBytes() - heap_before;
+}
 
-  const DampedOscillation fit = fitDominantOscillation(tip_uz, stride * setting.dt_s);
-  const double omega = 2.0 * M_PI * f1_same_mesh;
-  const double h = setting.dt_s / setting.substeps;
-
+Comparison periodComparison(const DampedOscillation& fit, double f1_converged,
+                            double expected_period, double omega, double h) {
   Comparison period;
   period.case_name = "C2_period";
   period.value = fit.period_s;
@@ -79,8 +65,10 @@ CaseRun runFreeVibration(const BenchSetting& setting, BenchContext& context) {
       "|T/T_ref - 1| of the first bending period T (s) fitted to the tip's free vibration; ref: "
       "converged 3D f1 (hex20_L4 C3D20R); same mesh: CalculiX lumped-mass f1; theory: implicit "
       "Euler's period of that mode";
-  run.comparisons.push_back(period);
+  return period;
+}
 
+Comparison dampingComparison(const DampedOscillation& fit, double omega, double h) {
   Comparison damping;
   damping.case_name = "C2_damping";
   damping.value = fit.amplitude_ratio_per_cycle;
@@ -92,7 +80,33 @@ CaseRun runFreeVibration(const BenchSetting& setting, BenchContext& context) {
   damping.error_definition =
       "1 - a: the fraction of the first bending mode's amplitude lost per cycle (numerical "
       "damping; the beam has none); value: a; theory: implicit Euler's a for that mode";
-  run.comparisons.push_back(damping);
+  return damping;
+}
+
+}  // namespace
+
+CaseRun runFreeVibration(const BenchSetting& setting, BenchContext& context) {
+  const ReferenceBeam& beam = context.beam(setting.mesh);
+  const ReferenceResults& results = context.results();
+  const double f1_same_mesh =
+      results.value("C", "C3D4", setting.mesh, "bending mode 1", "f1_lumped_mass");
+  const double f1_converged =
+      results.value("C", "C3D20R", "hex20_L4", "bending mode 1", "f1_bending");
+  const std::vector<Eigen::Vector3d>& start = releasedShape(setting.mesh, context);
+
+  const double expected_period = 1.0 / f1_same_mesh;
+  const long ticks = std::lround(std::ceil(kPeriodsSimulated * expected_period / setting.dt_s));
+  const long stride =
+      std::max(1L, std::lround(std::floor(expected_period / (kSamplesPerPeriod * setting.dt_s))));
+  CaseRun run;
+  std::vector<double> tip_uz;
+  simulateRelease(setting, beam, start, ticks, stride, run, tip_uz);
+
+  const DampedOscillation fit = fitDominantOscillation(tip_uz, stride * setting.dt_s);
+  const double omega = 2.0 * M_PI * f1_same_mesh;
+  const double h = setting.dt_s / setting.substeps;
+  run.comparisons.push_back(periodComparison(fit, f1_converged, expected_period, omega, h));
+  run.comparisons.push_back(dampingComparison(fit, omega, h));
   return run;
 }
 

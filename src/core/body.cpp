@@ -521,59 +521,26 @@ void Body::advance(double h, int depth, StepReport& report) {
   // last solution (a fixed point of backward Euler with the exact corotational force). Where
   // that does not settle (elements turning by radians within the step), the step is split in
   // two halves, each solved the same way.
-  const double start_energy = elastic_energy_;  // at x with its own rotations
-  double solve_start_energy = start_energy;     // at x with the rotations of the solve
-  bool product_is_current = false;              // scratch_ = A v+ for the last solve
-  double last_excess = std::numeric_limits<double>::infinity();  // gained - dissipated
+  RotationSettling settling;
+  settling.start_energy = elastic_energy_;
+  settling.solve_start_energy = settling.start_energy;
   for (int solves = 1;; ++solves) {
-    // Where the loads balance the elastic forces (a body at rest), b is what rounding leaves of
-    // them: CG's residual is measured against the loads' impulse there instead.
-    const double load_impulse = setStepRightHandSide(h);
-    const auto solve_start = Clock::now();
-    const SolveReport solved = solve(a, rhs_, next_, solves == 1, load_impulse);
-    report.times.solve += seconds(Clock::now() - solve_start);
-    report.solve.iterations += solved.iterations;
-    report.solve.relative_residual = solved.relative_residual;
-    report.solve.converged = solved.converged;
-    ++report.solves;
+    solveVelocity(a, h, solves == 1, report);
     if (!effects_.warping) break;
-    end_positions_ = x_ + h * next_;
-    const auto rotations_start = Clock::now();
-    const CorotationalElasticity::RotationUpdate end = elasticity_->updateRotations(end_positions_);
-    report.times.rotations += seconds(Clock::now() - rotations_start);
-    end_inverted_elements_ = end.inverted;
-    elastic_energy_ = end.energy;
-    report.largest_rotation_change = end.largest_change;
+    const CorotationalElasticity::RotationUpdate end = rotateToEnd(h, report);
     if (solver_settings_.max_rotation_updates == 0) break;
-    // What the step dissipates, 1/2 dv^T M dv + 1/2 h^2 v+^T K' v+ (+ damping's h v+^T C v+, left
-    // out), against what the change of rotations adds at its start and end. The stiffness part
-    // costs a product with A: only when the mass part does not cover the gain already.
-    double velocity_change2 = 0.0, kinetic2 = 0.0, start_kinetic2 = 0.0;  // sums of m |v|^2
-    for (int i = 0; i < numNodes(); ++i) {
-      velocity_change2 += mass_[i] * (next_.segment<3>(3 * i) - v_.segment<3>(3 * i)).squaredNorm();
-      kinetic2 += mass_[i] * next_.segment<3>(3 * i).squaredNorm();
-      start_kinetic2 += mass_[i] * v_.segment<3>(3 * i).squaredNorm();
-    }
-    const double gained = (end.energy - end.energy_before) + (solve_start_energy - start_energy);
-    const double roundoff =
-        1e-12 * (start_energy + end.energy + 0.5 * start_kinetic2 + 0.5 * kinetic2);
-    double dissipated = 0.5 * velocity_change2;
-    if (gained > dissipated + roundoff) {
-      a.multiply(next_, scratch_);
-      product_is_current = true;
-      dissipated += 0.5 * (next_.dot(scratch_) - a.mass_coefficient * kinetic2);
-    }
-    if (!(gained > dissipated + roundoff)) break;
+    const EnergyCheck check = checkRotationEnergy(a, end, settling);
+    if (!check.gains) break;
     // Converging, the excess shrinks several times over from one solve to the next; where it
     // does not, more solves will not settle it either.
-    const bool stalled = gained - dissipated > 0.5 * last_excess;
-    last_excess = gained - dissipated;
+    const bool stalled = check.excess > 0.5 * settling.last_excess;
+    settling.last_excess = check.excess;
     if (report.solves >= kMaxSolves) break;  // keep the last solution: a step's time is bounded
     if (stalled || solves > solver_settings_.max_rotation_updates) {
       if (depth >= kMaxSplits) break;
       // Start again from x in two halves; the rotations now are those of a discarded end.
       rotations_current_ = false;
-      elastic_energy_ = start_energy;
+      elastic_energy_ = settling.start_energy;
       ++report.splits;
       advance(0.5 * h, depth + 1, report);
       advance(0.5 * h, depth + 1, report);
@@ -582,11 +549,63 @@ void Body::advance(double h, int depth, StepReport& report) {
     const auto assembly_start = Clock::now();
     elasticity_->assemble();
     matrix_changed_ = true;
-    product_is_current = false;
-    solve_start_energy = elasticity_->elasticEnergy(x_);
+    settling.product_is_current = false;
+    settling.solve_start_energy = elasticity_->elasticEnergy(x_);
     report.times.assembly += seconds(Clock::now() - assembly_start);
   }
+  finishAdvance(a, h, settling.product_is_current);
+}
 
+void Body::solveVelocity(const SystemMatrix& a, double h, bool step_start, StepReport& report) {
+  // Where the loads balance the elastic forces (a body at rest), b is what rounding leaves of
+  // them: CG's residual is measured against the loads' impulse there instead.
+  const double load_impulse = setStepRightHandSide(h);
+  const auto solve_start = Clock::now();
+  const SolveReport solved = solve(a, rhs_, next_, step_start, load_impulse);
+  report.times.solve += seconds(Clock::now() - solve_start);
+  report.solve.iterations += solved.iterations;
+  report.solve.relative_residual = solved.relative_residual;
+  report.solve.converged = solved.converged;
+  ++report.solves;
+}
+
+CorotationalElasticity::RotationUpdate Body::rotateToEnd(double h, StepReport& report) {
+  end_positions_ = x_ + h * next_;
+  const auto rotations_start = Clock::now();
+  const CorotationalElasticity::RotationUpdate end = elasticity_->updateRotations(end_positions_);
+  report.times.rotations += seconds(Clock::now() - rotations_start);
+  end_inverted_elements_ = end.inverted;
+  elastic_energy_ = end.energy;
+  report.largest_rotation_change = end.largest_change;
+  return end;
+}
+
+Body::EnergyCheck Body::checkRotationEnergy(const SystemMatrix& a,
+                                            const CorotationalElasticity::RotationUpdate& end,
+                                            RotationSettling& settling) {
+  // What the step dissipates, 1/2 dv^T M dv + 1/2 h^2 v+^T K' v+ (+ damping's h v+^T C v+, left
+  // out), against what the change of rotations adds at its start and end. The stiffness part
+  // costs a product with A: only when the mass part does not cover the gain already.
+  double velocity_change2 = 0.0, kinetic2 = 0.0, start_kinetic2 = 0.0;  // sums of m |v|^2
+  for (int i = 0; i < numNodes(); ++i) {
+    velocity_change2 += mass_[i] * (next_.segment<3>(3 * i) - v_.segment<3>(3 * i)).squaredNorm();
+    kinetic2 += mass_[i] * next_.segment<3>(3 * i).squaredNorm();
+    start_kinetic2 += mass_[i] * v_.segment<3>(3 * i).squaredNorm();
+  }
+  const double gained =
+      (end.energy - end.energy_before) + (settling.solve_start_energy - settling.start_energy);
+  const double roundoff =
+      1e-12 * (settling.start_energy + end.energy + 0.5 * start_kinetic2 + 0.5 * kinetic2);
+  double dissipated = 0.5 * velocity_change2;
+  if (gained > dissipated + roundoff) {
+    a.multiply(next_, scratch_);
+    settling.product_is_current = true;
+    dissipated += 0.5 * (next_.dot(scratch_) - a.mass_coefficient * kinetic2);
+  }
+  return {gained > dissipated + roundoff, gained - dissipated};
+}
+
+void Body::finishAdvance(const SystemMatrix& a, double h, bool product_is_current) {
   // A v+ - b = h (M (v+ - v) / h - f_ext - f_elastic - f_damping): h times the constraint force.
   if (effects_.reactions) {
     if (!product_is_current) a.multiply(next_, scratch_);
@@ -636,39 +655,11 @@ StaticReport Body::solveStatic(const StaticSettings& settings) {
     // update while its size grows, and return to full steps while it shrinks.
     double relaxation = 1.0, previous_change = std::numeric_limits<double>::infinity();
     for (int iteration = 0; iteration < settings.max_iterations; ++iteration) {
-      updateStiffness();
-      // Solve K' dx = f - f0' - K' x for the change dx, so that CG's relative tolerance is
-      // measured against the out-of-balance force, not against K' x (for a stiff body far larger
-      // than the load: CG then stopped at once with no displacement at all).
-      elasticity_->stiffness().multiply(x_, scratch_);
-      rhs_ = fraction * load - elasticity_->forceOffset() - scratch_;
-      next_.setZero();
-      for (int i = 0; i < numNodes(); ++i) {
-        if (constrained_[i]) {
-          next_.segment<3>(3 * i) =
-              start.segment<3>(3 * i) +
-              fraction * (targets_.segment<3>(3 * i) - start.segment<3>(3 * i)) -
-              x_.segment<3>(3 * i);
-        }
-      }
-      report.last_solve = solve(a, rhs_, next_);
-      next_ += x_;
-      report.linear_iterations += report.last_solve.iterations;
-      ++report.iterations;
-      const double change = (next_ - x_).norm();
-      const double displacement = (next_ - x0_).norm();
-      report.last_change = displacement > 0.0 ? change / displacement : change;
+      const double change = staticIteration(a, load, start, fraction, report);
       relaxation = change > previous_change ? std::max(0.125, 0.5 * relaxation)
                                             : std::min(1.0, 1.25 * relaxation);
       previous_change = change;
-      for (int i = 0; i < numNodes(); ++i) {
-        x_.segment<3>(3 * i) =
-            constrained_[i]
-                ? Eigen::Vector3d(next_.segment<3>(3 * i))
-                : Eigen::Vector3d(x_.segment<3>(3 * i) +
-                                  relaxation * (next_.segment<3>(3 * i) - x_.segment<3>(3 * i)));
-      }
-      rotations_current_ = false;
+      relaxTowardsNext(relaxation);
       if (!effects_.warping || report.last_change <= settings.tolerance) break;
     }
     report.converged = report.last_solve.converged &&
@@ -676,6 +667,48 @@ StaticReport Body::solveStatic(const StaticSettings& settings) {
   }
   v_.setZero();
   restartWarmStart();
+  setStaticReactions(load);
+  return report;
+}
+
+double Body::staticIteration(const SystemMatrix& a, const Eigen::VectorXd& load,
+                             const Eigen::VectorXd& start, double fraction, StaticReport& report) {
+  updateStiffness();
+  // Solve K' dx = f - f0' - K' x for the change dx, so that CG's relative tolerance is
+  // measured against the out-of-balance force, not against K' x (for a stiff body far larger
+  // than the load: CG then stopped at once with no displacement at all).
+  elasticity_->stiffness().multiply(x_, scratch_);
+  rhs_ = fraction * load - elasticity_->forceOffset() - scratch_;
+  next_.setZero();
+  for (int i = 0; i < numNodes(); ++i) {
+    if (constrained_[i]) {
+      next_.segment<3>(3 * i) = start.segment<3>(3 * i) +
+                                fraction * (targets_.segment<3>(3 * i) - start.segment<3>(3 * i)) -
+                                x_.segment<3>(3 * i);
+    }
+  }
+  report.last_solve = solve(a, rhs_, next_);
+  next_ += x_;
+  report.linear_iterations += report.last_solve.iterations;
+  ++report.iterations;
+  const double change = (next_ - x_).norm();
+  const double displacement = (next_ - x0_).norm();
+  report.last_change = displacement > 0.0 ? change / displacement : change;
+  return change;
+}
+
+void Body::relaxTowardsNext(double relaxation) {
+  for (int i = 0; i < numNodes(); ++i) {
+    x_.segment<3>(3 * i) =
+        constrained_[i]
+            ? Eigen::Vector3d(next_.segment<3>(3 * i))
+            : Eigen::Vector3d(x_.segment<3>(3 * i) +
+                              relaxation * (next_.segment<3>(3 * i) - x_.segment<3>(3 * i)));
+  }
+  rotations_current_ = false;
+}
+
+void Body::setStaticReactions(const Eigen::VectorXd& load) {
   // Reactions at equilibrium, with the stiffness of the final configuration.
   updateStiffness();
   elasticity_->stiffness().multiply(x_, scratch_);
@@ -686,7 +719,6 @@ StaticReport Body::solveStatic(const StaticSettings& settings) {
                               elasticity_->forceOffset().segment<3>(3 * i) - load.segment<3>(3 * i))
             : Eigen::Vector3d::Zero();
   }
-  return report;
 }
 
 StepReport Body::stepReduced(double dt) {

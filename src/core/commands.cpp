@@ -54,49 +54,43 @@ int CommandProcessor::findBody(const std::string& name, const NodeTarget& nodes)
   return best;
 }
 
-std::vector<int> CommandProcessor::resolve(const Body& body, const NodeTarget& nodes) const {
-  const int kinds = (nodes.node_numbers.empty() ? 0 : 1) + (nodes.group.empty() ? 0 : 1) +
-                    (nodes.box ? 1 : 0) + (nodes.sphere ? 1 : 0) + (nodes.shapes.empty() ? 0 : 1);
-  if (kinds == 0 && nodes.whole_body) {
-    std::vector<int> all(body.numNodes());
-    for (int i = 0; i < body.numNodes(); ++i) all[i] = i;
-    return all;
+namespace {
+
+std::vector<int> groupMembers(const Body& body, const std::string& group_name) {
+  const auto group = body.groups().find(group_name);
+  if (group == body.groups().end()) {
+    std::string known;
+    for (const auto& [name, members] : body.groups()) known += (known.empty() ? "" : ", ") + name;
+    throw CommandError("body '" + body.name() + "' has no group '" + group_name + "'" +
+                       (known.empty() ? " (it has none)" : " (groups: " + known + ")"));
   }
-  if (kinds != 1) {
-    throw CommandError("give exactly one of: node ids, a group, a box, a sphere, shapes (got " +
-                       std::to_string(kinds) + ")");
+  return group->second;
+}
+
+// The nodes within nodes.shape_margin of any of nodes.shapes, ascending.
+std::vector<int> nodesNearShapes(const Body& body, const NodeTarget& nodes) {
+  if (!(nodes.shape_margin >= 0.0) || !std::isfinite(nodes.shape_margin)) {
+    throw CommandError("the margin around the shapes must be finite and >= 0 m");
   }
   std::vector<int> selected;
-  if (!nodes.group.empty()) {
-    const auto group = body.groups().find(nodes.group);
-    if (group == body.groups().end()) {
-      std::string known;
-      for (const auto& [name, members] : body.groups()) known += (known.empty() ? "" : ", ") + name;
-      throw CommandError("body '" + body.name() + "' has no group '" + nodes.group + "'" +
-                         (known.empty() ? " (it has none)" : " (groups: " + known + ")"));
+  for (const PlacedShape& placed : nodes.shapes) {
+    const Eigen::Isometry3d to_shape = placed.pose.inverse();
+    for (int i = 0; i < body.numNodes(); ++i) {
+      const Eigen::Vector3d p = body.positions().segment<3>(3 * i);
+      if (signedDistance(placed.shape, to_shape * p) <= nodes.shape_margin) selected.push_back(i);
     }
-    return group->second;
   }
-  if (!nodes.shapes.empty()) {
-    if (!(nodes.shape_margin >= 0.0) || !std::isfinite(nodes.shape_margin)) {
-      throw CommandError("the margin around the shapes must be finite and >= 0 m");
-    }
-    for (const PlacedShape& placed : nodes.shapes) {
-      const Eigen::Isometry3d to_shape = placed.pose.inverse();
-      for (int i = 0; i < body.numNodes(); ++i) {
-        const Eigen::Vector3d p = body.positions().segment<3>(3 * i);
-        if (signedDistance(placed.shape, to_shape * p) <= nodes.shape_margin) selected.push_back(i);
-      }
-    }
-    std::sort(selected.begin(), selected.end());
-    selected.erase(std::unique(selected.begin(), selected.end()), selected.end());
-    if (selected.empty()) {
-      throw CommandError("body '" + body.name() + "': no node within " +
-                         std::to_string(nodes.shape_margin) + " m of '" + nodes.shapes[0].name +
-                         "'");
-    }
-    return selected;
+  std::sort(selected.begin(), selected.end());
+  selected.erase(std::unique(selected.begin(), selected.end()), selected.end());
+  if (selected.empty()) {
+    throw CommandError("body '" + body.name() + "': no node within " +
+                       std::to_string(nodes.shape_margin) + " m of '" + nodes.shapes[0].name + "'");
   }
+  return selected;
+}
+
+// The nodes named by number, or inside the box or sphere (in nodes.region_pose).
+std::vector<int> nodesInRegion(const Body& body, const NodeTarget& nodes) {
   NodeSelection selection;
   if (!nodes.node_numbers.empty()) {
     selection.kind = NodeSelection::Kind::kNodes;
@@ -108,6 +102,7 @@ std::vector<int> CommandProcessor::resolve(const Body& body, const NodeTarget& n
     selection.kind = NodeSelection::Kind::kSphere;
     selection.sphere = *nodes.sphere;
   }
+  std::vector<int> selected;
   try {
     if (!nodes.region_pose.matrix().allFinite())
       throw CommandError("the region's frame is not finite");
@@ -132,28 +127,21 @@ std::vector<int> CommandProcessor::resolve(const Body& body, const NodeTarget& n
   return selected;
 }
 
-int CommandProcessor::apply(const WrenchCommand& command) {
+void addNodalForces(const ActiveWrench& wrench, Eigen::VectorXd& forces) {
+  for (size_t k = 0; k < wrench.nodes.size(); ++k)
+    forces.segment<3>(3 * wrench.nodes[k]) += wrench.forces[k];
+}
+
+void checkWrenchValues(const WrenchCommand& command) {
   if (!command.force.allFinite() || !command.torque.allFinite() ||
       (command.point && !command.point->allFinite())) {
     throw CommandError("wrench from '" + command.source + "' has a NaN or infinite value");
   }
-  if (command.force.isZero(0.0) && command.torque.isZero(0.0)) {
-    // A zero wrench clears its source; nothing to resolve (the target may be gone).
-    const auto previous = wrenches_.find(command.source);
-    if (previous != wrenches_.end()) {
-      const int body = previous->second.body;
-      wrenches_.erase(previous);
-      updateExternalForces(body);
-    } else {
-      // Nothing to clear: it must still name nodes a wrench could act on, so that unknown
-      // bodies, nodes and groups are refused whatever the wrench.
-      resolve(simulation_.bodies()[findBody(command.body, command.nodes)], command.nodes);
-    }
-    return 0;
-  }
-  const int b = findBody(command.body, command.nodes);
-  const Body& body = simulation_.bodies()[b];
-  const WrenchBounds bounds = wrenchBounds(body, limits_);
+}
+
+void checkWrenchBounds(const WrenchCommand& command, const Body& body,
+                       const CommandLimits& limits) {
+  const WrenchBounds bounds = wrenchBounds(body, limits);
   if (command.force.norm() > bounds.force || command.torque.norm() > bounds.torque) {
     throw CommandError("wrench from '" + command.source + "' exceeds the limits of body '" +
                        body.name() + "' (|force| " + std::to_string(command.force.norm()) +
@@ -161,9 +149,11 @@ int CommandProcessor::apply(const WrenchCommand& command) {
                        std::to_string(command.torque.norm()) + " N m of at most " +
                        std::to_string(bounds.torque) + ")");
   }
-  ActiveWrench active;
-  active.body = b;
-  active.nodes = resolve(body, command.nodes);
+}
+
+// Shares the command's wrench among active.nodes (set) of `body` by their masses, about the
+// command's point or else their centre of mass.
+void distributeOverNodes(const Body& body, const WrenchCommand& command, ActiveWrench& active) {
   std::vector<Eigen::Vector3d> points;
   std::vector<double> weights;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
@@ -183,16 +173,50 @@ int CommandProcessor::apply(const WrenchCommand& command) {
     throw CommandError("wrench from '" + command.source + "' on body '" + body.name() +
                        "': " + e.what());
   }
+}
+
+}  // namespace
+
+std::vector<int> CommandProcessor::resolve(const Body& body, const NodeTarget& nodes) const {
+  const int kinds = (nodes.node_numbers.empty() ? 0 : 1) + (nodes.group.empty() ? 0 : 1) +
+                    (nodes.box ? 1 : 0) + (nodes.sphere ? 1 : 0) + (nodes.shapes.empty() ? 0 : 1);
+  if (kinds == 0 && nodes.whole_body) {
+    std::vector<int> all(body.numNodes());
+    for (int i = 0; i < body.numNodes(); ++i) all[i] = i;
+    return all;
+  }
+  if (kinds != 1) {
+    throw CommandError("give exactly one of: node ids, a group, a box, a sphere, shapes (got " +
+                       std::to_string(kinds) + ")");
+  }
+  if (!nodes.group.empty()) return groupMembers(body, nodes.group);
+  if (!nodes.shapes.empty()) return nodesNearShapes(body, nodes);
+  return nodesInRegion(body, nodes);
+}
+
+int CommandProcessor::apply(const WrenchCommand& command) {
+  checkWrenchValues(command);
+  if (command.force.isZero(0.0) && command.torque.isZero(0.0)) {
+    // A zero wrench clears its source; nothing to resolve (the target may be gone).
+    if (!clearWrench(command.source)) {
+      // Nothing to clear: it must still name nodes a wrench could act on, so that unknown
+      // bodies, nodes and groups are refused whatever the wrench.
+      resolve(simulation_.bodies()[findBody(command.body, command.nodes)], command.nodes);
+    }
+    return 0;
+  }
+  const int b = findBody(command.body, command.nodes);
+  const Body& body = simulation_.bodies()[b];
+  checkWrenchBounds(command, body, limits_);
+  ActiveWrench active;
+  active.body = b;
+  active.nodes = resolve(body, command.nodes);
+  distributeOverNodes(body, command, active);
   // A wrench about a point far away, or many large ones on one node, can overflow: refuse it
   // before it reaches the body.
   Eigen::VectorXd applied = base_forces_[b];
-  for (const auto& [source, wrench] : wrenches_) {
-    if (wrench.body != b || source == command.source) continue;
-    for (size_t k = 0; k < wrench.nodes.size(); ++k)
-      applied.segment<3>(3 * wrench.nodes[k]) += wrench.forces[k];
-  }
-  for (size_t k = 0; k < active.nodes.size(); ++k)
-    applied.segment<3>(3 * active.nodes[k]) += active.forces[k];
+  addWrenchForces(b, &command.source, applied);
+  addNodalForces(active, applied);
   if (!applied.allFinite()) {
     throw CommandError("wrench from '" + command.source + "' on body '" + body.name() +
                        "': its nodal forces overflow (a point of application too far away?)");
@@ -266,14 +290,18 @@ bool CommandProcessor::clearWrench(const std::string& source) {
   return true;
 }
 
+void CommandProcessor::addWrenchForces(int b, const std::string* except,
+                                       Eigen::VectorXd& forces) const {
+  for (const auto& [source, wrench] : wrenches_) {
+    if (wrench.body != b || (except && source == *except)) continue;
+    addNodalForces(wrench, forces);
+  }
+}
+
 void CommandProcessor::updateExternalForces(int b) {
   Eigen::VectorXd& f = simulation_.bodies()[b].externalForces();
   f = base_forces_[b];
-  for (const auto& [source, wrench] : wrenches_) {
-    if (wrench.body != b) continue;
-    for (size_t k = 0; k < wrench.nodes.size(); ++k)
-      f.segment<3>(3 * wrench.nodes[k]) += wrench.forces[k];
-  }
+  addWrenchForces(b, nullptr, f);
 }
 
 }  // namespace deformable_sim::core

@@ -144,6 +144,10 @@ double total(const std::vector<double>& partials) {
 
 }  // namespace
 
+// A documented numeric kernel, kept in one piece: the preconditioned conjugate gradient of one
+// parallel region. Every thread of the team runs all of it; its steps are lambdas over the
+// team's chunks that share the thread's scalars, the barrier and the partial sums, so that the
+// threads take the same branches and meet at the same barriers in the same order.
 void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMask& constrained,
                                       const Eigen::VectorXd& b, const SolverSettings& settings,
                                       double reference, int min_iterations, Eigen::VectorXd& x,
@@ -258,35 +262,13 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
                                            const Eigen::VectorXd& b, const SolverSettings& settings,
                                            Eigen::VectorXd& x, bool in_sequence,
                                            double reference_floor) {
-  const int num_nodes = a.stiffness->numBlockRows();
-  if (r_.size() != b.size()) {
-    r_.resize(b.size());
-    z_.resize(b.size());
-    p_.resize(b.size());
-    q_.resize(b.size());
-    inverse_diagonal_.resize(num_nodes);
-    const int num_chunks = (num_nodes + kChunkNodes - 1) / kChunkNodes;
-    pq_partials_.resize(num_chunks);
-    rr_partials_.resize(num_chunks);
-    rz_partials_.resize(num_chunks);
-  }
+  resizeWorkspace(a.stiffness->numBlockRows(), b.size());
   if (settings.preconditioner != SolverSettings::Preconditioner::kTwoLevel) coarse_.reset();
   if (settings.preconditioner != SolverSettings::Preconditioner::kFactorization) {
     factorization_.reset();
   }
   refreshPreconditioner(a, constrained, settings);
-
-  // Reference norm: the right-hand side of the free rows once the prescribed values are moved
-  // over, i.e. the residual of x = 0 on the free nodes.
-  keepConstrained(constrained, x, p_);
-  if (prescribesMotion(constrained, x)) {
-    a.multiply(p_, q_);
-    r_ = b - q_;
-  } else {
-    r_ = b;  // A 0 = 0: no product needed
-  }
-  zeroConstrained(constrained, r_);
-  const double free_norm = r_.norm();
+  const double free_norm = setFreeRightHandSide(a, constrained, b, x);
   SolveReport report;
   if (!std::isfinite(free_norm)) {
     // A non-finite right-hand side: nothing to solve; say so rather than return a "solution".
@@ -305,27 +287,72 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
   // in a steady motion it repeats the last solution's error, which would otherwise pass from
   // step to step unchecked and add up (a free fall then drifts from implicit Euler); one
   // iteration with the coarse space's rigid modes takes the common part of it out.
-  bool projected = false;
   const bool project = in_sequence &&
                        settings.warm_start == SolverSettings::WarmStart::kProjected &&
                        settings.previous_solutions > 0;
-  if (project) {
-    if (previous_.capacity() != settings.previous_solutions || previous_.size() != b.size()) {
-      previous_.reserve(settings.previous_solutions, static_cast<int>(b.size()));
-    }
-    // The stored pairs solved another system: start afresh.
-    if (a.mass_coefficient != previous_mass_coefficient_ ||
-        a.stiffness_coefficient != previous_stiffness_coefficient_ ||
-        constrained != previous_constraints_) {
-      previous_.clear();
-      previous_mass_coefficient_ = a.mass_coefficient;
-      previous_stiffness_coefficient_ = a.stiffness_coefficient;
-      previous_constraints_ = constrained;
-    }
-    // r_ is b - A x_c on the free nodes: what the stored solutions solved, and this one will.
-    projected = previous_.guess(r_, constrained, x, a.threads);
-  }
+  const bool projected = project && guessFromPreviousSolutions(a, constrained, settings, x);
+  iterateInTeam(a, constrained, b, settings, reference, projected ? 1 : 0, x, report);
+  report.converged = report.relative_residual <= settings.tolerance;
+  if (project && report.converged) previous_.add(x, constrained);
+  return report;
+}
 
+void ConjugateGradientSolver::resizeWorkspace(int num_nodes, Eigen::Index size) {
+  if (r_.size() == size) return;
+  r_.resize(size);
+  z_.resize(size);
+  p_.resize(size);
+  q_.resize(size);
+  inverse_diagonal_.resize(num_nodes);
+  const int num_chunks = (num_nodes + kChunkNodes - 1) / kChunkNodes;
+  pq_partials_.resize(num_chunks);
+  rr_partials_.resize(num_chunks);
+  rz_partials_.resize(num_chunks);
+}
+
+double ConjugateGradientSolver::setFreeRightHandSide(const SystemMatrix& a,
+                                                     const ConstraintMask& constrained,
+                                                     const Eigen::VectorXd& b,
+                                                     const Eigen::VectorXd& x) {
+  // Reference norm: the right-hand side of the free rows once the prescribed values are moved
+  // over, i.e. the residual of x = 0 on the free nodes.
+  keepConstrained(constrained, x, p_);
+  if (prescribesMotion(constrained, x)) {
+    a.multiply(p_, q_);
+    r_ = b - q_;
+  } else {
+    r_ = b;  // A 0 = 0: no product needed
+  }
+  zeroConstrained(constrained, r_);
+  return r_.norm();
+}
+
+bool ConjugateGradientSolver::guessFromPreviousSolutions(const SystemMatrix& a,
+                                                         const ConstraintMask& constrained,
+                                                         const SolverSettings& settings,
+                                                         Eigen::VectorXd& x) {
+  if (previous_.capacity() != settings.previous_solutions || previous_.size() != r_.size()) {
+    previous_.reserve(settings.previous_solutions, static_cast<int>(r_.size()));
+  }
+  // The stored pairs solved another system: start afresh.
+  if (a.mass_coefficient != previous_mass_coefficient_ ||
+      a.stiffness_coefficient != previous_stiffness_coefficient_ ||
+      constrained != previous_constraints_) {
+    previous_.clear();
+    previous_mass_coefficient_ = a.mass_coefficient;
+    previous_stiffness_coefficient_ = a.stiffness_coefficient;
+    previous_constraints_ = constrained;
+  }
+  // r_ is b - A x_c on the free nodes: what the stored solutions solved, and this one will.
+  return previous_.guess(r_, constrained, x, a.threads);
+}
+
+void ConjugateGradientSolver::iterateInTeam(const SystemMatrix& a,
+                                            const ConstraintMask& constrained,
+                                            const Eigen::VectorXd& b,
+                                            const SolverSettings& settings, double reference,
+                                            int min_iterations, Eigen::VectorXd& x,
+                                            SolveReport& report) {
   // One parallel region for all the iterations: starting one costs more than a short loop.
   team_->next_chunk = 0;
   if (a.threads > 1) {
@@ -334,15 +361,12 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
       // The team OpenMP gave (it may be smaller than asked) is the one the barrier waits for.
 #pragma omp single
       team_->barrier.reset(teamSize());
-      iterate(a, constrained, b, settings, reference, projected ? 1 : 0, x, report);
+      iterate(a, constrained, b, settings, reference, min_iterations, x, report);
     }
   } else {
     team_->barrier.reset(1);
-    iterate(a, constrained, b, settings, reference, projected ? 1 : 0, x, report);
+    iterate(a, constrained, b, settings, reference, min_iterations, x, report);
   }
-  report.converged = report.relative_residual <= settings.tolerance;
-  if (project && report.converged) previous_.add(x, constrained);
-  return report;
 }
 
 void DirectSolver::buildPattern(const BlockSparseMatrix& k) {

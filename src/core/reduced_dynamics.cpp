@@ -110,6 +110,31 @@ void addConstraintRows(const NodeConstraints& constraints, const Rows& rows, con
   }
 }
 
+// Writes rows(k) times the generalized constraint force `multiplier` into the reaction of every
+// constrained node k.
+template <int D, typename Rows>
+void distributeReactions(const NodeConstraints& constraints, const Rows& rows,
+                         const Vector<D>& multiplier, Eigen::VectorXd& reactions) {
+  for (int node : *constraints.nodes) reactions.segment<3>(3 * node) = rows(node) * multiplier;
+}
+
+// The pseudo-rigid body's mass matrix over (c, vec(F)): m I for the centre, J_ij I for F.
+Matrix<12> pseudoRigidMassMatrix(double m, const Eigen::Matrix3d& second_moment) {
+  Matrix<12> mass_matrix = Matrix<12>::Zero();
+  mass_matrix.topLeftCorner<3, 3>() = m * Eigen::Matrix3d::Identity();
+  for (int col = 0; col < 3; ++col) {
+    for (int row = 0; row < 3; ++row) {
+      mass_matrix.block<3, 3>(3 + 3 * row, 3 + 3 * col) =
+          second_moment(row, col) * Eigen::Matrix3d::Identity();
+    }
+  }
+  return mass_matrix;
+}
+
+Eigen::Matrix3d turned(const Eigen::Vector3d& angle, const Eigen::Matrix3d& rotation) {
+  return Eigen::Quaterniond(rotationOf(angle) * rotation).normalized().toRotationMatrix();
+}
+
 }  // namespace
 
 ReducedDynamics::ReducedDynamics(BodyModel model, const MassProperties& mass,
@@ -208,121 +233,132 @@ void ReducedDynamics::elasticForce(Eigen::Matrix3d& force,
   }
 }
 
+Eigen::Vector3d ReducedDynamics::restArm(const NodeConstraints& constraints, int node) const {
+  return constraints.rest->segment<3>(3 * node) - mass_.centre;
+}
+
+Eigen::Vector3d ReducedDynamics::gapToTarget(const NodeConstraints& constraints, int node) const {
+  return constraints.targets->segment<3>(3 * node) - position(restArm(constraints, node));
+}
+
 void ReducedDynamics::step(double h, const LoadResultant& loads,
                            const std::optional<Eigen::Vector3d>& gravity, double mass_damping,
                            double stiffness_damping, const NodeConstraints& constraints,
                            Eigen::VectorXd* reactions) {
   Eigen::Vector3d force = loads.force;
   if (gravity) force += mass_.mass * *gravity;
-  const double m = mass_.mass;
   const double damping = 1.0 + h * mass_damping;
-  const bool constrained = hasConstraints(constraints);
-  const auto arm_of = [&](int node) {
-    return Eigen::Vector3d(constraints.rest->segment<3>(3 * node) - mass_.centre);
-  };
-  const auto gap = [&](int node, const Eigen::Vector3d& arm) {
-    return Eigen::Vector3d(constraints.targets->segment<3>(3 * node) - position(arm));
-  };
-  // Each constrained node moves to its target in this step: J_i u = (target - x_i) / h.
-  const auto target_velocity = [&](int node, const Eigen::Vector3d& arm) {
-    return Eigen::Vector3d(gap(node, arm) / h);
-  };
-
   if (model_ == BodyModel::kRigid) {
-    const Eigen::Matrix3d r = gradient_;
-    const Eigen::Matrix3d inertia = r * mass_.inertia() * r.transpose();
-    const Eigen::Matrix3d inverse = r * inverse_inertia_ * r.transpose();
-    // Momentum form: (1 + h alpha) M u+ = M u + h Q, with M u = (m v, L).
-    Vector<6> rhs;
-    rhs << m * velocity_ + h * force, angular_momentum_ + h * torque(loads.first_moment);
-    Vector<6> u;
-    u << rhs.head<3>() / (damping * m), inverse * rhs.tail<3>() / damping;
-    if (constrained) {
-      Matrix<6> a = Matrix<6>::Zero();
-      a.topLeftCorner<3, 3>() = damping * m * Eigen::Matrix3d::Identity();
-      a.bottomRightCorner<3, 3>() = damping * inertia;
-      Matrix<6> jtj = Matrix<6>::Zero();
-      Vector<6> jtb = Vector<6>::Zero();
-      addConstraintRows<6>(
-          constraints, [&](int node) { return rigidRows(r * arm_of(node)); },
-          [&](int node) { return target_velocity(node, arm_of(node)); }, jtj, jtb);
-      u = constrainedSolve<6>(a, rhs, jtj, jtb);
-      if (reactions) {
-        // The generalized constraint force, shared among the nodes with the least norm.
-        const Vector<6> multiplier = pseudoSolve<6>(jtj, (a * u - rhs) / h, kConstraintRank);
-        for (int node : *constraints.nodes) {
-          reactions->segment<3>(3 * node) = rigidRows(r * arm_of(node)) * multiplier;
-        }
-      }
-    }
-    velocity_ = u.head<3>();
-    Eigen::Vector3d omega = u.tail<3>();
-    // Unconstrained, the momentum is the update itself: exactly conserved without torque.
-    angular_momentum_ =
-        constrained ? Eigen::Vector3d(inertia * omega) : Eigen::Vector3d(rhs.tail<3>() / damping);
-    if (!constrained) {
-      // Implicit midpoint for the rotation: omega from the inertia at the half-step attitude,
-      // which keeps the energy of a free spin (the explicit update gains energy every step).
-      for (int iteration = 0; iteration < 4; ++iteration) {
-        const Eigen::Matrix3d half = rotationOf(0.5 * h * omega) * r;
-        omega = half * inverse_inertia_ * half.transpose() * angular_momentum_;
-      }
-    }
-    gradient_ = Eigen::Quaterniond(rotationOf(h * omega) * r).normalized().toRotationMatrix();
-    centre_ += h * velocity_;
-    // The velocities meet the constraints to first order; the turn leaves the nodes about
-    // h^2 omega^2 r / 2 off their targets. Mass-weighted projections onto them take it back (each
-    // is linearized in the rotation: three bring the gap to round-off).
-    for (int projection = 0; constrained && projection < 3; ++projection) {
-      Matrix<6> a = Matrix<6>::Zero();
-      a.topLeftCorner<3, 3>() = m * Eigen::Matrix3d::Identity();
-      a.bottomRightCorner<3, 3>() = gradient_ * mass_.inertia() * gradient_.transpose();
-      Matrix<6> jtj = Matrix<6>::Zero();
-      Vector<6> jtb = Vector<6>::Zero();
-      addConstraintRows<6>(
-          constraints, [&](int node) { return rigidRows(gradient_ * arm_of(node)); },
-          [&](int node) { return gap(node, arm_of(node)); }, jtj, jtb);
-      const Vector<6> delta = constrainedSolve<6>(a, Vector<6>::Zero(), jtj, jtb);
-      centre_ += delta.head<3>();
-      gradient_ = Eigen::Quaterniond(rotationOf(delta.tail<3>()) * gradient_)
-                      .normalized()
-                      .toRotationMatrix();
-    }
-    return;
+    stepRigid(h, force, loads.first_moment, damping, constraints, reactions);
+  } else {
+    stepPseudoRigid(h, force, loads.first_moment, damping, stiffness_damping, constraints,
+                    reactions);
   }
+}
 
-  // Pseudo-rigid: (M (1 + h alpha) + (h^2 + h beta) K) u+ = M u + h (Q - V P(F)).
+void ReducedDynamics::stepRigid(double h, const Eigen::Vector3d& force,
+                                const Eigen::Matrix3d& first_moment, double damping,
+                                const NodeConstraints& constraints, Eigen::VectorXd* reactions) {
+  const double m = mass_.mass;
+  const bool constrained = hasConstraints(constraints);
+  const Eigen::Matrix3d r = gradient_;
+  const Eigen::Matrix3d inertia = r * mass_.inertia() * r.transpose();
+  const Eigen::Matrix3d inverse = r * inverse_inertia_ * r.transpose();
+  // Momentum form: (1 + h alpha) M u+ = M u + h Q, with M u = (m v, L).
+  Vector<6> rhs;
+  rhs << m * velocity_ + h * force, angular_momentum_ + h * torque(first_moment);
+  Vector<6> u;
+  u << rhs.head<3>() / (damping * m), inverse * rhs.tail<3>() / damping;
+  if (constrained) u = constrainedRigidVelocity(h, damping, inertia, rhs, constraints, reactions);
+  velocity_ = u.head<3>();
+  Eigen::Vector3d omega = u.tail<3>();
+  // Unconstrained, the momentum is the update itself: exactly conserved without torque.
+  angular_momentum_ =
+      constrained ? Eigen::Vector3d(inertia * omega) : Eigen::Vector3d(rhs.tail<3>() / damping);
+  if (!constrained) {
+    // Implicit midpoint for the rotation: omega from the inertia at the half-step attitude,
+    // which keeps the energy of a free spin (the explicit update gains energy every step).
+    for (int iteration = 0; iteration < 4; ++iteration) {
+      const Eigen::Matrix3d half = rotationOf(0.5 * h * omega) * r;
+      omega = half * inverse_inertia_ * half.transpose() * angular_momentum_;
+    }
+  }
+  gradient_ = turned(h * omega, r);
+  centre_ += h * velocity_;
+  if (constrained) projectRigidOntoTargets(constraints);
+}
+
+ReducedDynamics::Vector6d ReducedDynamics::constrainedRigidVelocity(
+    double h, double damping, const Eigen::Matrix3d& inertia, const Vector6d& rhs,
+    const NodeConstraints& constraints, Eigen::VectorXd* reactions) const {
+  // Each constrained node moves to its target in this step: J_i u = (target - x_i) / h.
+  const auto rows = [&](int node) { return rigidRows(gradient_ * restArm(constraints, node)); };
+  Matrix<6> a = Matrix<6>::Zero();
+  a.topLeftCorner<3, 3>() = damping * mass_.mass * Eigen::Matrix3d::Identity();
+  a.bottomRightCorner<3, 3>() = damping * inertia;
+  Matrix<6> jtj = Matrix<6>::Zero();
+  Vector<6> jtb = Vector<6>::Zero();
+  addConstraintRows<6>(
+      constraints, rows,
+      [&](int node) { return Eigen::Vector3d(gapToTarget(constraints, node) / h); }, jtj, jtb);
+  const Vector<6> u = constrainedSolve<6>(a, rhs, jtj, jtb);
+  if (reactions) {
+    // The generalized constraint force, shared among the nodes with the least norm.
+    const Vector<6> multiplier = pseudoSolve<6>(jtj, (a * u - rhs) / h, kConstraintRank);
+    distributeReactions<6>(constraints, rows, multiplier, *reactions);
+  }
+  return u;
+}
+
+void ReducedDynamics::projectRigidOntoTargets(const NodeConstraints& constraints) {
+  // The velocities meet the constraints to first order; the turn leaves the nodes about
+  // h^2 omega^2 r / 2 off their targets. Mass-weighted projections onto them take it back (each
+  // is linearized in the rotation: three bring the gap to round-off).
+  for (int projection = 0; projection < 3; ++projection) {
+    Matrix<6> a = Matrix<6>::Zero();
+    a.topLeftCorner<3, 3>() = mass_.mass * Eigen::Matrix3d::Identity();
+    a.bottomRightCorner<3, 3>() = gradient_ * mass_.inertia() * gradient_.transpose();
+    Matrix<6> jtj = Matrix<6>::Zero();
+    Vector<6> jtb = Vector<6>::Zero();
+    addConstraintRows<6>(
+        constraints, [&](int node) { return rigidRows(gradient_ * restArm(constraints, node)); },
+        [&](int node) { return gapToTarget(constraints, node); }, jtj, jtb);
+    const Vector<6> delta = constrainedSolve<6>(a, Vector<6>::Zero(), jtj, jtb);
+    centre_ += delta.head<3>();
+    gradient_ = turned(delta.tail<3>(), gradient_);
+  }
+}
+
+void ReducedDynamics::stepPseudoRigid(double h, const Eigen::Vector3d& force,
+                                      const Eigen::Matrix3d& first_moment, double damping,
+                                      double stiffness_damping, const NodeConstraints& constraints,
+                                      Eigen::VectorXd* reactions) {
+  // (M (1 + h alpha) + (h^2 + h beta) K) u+ = M u + h (Q - V P(F)).
+  const bool constrained = hasConstraints(constraints);
+  const auto rows = [&](int node) { return pseudoRigidRows(restArm(constraints, node)); };
   Eigen::Matrix3d elastic;
   Eigen::Matrix<double, 9, 9> k;
   elasticForce(elastic, k);
-  Matrix<12> mass_matrix = Matrix<12>::Zero();
-  mass_matrix.topLeftCorner<3, 3>() = m * Eigen::Matrix3d::Identity();
-  for (int col = 0; col < 3; ++col) {
-    for (int row = 0; row < 3; ++row) {
-      mass_matrix.block<3, 3>(3 + 3 * row, 3 + 3 * col) =
-          mass_.second_moment(row, col) * Eigen::Matrix3d::Identity();
-    }
-  }
+  const Matrix<12> mass_matrix = pseudoRigidMassMatrix(mass_.mass, mass_.second_moment);
   Matrix<12> a = damping * mass_matrix;
   a.bottomRightCorner<9, 9>() += (h * h + h * stiffness_damping) * k;
   Vector<12> u;
   u << velocity_, vec(gradient_rate_);
   Vector<12> rhs = mass_matrix * u;
   rhs.head<3>() += h * force;
-  rhs.tail<9>() += h * (vec(loads.first_moment) - vec(elastic));
+  rhs.tail<9>() += h * (vec(first_moment) - vec(elastic));
   Matrix<12> jtj = Matrix<12>::Zero();
   Vector<12> jtb = Vector<12>::Zero();
   if (constrained) {
+    // Each constrained node moves to its target in this step: J_i u = (target - x_i) / h.
     addConstraintRows<12>(
-        constraints, [&](int node) { return pseudoRigidRows(arm_of(node)); },
-        [&](int node) { return target_velocity(node, arm_of(node)); }, jtj, jtb);
+        constraints, rows,
+        [&](int node) { return Eigen::Vector3d(gapToTarget(constraints, node) / h); }, jtj, jtb);
   }
   u = constrainedSolve<12>(a, rhs, jtj, jtb);
   if (constrained && reactions) {
     const Vector<12> multiplier = pseudoSolve<12>(jtj, (a * u - rhs) / h, kConstraintRank);
-    for (int node : *constraints.nodes) {
-      reactions->segment<3>(3 * node) = pseudoRigidRows(arm_of(node)) * multiplier;
-    }
+    distributeReactions<12>(constraints, rows, multiplier, *reactions);
   }
   velocity_ = u.head<3>();
   gradient_rate_ = unvec(u.tail<9>());
@@ -336,13 +372,6 @@ int ReducedDynamics::solveStatic(const LoadResultant& loads,
                                  double tolerance, Eigen::VectorXd& reactions) {
   Eigen::Vector3d force = loads.force;
   if (gravity) force += mass_.mass * *gravity;
-  const bool constrained = hasConstraints(constraints);
-  const auto arm_of = [&](int node) {
-    return Eigen::Vector3d(constraints.rest->segment<3>(3 * node) - mass_.centre);
-  };
-  const auto gap = [&](int node, const Eigen::Vector3d& arm) {
-    return Eigen::Vector3d(constraints.targets->segment<3>(3 * node) - position(arm));
-  };
   // Lengths of the update: the centre's, and the gradient's times the radius of gyration.
   const double radius = std::sqrt(mass_.second_moment.trace() / mass_.mass);
   velocity_.setZero();
@@ -350,82 +379,98 @@ int ReducedDynamics::solveStatic(const LoadResultant& loads,
   angular_momentum_.setZero();
   int iteration = 0;
   bool converged = false;
-  Vector<12> generalized = Vector<12>::Zero();  // the loads (and elastic forces) at the end
-  Matrix<12> jtj = Matrix<12>::Zero();
+  StaticBalance balance;
   while (iteration < max_iterations && !converged) {
     ++iteration;
-    double change = 0.0, displacement = 0.0;
-    jtj.setZero();
-    if (model_ == BodyModel::kRigid) {
-      Matrix<6> jtj6 = Matrix<6>::Zero();
-      Vector<6> jtb = Vector<6>::Zero();
-      if (constrained) {
-        addConstraintRows<6>(
-            constraints, [&](int node) { return rigidRows(gradient_ * arm_of(node)); },
-            [&](int node) { return gap(node, arm_of(node)); }, jtj6, jtb);
-      }
-      const Vector<6> delta = constrainedSolve<6>(Matrix<6>::Zero(), Vector<6>::Zero(), jtj6, jtb);
-      centre_ += delta.head<3>();
-      gradient_ = Eigen::Quaterniond(rotationOf(delta.tail<3>()) * gradient_)
-                      .normalized()
-                      .toRotationMatrix();
-      change = std::hypot(delta.head<3>().norm(), radius * delta.tail<3>().norm());
-      displacement = std::hypot((centre_ - mass_.centre).norm(),
-                                radius * (gradient_ - Eigen::Matrix3d::Identity()).norm());
-      generalized.head<3>() = force;
-      generalized.segment<3>(3) = torque(loads.first_moment);
-      jtj.topLeftCorner<6, 6>() = jtj6;
-    } else {
-      Eigen::Matrix3d elastic;
-      Eigen::Matrix<double, 9, 9> k;
-      elasticForce(elastic, k);
-      Matrix<12> a = Matrix<12>::Zero();
-      a.bottomRightCorner<9, 9>() = k;
-      Vector<12> rhs;
-      rhs << force, vec(loads.first_moment) - vec(elastic);
-      Vector<12> jtb = Vector<12>::Zero();
-      if (constrained) {
-        addConstraintRows<12>(
-            constraints, [&](int node) { return pseudoRigidRows(arm_of(node)); },
-            [&](int node) { return gap(node, arm_of(node)); }, jtj, jtb);
-      }
-      const Vector<12> delta = constrainedSolve<12>(a, rhs, jtj, jtb);
-      centre_ += delta.head<3>();
-      gradient_ += unvec(delta.tail<9>());
-      change = std::hypot(delta.head<3>().norm(), radius * delta.tail<9>().norm());
-      displacement = std::hypot((centre_ - mass_.centre).norm(),
-                                radius * (gradient_ - Eigen::Matrix3d::Identity()).norm());
-      elasticForce(elastic, k);
-      generalized << force, vec(loads.first_moment) - vec(elastic);
-    }
+    balance.jtj.setZero();
+    const double change =
+        model_ == BodyModel::kRigid
+            ? staticRigidUpdate(force, loads.first_moment, constraints, radius, balance)
+            : staticPseudoRigidUpdate(force, loads.first_moment, constraints, radius, balance);
+    const double displacement = std::hypot(
+        (centre_ - mass_.centre).norm(), radius * (gradient_ - Eigen::Matrix3d::Identity()).norm());
     converged = change <= tolerance * std::max(displacement, 1e-12 * radius);
   }
+  if (!balanced(balance, force, loads.first_moment, radius)) converged = false;
+  if (hasConstraints(constraints)) staticReactions(constraints, balance, reactions);
+  return converged ? iteration : -iteration;
+}
+
+double ReducedDynamics::staticRigidUpdate(const Eigen::Vector3d& force,
+                                          const Eigen::Matrix3d& first_moment,
+                                          const NodeConstraints& constraints, double radius,
+                                          StaticBalance& balance) {
+  Matrix<6> jtj6 = Matrix<6>::Zero();
+  Vector<6> jtb = Vector<6>::Zero();
+  if (hasConstraints(constraints)) {
+    addConstraintRows<6>(
+        constraints, [&](int node) { return rigidRows(gradient_ * restArm(constraints, node)); },
+        [&](int node) { return gapToTarget(constraints, node); }, jtj6, jtb);
+  }
+  const Vector<6> delta = constrainedSolve<6>(Matrix<6>::Zero(), Vector<6>::Zero(), jtj6, jtb);
+  centre_ += delta.head<3>();
+  gradient_ = turned(delta.tail<3>(), gradient_);
+  balance.generalized.head<3>() = force;
+  balance.generalized.segment<3>(3) = torque(first_moment);
+  balance.jtj.topLeftCorner<6, 6>() = jtj6;
+  return std::hypot(delta.head<3>().norm(), radius * delta.tail<3>().norm());
+}
+
+double ReducedDynamics::staticPseudoRigidUpdate(const Eigen::Vector3d& force,
+                                                const Eigen::Matrix3d& first_moment,
+                                                const NodeConstraints& constraints, double radius,
+                                                StaticBalance& balance) {
+  Eigen::Matrix3d elastic;
+  Eigen::Matrix<double, 9, 9> k;
+  elasticForce(elastic, k);
+  Matrix<12> a = Matrix<12>::Zero();
+  a.bottomRightCorner<9, 9>() = k;
+  Vector<12> rhs;
+  rhs << force, vec(first_moment) - vec(elastic);
+  Vector<12> jtb = Vector<12>::Zero();
+  if (hasConstraints(constraints)) {
+    addConstraintRows<12>(
+        constraints, [&](int node) { return pseudoRigidRows(restArm(constraints, node)); },
+        [&](int node) { return gapToTarget(constraints, node); }, balance.jtj, jtb);
+  }
+  const Vector<12> delta = constrainedSolve<12>(a, rhs, balance.jtj, jtb);
+  centre_ += delta.head<3>();
+  gradient_ += unvec(delta.tail<9>());
+  elasticForce(elastic, k);
+  balance.generalized << force, vec(first_moment) - vec(elastic);
+  return std::hypot(delta.head<3>().norm(), radius * delta.tail<9>().norm());
+}
+
+bool ReducedDynamics::balanced(const StaticBalance& balance, const Eigen::Vector3d& force,
+                               const Eigen::Matrix3d& first_moment, double radius) const {
   // What neither stiffness nor constraints took up: the part of the leftover generalized force
   // outside the constraints' range (torques and first moments per radius of gyration, N).
   const int size = model_ == BodyModel::kRigid ? 6 : 12;
-  const Vector<12> balanced = jtj * pseudoSolve<12>(jtj, generalized, kConstraintRank);
-  const Vector<12> unbalanced = generalized - balanced;
-  const double load = std::hypot(force.norm(), loads.first_moment.norm() / radius);
-  if (std::hypot(unbalanced.head<3>().norm(), unbalanced.segment(3, size - 3).norm() / radius) >
-      1e-8 * load) {
-    converged = false;
+  const Vector<12> taken_up =
+      balance.jtj * pseudoSolve<12>(balance.jtj, balance.generalized, kConstraintRank);
+  const Vector<12> unbalanced = balance.generalized - taken_up;
+  const double load = std::hypot(force.norm(), first_moment.norm() / radius);
+  return !(std::hypot(unbalanced.head<3>().norm(),
+                      unbalanced.segment(3, size - 3).norm() / radius) > 1e-8 * load);
+}
+
+void ReducedDynamics::staticReactions(const NodeConstraints& constraints,
+                                      const StaticBalance& balance,
+                                      Eigen::VectorXd& reactions) const {
+  // The constraints balance what loads and elasticity leave over, where they can.
+  if (model_ == BodyModel::kRigid) {
+    const Vector<6> multiplier = pseudoSolve<6>(balance.jtj.topLeftCorner<6, 6>(),
+                                                -balance.generalized.head<6>(), kConstraintRank);
+    distributeReactions<6>(
+        constraints, [&](int node) { return rigidRows(gradient_ * restArm(constraints, node)); },
+        multiplier, reactions);
+  } else {
+    const Vector<12> multiplier =
+        pseudoSolve<12>(balance.jtj, -balance.generalized, kConstraintRank);
+    distributeReactions<12>(
+        constraints, [&](int node) { return pseudoRigidRows(restArm(constraints, node)); },
+        multiplier, reactions);
   }
-  // Reactions: the constraints balance what loads and elasticity leave over, where they can.
-  if (constrained) {
-    if (model_ == BodyModel::kRigid) {
-      const Vector<6> multiplier =
-          pseudoSolve<6>(jtj.topLeftCorner<6, 6>(), -generalized.head<6>(), kConstraintRank);
-      for (int node : *constraints.nodes) {
-        reactions.segment<3>(3 * node) = rigidRows(gradient_ * arm_of(node)) * multiplier;
-      }
-    } else {
-      const Vector<12> multiplier = pseudoSolve<12>(jtj, -generalized, kConstraintRank);
-      for (int node : *constraints.nodes) {
-        reactions.segment<3>(3 * node) = pseudoRigidRows(arm_of(node)) * multiplier;
-      }
-    }
-  }
-  return converged ? iteration : -iteration;
 }
 
 double ReducedDynamics::kineticEnergy() const {

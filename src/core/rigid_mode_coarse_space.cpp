@@ -31,11 +31,26 @@ RigidModeCoarseSpace::RigidModeCoarseSpace(const BlockSparseMatrix& k) {
 }
 
 void RigidModeCoarseSpace::build(const BlockSparseMatrix& k, int rings) {
+  rings_ = rings;
+  aggregate(k, rings);
+  listMembers();
+  const std::vector<int> coarse_columns = buildCoarsePattern(k);
+  buildScalarPattern(coarse_columns);
+  const int n = k.numBlockRows();
+  const int size = 6 * num_aggregates_;
+  coarse_blocks_.resize(coarse_columns.size());
+  coarse_rhs_.resize(size);
+  modes_.resize(size);
+  offset_.resize(n);
+  centroid_.resize(num_aggregates_);
+  centroid_count_.resize(num_aggregates_);
+  largest_diagonal_.resize(num_aggregates_);
+}
+
+void RigidModeCoarseSpace::aggregate(const BlockSparseMatrix& k, int rings) {
   const int n = k.numBlockRows();
   const std::vector<int>& row_start = k.rowStart();
   const std::vector<int>& columns = k.columns();
-  rings_ = rings;
-
   // Aggregation: a node whose rings of neighbours are untouched takes all of them ...
   num_aggregates_ = 0;
   aggregate_.assign(n, -1);
@@ -69,14 +84,22 @@ void RigidModeCoarseSpace::build(const BlockSparseMatrix& k, int rings) {
       if (aggregate_[i] < 0 && pass == 1) aggregate_[i] = num_aggregates_++;
     }
   }
+}
 
+void RigidModeCoarseSpace::listMembers() {
+  const int n = static_cast<int>(aggregate_.size());
   member_start_.assign(num_aggregates_ + 1, 0);
   for (int g : aggregate_) ++member_start_[g + 1];
   for (int g = 0; g < num_aggregates_; ++g) member_start_[g + 1] += member_start_[g];
   members_.resize(n);
   std::vector<int> next(member_start_.begin(), member_start_.end() - 1);
   for (int i = 0; i < n; ++i) members_[next[aggregate_[i]]++] = i;
+}
 
+std::vector<int> RigidModeCoarseSpace::buildCoarsePattern(const BlockSparseMatrix& k) {
+  const int n = k.numBlockRows();
+  const std::vector<int>& row_start = k.rowStart();
+  const std::vector<int>& columns = k.columns();
   // Coarse pattern: blocks (agg(i), agg(j)) over the blocks (i, j) of the fine pattern.
   std::vector<std::vector<int>> neighbours(num_aggregates_);
   for (int i = 0; i < n; ++i) {
@@ -103,7 +126,10 @@ void RigidModeCoarseSpace::build(const BlockSparseMatrix& k, int rings) {
       coarse_block_[s] = coarseBlock(aggregate_[i], aggregate_[columns[s]]);
     }
   }
+  return coarse_columns;
+}
 
+void RigidModeCoarseSpace::buildScalarPattern(const std::vector<int>& coarse_columns) {
   // The scalar coarse pattern, in a fill-reducing order computed once.
   const int size = 6 * num_aggregates_;
   std::vector<std::pair<int, int>> entries;
@@ -129,73 +155,19 @@ void RigidModeCoarseSpace::build(const BlockSparseMatrix& k, int rings) {
   for (size_t b = 0; b < coarse_columns.size(); ++b) {
     for (int e = 0; e < 36; ++e) coarse_block_stored_[b] |= coarse_value_[36 * b + e] >= 0;
   }
-  coarse_blocks_.resize(coarse_columns.size());
-  coarse_rhs_.resize(size);
-  modes_.resize(size);
-  offset_.resize(n);
-  centroid_.resize(num_aggregates_);
-  centroid_count_.resize(num_aggregates_);
-  largest_diagonal_.resize(num_aggregates_);
 }
 
 void RigidModeCoarseSpace::refresh(const SystemMatrix& a, const ConstraintMask& constrained,
                                    const Eigen::VectorXd& positions) {
-  const BlockSparseMatrix& k = *a.stiffness;
-  const int n = k.numBlockRows();
-  // Rotations about each aggregate's centroid of free nodes, at the current positions.
-  std::fill(centroid_.begin(), centroid_.end(), Eigen::Vector3d::Zero());
-  std::fill(centroid_count_.begin(), centroid_count_.end(), 0);
-  for (int i = 0; i < n; ++i) {
-    if (constrained[i]) continue;
-    centroid_[aggregate_[i]] += positions.segment<3>(3 * i);
-    ++centroid_count_[aggregate_[i]];
-  }
-  for (int g = 0; g < num_aggregates_; ++g) {
-    if (centroid_count_[g] > 0) centroid_[g] /= centroid_count_[g];
-  }
-  for (int i = 0; i < n; ++i) offset_[i] = positions.segment<3>(3 * i) - centroid_[aggregate_[i]];
-
+  updateOffsets(constrained, positions);
   // A_c = sum over blocks (i, j) of P_i^T A_ij P_j with P_i = [I, -[d_i]x]: the 3 x 6 map from
   // an aggregate's translation t and rotation w to node i's displacement t + w x d_i.
   // Every stored entry is written below: no zeroing. Aggregate by aggregate on the solver's
   // threads: the blocks of an aggregate's rows are summed by that aggregate alone, each over its
   // nodes' blocks in node order, as one loop over all nodes would: the same bits on any count.
-  // Summed as whole 6 x 6 blocks (contiguous, vectorized), each then stored once.
   double* values = dense_ ? dense_coarse_.matrix().data() : coarse_.values();
-  parallelFor(a.threads, 0, num_aggregates_, [&](int g) {
-    for (int b = coarse_row_start_[g]; b < coarse_row_start_[g + 1]; ++b) {
-      coarse_blocks_[b].setZero();
-    }
-    double largest = 0.0;
-    for (int m = member_start_[g]; m < member_start_[g + 1]; ++m) {
-      const int i = members_[m];
-      if (constrained[i]) continue;
-      const Eigen::Matrix3d di = crossMatrix(offset_[i]);
-      for (int s = k.rowStart()[i]; s < k.rowStart()[i + 1]; ++s) {
-        const int j = k.columns()[s];
-        if (constrained[j] || !coarse_block_stored_[coarse_block_[s]]) continue;
-        Eigen::Matrix3d aij = a.stiffness_coefficient * k.blocks()[s];
-        if (i == j && a.mass_coefficient != 0.0) {
-          aij.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
-        }
-        Eigen::Matrix<double, 3, 6> t;  // A_ij P_j
-        t.leftCols<3>() = aij;
-        t.rightCols<3>().noalias() = -aij * crossMatrix(offset_[j]);
-        // P_i^T A_ij P_j; -[d]x^T = [d]x
-        Eigen::Matrix<double, 6, 6>& block = coarse_blocks_[coarse_block_[s]];
-        block.topRows<3>() += t;
-        block.bottomRows<3>().noalias() += di * t;
-        if (i == j) largest = std::max(largest, aij.diagonal().maxCoeff());
-      }
-    }
-    for (int b = coarse_row_start_[g]; b < coarse_row_start_[g + 1]; ++b) {
-      const int* slot = &coarse_value_[36 * b];
-      for (int e = 0; e < 36; ++e) {
-        if (slot[e] >= 0) values[slot[e]] = coarse_blocks_[b](e / 6, e % 6);
-      }
-    }
-    largest_diagonal_[g] = largest;
-  });
+  parallelFor(a.threads, 0, num_aggregates_,
+              [&](int g) { assembleAggregateRows(g, a, constrained, values); });
   double largest_diagonal = 0.0;
   for (double largest : largest_diagonal_) largest_diagonal = std::max(largest_diagonal, largest);
   // Aggregates with constrained nodes can lose modes (all of them, or a rotation about the line
@@ -208,6 +180,62 @@ void RigidModeCoarseSpace::refresh(const SystemMatrix& a, const ConstraintMask& 
   } else {
     coarse_.factorize(shift);
   }
+}
+
+void RigidModeCoarseSpace::updateOffsets(const ConstraintMask& constrained,
+                                         const Eigen::VectorXd& positions) {
+  const int n = static_cast<int>(aggregate_.size());
+  // Rotations about each aggregate's centroid of free nodes, at the current positions.
+  std::fill(centroid_.begin(), centroid_.end(), Eigen::Vector3d::Zero());
+  std::fill(centroid_count_.begin(), centroid_count_.end(), 0);
+  for (int i = 0; i < n; ++i) {
+    if (constrained[i]) continue;
+    centroid_[aggregate_[i]] += positions.segment<3>(3 * i);
+    ++centroid_count_[aggregate_[i]];
+  }
+  for (int g = 0; g < num_aggregates_; ++g) {
+    if (centroid_count_[g] > 0) centroid_[g] /= centroid_count_[g];
+  }
+  for (int i = 0; i < n; ++i) offset_[i] = positions.segment<3>(3 * i) - centroid_[aggregate_[i]];
+}
+
+void RigidModeCoarseSpace::assembleAggregateRows(int g, const SystemMatrix& a,
+                                                 const ConstraintMask& constrained,
+                                                 double* values) {
+  const BlockSparseMatrix& k = *a.stiffness;
+  // Summed as whole 6 x 6 blocks (contiguous, vectorized), each then stored once.
+  for (int b = coarse_row_start_[g]; b < coarse_row_start_[g + 1]; ++b) {
+    coarse_blocks_[b].setZero();
+  }
+  double largest = 0.0;
+  for (int m = member_start_[g]; m < member_start_[g + 1]; ++m) {
+    const int i = members_[m];
+    if (constrained[i]) continue;
+    const Eigen::Matrix3d di = crossMatrix(offset_[i]);
+    for (int s = k.rowStart()[i]; s < k.rowStart()[i + 1]; ++s) {
+      const int j = k.columns()[s];
+      if (constrained[j] || !coarse_block_stored_[coarse_block_[s]]) continue;
+      Eigen::Matrix3d aij = a.stiffness_coefficient * k.blocks()[s];
+      if (i == j && a.mass_coefficient != 0.0) {
+        aij.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
+      }
+      Eigen::Matrix<double, 3, 6> t;  // A_ij P_j
+      t.leftCols<3>() = aij;
+      t.rightCols<3>().noalias() = -aij * crossMatrix(offset_[j]);
+      // P_i^T A_ij P_j; -[d]x^T = [d]x
+      Eigen::Matrix<double, 6, 6>& block = coarse_blocks_[coarse_block_[s]];
+      block.topRows<3>() += t;
+      block.bottomRows<3>().noalias() += di * t;
+      if (i == j) largest = std::max(largest, aij.diagonal().maxCoeff());
+    }
+  }
+  for (int b = coarse_row_start_[g]; b < coarse_row_start_[g + 1]; ++b) {
+    const int* slot = &coarse_value_[36 * b];
+    for (int e = 0; e < 36; ++e) {
+      if (slot[e] >= 0) values[slot[e]] = coarse_blocks_[b](e / 6, e % 6);
+    }
+  }
+  largest_diagonal_[g] = largest;
 }
 
 void RigidModeCoarseSpace::restrictTo(int g, const ConstraintMask& constrained,

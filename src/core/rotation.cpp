@@ -86,7 +86,10 @@ Eigen::Matrix3d extractRotation(const Eigen::Matrix3d& deformation_gradient) {
 
 namespace {
 
-// Inlined into each caller below, so that it is compiled for the caller's instruction set.
+// A documented numeric kernel, kept in one piece: the iteration runs over arrays of matrix
+// entries that the compiler vectorizes as one loop nest, and it is inlined into each caller below
+// so that it is compiled for the caller's instruction set (a helper would have to be inlined the
+// same way to keep that).
 __attribute__((always_inline)) inline void extractRotationsInLockstep(
     const Eigen::Matrix3d* deformation_gradients, Eigen::Matrix3d* rotations, int count) {
   // The Newton-Schulz iteration of extractRotation for kRotationBatch matrices in lockstep, entry

@@ -5,6 +5,7 @@
 
 #include "deformable_sim/core/loads.h"
 #include "deformable_sim/core/selection.h"
+#include "deformable_sim/core/spec_error.h"
 #include "deformable_sim/core/wrench.h"
 
 namespace deformable_sim::core {
@@ -17,15 +18,15 @@ std::vector<int> selectSome(const Mesh& mesh, const NodeSelection& selection,
   try {
     nodes = selectNodes(mesh, selection);
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(key + ": " + e.what());
+    throw SpecError(key, e.what());
   }
-  if (nodes.empty()) throw std::invalid_argument(key + ": selects no node");
+  if (nodes.empty()) throw SpecError(key, "selects no node");
   return nodes;
 }
 
 void addWrench(Body& body, const std::vector<int>& nodes, const LoadSpec& load,
                const std::string& key) {
-  if (!load.torque.allFinite()) throw std::invalid_argument(key + ": non-finite torque");
+  if (!load.torque.allFinite()) throw SpecError(key, "non-finite torque");
   std::vector<Eigen::Vector3d> points, forces;
   std::vector<double> weights;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
@@ -39,10 +40,51 @@ void addWrench(Body& body, const std::vector<int>& nodes, const LoadSpec& load,
   try {
     distributeWrench(points, weights, load.value, load.torque, centroid / total, forces);
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(key + ": " + e.what());
+    throw SpecError(key, e.what());
   }
   for (size_t k = 0; k < nodes.size(); ++k)
     body.externalForces().segment<3>(3 * nodes[k]) += forces[k];
+}
+
+BodyEffects effectsOf(const SceneSpec& spec, const BodySpec& body_spec) {
+  BodyEffects effects = body_spec.effects.value_or(spec.effects);
+  if (body_spec.model != BodyModel::kFiniteElement) {
+    // Inherited from the scene, plasticity is for its finite-element bodies only.
+    if (!body_spec.effects) effects.plasticity.reset();
+  } else if (spec.contact) {
+    effects.reactions = true;  // contact decides stick or slip from the constraint forces
+  }
+  return effects;
+}
+
+void addGroups(Body& body, const BodySpec& body_spec, const std::string& key) {
+  for (const auto& [name, selection] : body_spec.groups) {
+    if (name.empty() || name.find('/') != std::string::npos) {
+      throw SpecError(key + ".groups",
+                      "'" + name + "' is not a valid group name (non-empty, no '/')");
+    }
+    body.addGroup(name, selectSome(body.mesh(), selection, key + ".groups." + name));
+  }
+}
+
+void addLoads(Body& body, const BodySpec& body_spec, const std::string& key) {
+  const std::vector<Face> boundary = extractBoundary(body.mesh());
+  for (size_t k = 0; k < body_spec.loads.size(); ++k) {
+    const LoadSpec& load = body_spec.loads[k];
+    const std::string load_key = key + ".loads[" + std::to_string(k) + "]";
+    if (!load.value.allFinite()) throw SpecError(load_key, "non-finite value");
+    const std::vector<int> nodes = selectSome(body.mesh(), load.where, load_key);
+    if (load.kind == LoadSpec::Kind::kTotalForce) {
+      addTotalForce(nodes, load.value, body.externalForces());
+    } else if (load.kind == LoadSpec::Kind::kWrench) {
+      addWrench(body, nodes, load, load_key);
+    } else if (addTractionLoad(body.mesh(), boundary, nodes, load.value, body.externalForces()) ==
+               0.0) {
+      throw SpecError(load_key,
+                      "traction selects no boundary face (all nodes of a boundary face must be "
+                      "selected)");
+    }
+  }
 }
 
 }  // namespace
@@ -50,77 +92,50 @@ void addWrench(Body& body, const std::vector<int>& nodes, const LoadSpec& load,
 Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
     : dt_(spec.dt), statics_(spec.statics), contact_(spec.contact), obstacles_(spec.obstacles) {
   if (contact_ && !(contact_->friction >= 0.0 && std::isfinite(contact_->friction))) {
-    throw std::invalid_argument("effects.contact.friction: must be finite and >= 0");
+    throw SpecError("effects.contact.friction", "must be finite and >= 0");
   }
   for (size_t k = 0; k < obstacles_.size(); ++k) {
     validate(obstacles_[k].shape, "obstacles[" + std::to_string(k) + "]");
   }
   if (!(spec.dt > 0.0) || !std::isfinite(spec.dt)) {
-    throw std::invalid_argument("dt: must be finite and > 0 s");
+    throw SpecError("dt", "must be finite and > 0 s");
   }
   if (meshes.size() != spec.bodies.size()) {
-    throw std::invalid_argument("bodies: " + std::to_string(spec.bodies.size()) + " bodies but " +
-                                std::to_string(meshes.size()) + " meshes");
+    throw SpecError("bodies", std::to_string(spec.bodies.size()) + " bodies but " +
+                                  std::to_string(meshes.size()) + " meshes");
   }
   bodies_.reserve(spec.bodies.size());
   if (contact_) contact_states_.reserve(spec.bodies.size());
   wrench_radii_.reserve(spec.bodies.size());
-  for (size_t b = 0; b < spec.bodies.size(); ++b) {
-    const BodySpec& body_spec = spec.bodies[b];
-    const std::string key = "bodies[" + std::to_string(b) + "]";
-    try {
-      BodyEffects effects = body_spec.effects.value_or(spec.effects);
-      if (body_spec.model != BodyModel::kFiniteElement) {
-        // Inherited from the scene, plasticity is for its finite-element bodies only.
-        if (!body_spec.effects) effects.plasticity.reset();
-      } else if (contact_) {
-        effects.reactions = true;  // contact decides stick or slip from the constraint forces
-      }
-      bodies_.emplace_back(body_spec.name, std::move(meshes[b]), body_spec.material, effects,
-                           spec.solver, body_spec.model);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(key + ": " + e.what());
-    }
-    Body& body = bodies_.back();
-    if (!(body_spec.wrench_radius >= 0.0) || !std::isfinite(body_spec.wrench_radius)) {
-      throw std::invalid_argument(key + ".wrench_radius: must be finite and >= 0 m");
-    }
-    wrench_radii_.push_back(body_spec.wrench_radius);
-    recoveries_.push_back(0);
-    // Contact acts on the nodes of finite-element bodies; rigid and pseudo-rigid ones pass through.
-    contact_states_.emplace_back();
-    if (contact_ && body.model() == BodyModel::kFiniteElement) {
-      contact_states_.back().emplace(body.numNodes());
-    }
-    for (const auto& [name, selection] : body_spec.groups) {
-      if (name.empty() || name.find('/') != std::string::npos) {
-        throw std::invalid_argument(key + ".groups: '" + name +
-                                    "' is not a valid group name (non-empty, no '/')");
-      }
-      body.addGroup(name, selectSome(body.mesh(), selection, key + ".groups." + name));
-    }
-    for (size_t k = 0; k < body_spec.fixed.size(); ++k) {
-      body.fixNodes(
-          selectSome(body.mesh(), body_spec.fixed[k], key + ".fixed[" + std::to_string(k) + "]"));
-    }
-    const std::vector<Face> boundary = extractBoundary(body.mesh());
-    for (size_t k = 0; k < body_spec.loads.size(); ++k) {
-      const LoadSpec& load = body_spec.loads[k];
-      const std::string load_key = key + ".loads[" + std::to_string(k) + "]";
-      if (!load.value.allFinite()) throw std::invalid_argument(load_key + ": non-finite value");
-      const std::vector<int> nodes = selectSome(body.mesh(), load.where, load_key);
-      if (load.kind == LoadSpec::Kind::kTotalForce) {
-        addTotalForce(nodes, load.value, body.externalForces());
-      } else if (load.kind == LoadSpec::Kind::kWrench) {
-        addWrench(body, nodes, load, load_key);
-      } else if (addTractionLoad(body.mesh(), boundary, nodes, load.value, body.externalForces()) ==
-                 0.0) {
-        throw std::invalid_argument(load_key +
-                                    ": traction selects no boundary face (all nodes of a "
-                                    "boundary face must be selected)");
-      }
-    }
+  for (size_t b = 0; b < spec.bodies.size(); ++b) addBody(spec, b, std::move(meshes[b]));
+}
+
+void Simulation::addBody(const SceneSpec& spec, size_t b, Mesh mesh) {
+  const BodySpec& body_spec = spec.bodies[b];
+  const std::string key = "bodies[" + std::to_string(b) + "]";
+  try {
+    bodies_.emplace_back(body_spec.name, std::move(mesh), body_spec.material,
+                         effectsOf(spec, body_spec), spec.solver, body_spec.model);
+  } catch (const std::invalid_argument& e) {
+    throw SpecError(key, e.what());
   }
+  Body& body = bodies_.back();
+  if (!(body_spec.wrench_radius >= 0.0) || !std::isfinite(body_spec.wrench_radius)) {
+    throw SpecError(key + ".wrench_radius", "must be finite and >= 0 m");
+  }
+  wrench_radii_.push_back(body_spec.wrench_radius);
+  recoveries_.push_back(0);
+  // Contact acts on the nodes of finite-element bodies; rigid and pseudo-rigid ones pass through.
+  contact_states_.emplace_back();
+  if (contact_ && body.model() == BodyModel::kFiniteElement) {
+    contact_states_.back().emplace(body.numNodes());
+  }
+  addGroups(body, body_spec, key);
+  for (size_t k = 0; k < body_spec.fixed.size(); ++k) {
+    body.fixNodes(
+        selectSome(body.mesh(), body_spec.fixed[k], key + ".fixed[" + std::to_string(k) + "]"));
+  }
+  addLoads(body, body_spec, key);
 }
 
 Body& Simulation::body(const std::string& name) {

@@ -2,6 +2,7 @@
 // are interpreted; every other section is skipped. Lower-dimensional elements are skipped, linear
 // tetrahedra, pyramids, wedges (prisms) and hexahedra are kept, and any other volume element is an
 // error (not silently dropped, which would leave holes in the body).
+#include <cctype>
 #include <string>
 #include <string_view>
 
@@ -220,19 +221,55 @@ class GmshParser {
     expectEnd(section, announced(count, "nodes", header_line));
   }
 
-  void readNodes41(const Section& section) {
-    nextEntry(section, "the $Nodes header 'numEntityBlocks numNodes minNodeTag maxNodeTag'");
-    in_.expectCount(4, "numEntityBlocks, numNodes, minNodeTag, maxNodeTag");
-    const long num_blocks = in_.nonNegative(0, "number of entity blocks");
-    const long count = in_.nonNegative(1, "number of nodes");
-    in_.integer(2, "minimum node tag");
-    in_.integer(3, "maximum node tag");
-    const long header_line = in_.lineNumber();
+  // What the header of a 4.1 $Nodes or $Elements section announces.
+  struct BlockedHeader {
+    long num_blocks = 0;
+    long count = 0;  // of nodes or elements in all blocks
+    long line = 0;
+  };
 
+  // The header line of a 4.1 section of `things` ("node" or "element"): numEntityBlocks, the
+  // count, and the smallest and largest tag (read, not used).
+  BlockedHeader readBlockedHeader(const Section& section, const std::string& thing) {
+    const std::string name = char(std::toupper(thing[0])) + thing.substr(1);  // "Node"
+    nextEntry(section, "the " + section.name + " header 'numEntityBlocks num" + name + "s min" +
+                           name + "Tag max" + name + "Tag'");
+    in_.expectCount(4, "numEntityBlocks, num" + name + "s, min" + name + "Tag, max" + name + "Tag");
+    BlockedHeader header;
+    header.num_blocks = in_.nonNegative(0, "number of entity blocks");
+    header.count = in_.nonNegative(1, "number of " + thing + "s");
+    in_.integer(2, "minimum " + thing + " tag");
+    in_.integer(3, "maximum " + thing + " tag");
+    header.line = in_.lineNumber();
+    return header;
+  }
+
+  // Throws unless a block of `in_block` more things fits in what the header announced.
+  void expectRoomForBlock(const BlockedHeader& header, long read, long in_block,
+                          const std::string& thing) const {
+    if (in_block > header.count - read) {
+      fail("the " + thing + " blocks hold more than the " + std::to_string(header.count) + " " +
+           thing + "s announced on line " + std::to_string(header.line));
+    }
+  }
+
+  // Throws unless the blocks held what the header announced and the section ends there.
+  void expectBlocksComplete(const Section& section, const BlockedHeader& header, long read,
+                            const std::string& thing) {
+    if (read != header.count) {
+      fail("the " + thing + " blocks hold " + std::to_string(read) + " " + thing +
+           "s but the header on line " + std::to_string(header.line) + " announces " +
+           std::to_string(header.count));
+    }
+    expectEnd(section, announced(header.num_blocks, thing + " blocks", header.line));
+  }
+
+  void readNodes41(const Section& section) {
+    const BlockedHeader header = readBlockedHeader(section, "node");
     long read = 0;
-    for (long b = 0; b < num_blocks; ++b) {
+    for (long b = 0; b < header.num_blocks; ++b) {
       nextEntry(section,
-                "node block " + std::to_string(b + 1) + " of " + std::to_string(num_blocks));
+                "node block " + std::to_string(b + 1) + " of " + std::to_string(header.num_blocks));
       in_.expectCount(4, "entityDim, entityTag, parametric, numNodesInBlock");
       const long dimension = in_.nonNegative(0, "entity dimension");
       in_.integer(1, "entity tag");
@@ -244,10 +281,7 @@ class GmshParser {
       if (parametric > 1) {
         fail("parametric flag must be 0 or 1, found " + std::to_string(parametric));
       }
-      if (in_block > count - read) {
-        fail("the node blocks hold more than the " + std::to_string(count) +
-             " nodes announced on line " + std::to_string(header_line));
-      }
+      expectRoomForBlock(header, read, in_block, "node");
       // All tags of the block come first, then all coordinates in the same order.
       const std::size_t first = raw_.nodes.size();
       for (long i = 0; i < in_block; ++i) {
@@ -272,11 +306,7 @@ class GmshParser {
       }
       read += in_block;
     }
-    if (read != count) {
-      fail("the node blocks hold " + std::to_string(read) + " nodes but the header on line " +
-           std::to_string(header_line) + " announces " + std::to_string(count));
-    }
-    expectEnd(section, announced(num_blocks, "node blocks", header_line));
+    expectBlocksComplete(section, header, read, "node");
   }
 
   // Keeps linear volume elements, counts lower-dimensional ones, throws for other volume
@@ -339,28 +369,17 @@ class GmshParser {
 
   void readElements41(const Section& section) {
     raw_.element_section_line = section.line;
-    nextEntry(section,
-              "the $Elements header 'numEntityBlocks numElements minElementTag maxElementTag'");
-    in_.expectCount(4, "numEntityBlocks, numElements, minElementTag, maxElementTag");
-    const long num_blocks = in_.nonNegative(0, "number of entity blocks");
-    const long count = in_.nonNegative(1, "number of elements");
-    in_.integer(2, "minimum element tag");
-    in_.integer(3, "maximum element tag");
-    const long header_line = in_.lineNumber();
-
+    const BlockedHeader header = readBlockedHeader(section, "element");
     long read = 0;
-    for (long b = 0; b < num_blocks; ++b) {
-      nextEntry(section,
-                "element block " + std::to_string(b + 1) + " of " + std::to_string(num_blocks));
+    for (long b = 0; b < header.num_blocks; ++b) {
+      nextEntry(section, "element block " + std::to_string(b + 1) + " of " +
+                             std::to_string(header.num_blocks));
       in_.expectCount(4, "entityDim, entityTag, elementType, numElementsInBlock");
       in_.nonNegative(0, "entity dimension");
       in_.integer(1, "entity tag");
       const ElementType& type = knownType(in_.integer(2, "element type"));
       const long in_block = in_.nonNegative(3, "number of elements in the block");
-      if (in_block > count - read) {
-        fail("the element blocks hold more than the " + std::to_string(count) +
-             " elements announced on line " + std::to_string(header_line));
-      }
+      expectRoomForBlock(header, read, in_block, "element");
       for (long i = 0; i < in_block; ++i) {
         nextEntry(section, "element " + std::to_string(i + 1) + " of " + std::to_string(in_block) +
                                " in the block");
@@ -379,11 +398,7 @@ class GmshParser {
       }
       read += in_block;
     }
-    if (read != count) {
-      fail("the element blocks hold " + std::to_string(read) + " elements but the header on line " +
-           std::to_string(header_line) + " announces " + std::to_string(count));
-    }
-    expectEnd(section, announced(num_blocks, "element blocks", header_line));
+    expectBlocksComplete(section, header, read, "element");
   }
 
   LineReader in_;

@@ -138,13 +138,13 @@ void LineReader::fail(const std::string& message) const {
 
 // --- Validation and repair ----------------------------------------------------------------------
 
-MeshReadResult finalizeMesh(const RawMesh& raw) {
-  const int num_raw_nodes = static_cast<int>(raw.nodes.size());
+namespace {
 
-  // Nodes: finite coordinates and unique numbers.
+// Index of each node number in raw.nodes; throws on a non-finite coordinate or a repeated number.
+std::unordered_map<long, int> indexNodes(const RawMesh& raw) {
   std::unordered_map<long, int> raw_index_of;
   raw_index_of.reserve(raw.nodes.size());
-  for (int i = 0; i < num_raw_nodes; ++i) {
+  for (int i = 0; i < static_cast<int>(raw.nodes.size()); ++i) {
     const RawNode& node = raw.nodes[i];
     if (!node.position.allFinite()) {
       std::ostringstream coordinates;
@@ -162,21 +162,28 @@ MeshReadResult finalizeMesh(const RawMesh& raw) {
                                   std::to_string(raw.nodes[it->second].line) + ")"));
     }
   }
+  return raw_index_of;
+}
 
-  if (raw.elements.empty()) {
-    std::string message = "the mesh has no volume elements";
-    if (raw.skipped_elements > 0) {
-      message +=
-          " (" +
-          counted(raw.skipped_elements, "lower-dimensional element", "lower-dimensional elements") +
-          " skipped)";
-    }
-    throw MeshError(located(raw.element_path, raw.element_section_line, message));
+void requireVolumeElements(const RawMesh& raw) {
+  if (!raw.elements.empty()) return;
+  std::string message = "the mesh has no volume elements";
+  if (raw.skipped_elements > 0) {
+    message +=
+        " (" +
+        counted(raw.skipped_elements, "lower-dimensional element", "lower-dimensional elements") +
+        " skipped)";
   }
+  throw MeshError(located(raw.element_path, raw.element_section_line, message));
+}
 
-  // Elements: every node known and listed once.
+// Each element's corners as indices into raw.nodes; throws unless every node is known and listed
+// once. Marks the nodes some element uses in `used`.
+std::vector<std::array<int, 8>> resolveCorners(const RawMesh& raw,
+                                               const std::unordered_map<long, int>& raw_index_of,
+                                               std::vector<bool>& used) {
   std::vector<std::array<int, 8>> raw_corners(raw.elements.size());
-  std::vector<bool> used(raw.nodes.size(), false);
+  used.assign(raw.nodes.size(), false);
   for (std::size_t e = 0; e < raw.elements.size(); ++e) {
     const RawElement& element = raw.elements[e];
     const std::string name = "element " + std::to_string(element.number);
@@ -199,13 +206,17 @@ MeshReadResult finalizeMesh(const RawMesh& raw) {
       used[it->second] = true;
     }
   }
+  return raw_corners;
+}
 
-  // Drop unused nodes, keeping file order for the rest.
-  MeshReadResult result;
+// Copies the used nodes into result.mesh in file order and warns about the dropped ones. Returns
+// each raw node's index in the mesh (-1: dropped).
+std::vector<int> keepUsedNodes(const RawMesh& raw, const std::vector<bool>& used,
+                               MeshReadResult& result) {
   core::Mesh& mesh = result.mesh;
   std::vector<int> new_index(raw.nodes.size(), -1);
   std::vector<long> dropped;
-  for (int i = 0; i < num_raw_nodes; ++i) {
+  for (int i = 0; i < static_cast<int>(raw.nodes.size()); ++i) {
     if (!used[i]) {
       dropped.push_back(raw.nodes[i].number);
       continue;
@@ -219,68 +230,102 @@ MeshReadResult finalizeMesh(const RawMesh& raw) {
                               counted(dropped.size(), "node", "nodes") +
                               " that no element uses: " + listNumbers(dropped));
   }
+  return new_index;
+}
 
-  // Reject degenerate elements, reorient mirrored ones.
-  std::vector<long> reoriented;
-  std::vector<long> tetrahedron_numbers;  // the file's number of each kept tetrahedron
-  for (std::size_t e = 0; e < raw.elements.size(); ++e) {
-    const RawElement& raw_element = raw.elements[e];
-    double longest_edge = 0.0;
-    for (int a = 0; a < raw_element.size; ++a) {
-      for (int b = a + 1; b < raw_element.size; ++b) {
-        longest_edge = std::max(longest_edge, (mesh.positions[new_index[raw_corners[e][a]]] -
-                                               mesh.positions[new_index[raw_corners[e][b]]])
-                                                  .norm());
-      }
+// One raw element with its corners as indices into the finished mesh's nodes.
+struct PlacedElement {
+  const RawElement& raw;
+  std::array<int, 8> corners;
+  const std::string& path;
+};
+
+double longestEdge(const PlacedElement& element, const core::Mesh& mesh) {
+  double longest_edge = 0.0;
+  for (int a = 0; a < element.raw.size; ++a) {
+    for (int b = a + 1; b < element.raw.size; ++b) {
+      longest_edge = std::max(
+          longest_edge,
+          (mesh.positions[element.corners[a]] - mesh.positions[element.corners[b]]).norm());
     }
+  }
+  return longest_edge;
+}
+
+// "path, line 7: element 3 (nodes 1 2 3 4) <what>"
+std::string describe(const PlacedElement& element, const std::string& what) {
+  std::ostringstream details;
+  details << "element " << element.raw.number << " (nodes";
+  for (int k = 0; k < element.raw.size; ++k) details << " " << element.raw.nodes[k];
+  details << ") " << what;
+  return located(element.path, element.raw.line, details.str());
+}
+
+// Appends the tetrahedron to `mesh`, swapping its last two corners when it is mirrored (returns
+// true then); throws when its volume overflows or is negligible.
+bool addTetrahedron(const PlacedElement& element, double longest_edge, double negligible,
+                    core::Mesh& mesh) {
+  core::Tetrahedron tet;
+  for (int k = 0; k < 4; ++k) tet[k] = element.corners[k];
+  const double volume = core::signedVolume(mesh.positions, tet);
+  if (!std::isfinite(volume)) {
+    std::ostringstream what;
+    what << "has a volume that overflows (longest edge " << longest_edge << " m)";
+    throw MeshError(describe(element, what.str()));
+  }
+  if (std::abs(6.0 * volume) <= negligible) {
+    std::ostringstream what;
+    what << "has zero volume (" << volume << " m^3, longest edge " << longest_edge
+         << " m): its corners are coplanar or coincide";
+    throw MeshError(describe(element, what.str()));
+  }
+  const bool mirrored = volume < 0.0;
+  if (mirrored) std::swap(tet[2], tet[3]);
+  mesh.tetrahedra.push_back(tet);
+  return mirrored;
+}
+
+// Appends the pyramid, wedge or hexahedron to `mesh`, mirrored when listed in mirrored order
+// (returns true then); throws when det J does not stay positive within it.
+bool addCell(const PlacedElement& element, double negligible, core::Mesh& mesh) {
+  core::Cell cell;
+  cell.type = static_cast<core::CellType>(element.raw.size);
+  for (int k = 0; k < element.raw.size; ++k) cell.nodes[k] = element.corners[k];
+  auto [low, high] = core::jacobianRange(cell.type, core::cellCorners(cell, mesh.positions));
+  const bool mirrored = high < -negligible;
+  if (mirrored) {
+    cell = core::mirrored(cell);
+    std::tie(low, high) = core::jacobianRange(cell.type, core::cellCorners(cell, mesh.positions));
+  }
+  if (!(low > negligible)) {
+    std::ostringstream what;
+    what << "is degenerate or tangled: det J ranges over [" << low << ", " << high
+         << "] m^3 within it (it must stay positive)";
+    throw MeshError(describe(element, what.str()));
+  }
+  mesh.cells.push_back(cell);
+  return mirrored;
+}
+
+// Adds every element to result.mesh, rejecting degenerate ones and reorienting mirrored ones (one
+// warning for all of those). Returns the file's number of each kept tetrahedron.
+std::vector<long> addElements(const RawMesh& raw,
+                              const std::vector<std::array<int, 8>>& raw_corners,
+                              const std::vector<int>& new_index, MeshReadResult& result) {
+  core::Mesh& mesh = result.mesh;
+  std::vector<long> reoriented;
+  std::vector<long> tetrahedron_numbers;
+  for (std::size_t e = 0; e < raw.elements.size(); ++e) {
+    PlacedElement element{raw.elements[e], {}, raw.element_path};
+    for (int k = 0; k < element.raw.size; ++k) element.corners[k] = new_index[raw_corners[e][k]];
+    const double longest_edge = longestEdge(element, mesh);
     // Scale-free: 6V (a tetrahedron) or det J (the others) against the cube of the element size.
     const double negligible = 1e-12 * longest_edge * longest_edge * longest_edge;
-    auto describe = [&](const std::string& what) {
-      std::ostringstream details;
-      details << "element " << raw_element.number << " (nodes";
-      for (int k = 0; k < raw_element.size; ++k) details << " " << raw_element.nodes[k];
-      details << ") " << what;
-      return located(raw.element_path, raw_element.line, details.str());
-    };
-    if (raw_element.size == 4) {
-      core::Tetrahedron tet;
-      for (int k = 0; k < 4; ++k) tet[k] = new_index[raw_corners[e][k]];
-      const double volume = core::signedVolume(mesh.positions, tet);
-      if (!std::isfinite(volume)) {
-        std::ostringstream what;
-        what << "has a volume that overflows (longest edge " << longest_edge << " m)";
-        throw MeshError(describe(what.str()));
-      }
-      if (std::abs(6.0 * volume) <= negligible) {
-        std::ostringstream what;
-        what << "has zero volume (" << volume << " m^3, longest edge " << longest_edge
-             << " m): its corners are coplanar or coincide";
-        throw MeshError(describe(what.str()));
-      }
-      if (volume < 0.0) {
-        std::swap(tet[2], tet[3]);
-        reoriented.push_back(raw_element.number);
-      }
-      mesh.tetrahedra.push_back(tet);
-      tetrahedron_numbers.push_back(raw_element.number);
-      continue;
-    }
-    core::Cell cell;
-    cell.type = static_cast<core::CellType>(raw_element.size);
-    for (int k = 0; k < raw_element.size; ++k) cell.nodes[k] = new_index[raw_corners[e][k]];
-    auto [low, high] = core::jacobianRange(cell.type, core::cellCorners(cell, mesh.positions));
-    if (high < -negligible) {
-      cell = core::mirrored(cell);
-      std::tie(low, high) = core::jacobianRange(cell.type, core::cellCorners(cell, mesh.positions));
-      reoriented.push_back(raw_element.number);
-    }
-    if (!(low > negligible)) {
-      std::ostringstream what;
-      what << "is degenerate or tangled: det J ranges over [" << low << ", " << high
-           << "] m^3 within it (it must stay positive)";
-      throw MeshError(describe(what.str()));
-    }
-    mesh.cells.push_back(cell);
+    const bool is_tetrahedron = element.raw.size == 4;
+    const bool mirrored = is_tetrahedron ? addTetrahedron(element, longest_edge, negligible, mesh)
+                                         : addCell(element, negligible, mesh);
+    if (mirrored) reoriented.push_back(element.raw.number);
+    if (is_tetrahedron) tetrahedron_numbers.push_back(element.raw.number);
   }
   if (!reoriented.empty()) {
     result.warnings.push_back(raw.element_path + ": reoriented " +
@@ -291,27 +336,45 @@ MeshReadResult finalizeMesh(const RawMesh& raw) {
                               (reoriented.size() == 1 ? "element " : "elements ") +
                               listNumbers(reoriented));
   }
-  // Slivers are kept (their volume is positive) but named: they make the stiffness ill-conditioned.
+  return tetrahedron_numbers;
+}
+
+// Slivers are kept (their volume is positive) but named: they make the stiffness ill-conditioned.
+void warnAboutSlivers(const RawMesh& raw, const std::vector<long>& tetrahedron_numbers,
+                      MeshReadResult& result) {
+  const core::Mesh& mesh = result.mesh;
   const std::vector<int> slivers = core::sliverTetrahedra(mesh);
-  if (!slivers.empty()) {
-    std::vector<long> numbers;
-    int worst = slivers.front();
-    for (int e : slivers) {
-      numbers.push_back(tetrahedron_numbers[e]);
-      if (core::shapeQuality(mesh.positions, mesh.tetrahedra[e]) <
-          core::shapeQuality(mesh.positions, mesh.tetrahedra[worst])) {
-        worst = e;
-      }
+  if (slivers.empty()) return;
+  std::vector<long> numbers;
+  int worst = slivers.front();
+  for (int e : slivers) {
+    numbers.push_back(tetrahedron_numbers[e]);
+    if (core::shapeQuality(mesh.positions, mesh.tetrahedra[e]) <
+        core::shapeQuality(mesh.positions, mesh.tetrahedra[worst])) {
+      worst = e;
     }
-    std::ostringstream text;
-    text << raw.element_path << ": kept "
-         << counted(slivers.size(), "sliver tetrahedron", "sliver tetrahedra")
-         << " (shape quality below " << core::kSliverQuality << ", 1 = regular; the worst "
-         << core::shapeQuality(mesh.positions, mesh.tetrahedra[worst]) << " at element "
-         << tetrahedron_numbers[worst] << "), which make the stiffness ill-conditioned: "
-         << (slivers.size() == 1 ? "element " : "elements ") << listNumbers(numbers);
-    result.warnings.push_back(text.str());
   }
+  std::ostringstream text;
+  text << raw.element_path << ": kept "
+       << counted(slivers.size(), "sliver tetrahedron", "sliver tetrahedra")
+       << " (shape quality below " << core::kSliverQuality << ", 1 = regular; the worst "
+       << core::shapeQuality(mesh.positions, mesh.tetrahedra[worst]) << " at element "
+       << tetrahedron_numbers[worst] << "), which make the stiffness ill-conditioned: "
+       << (slivers.size() == 1 ? "element " : "elements ") << listNumbers(numbers);
+  result.warnings.push_back(text.str());
+}
+
+}  // namespace
+
+MeshReadResult finalizeMesh(const RawMesh& raw) {
+  const std::unordered_map<long, int> raw_index_of = indexNodes(raw);
+  requireVolumeElements(raw);
+  std::vector<bool> used;
+  const std::vector<std::array<int, 8>> raw_corners = resolveCorners(raw, raw_index_of, used);
+  MeshReadResult result;
+  const std::vector<int> new_index = keepUsedNodes(raw, used, result);
+  const std::vector<long> tetrahedron_numbers = addElements(raw, raw_corners, new_index, result);
+  warnAboutSlivers(raw, tetrahedron_numbers, result);
   return result;
 }
 

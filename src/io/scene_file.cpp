@@ -5,8 +5,11 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/io/mesh_reader.h"
@@ -28,58 +31,19 @@ class SceneParser {
     if (root["dt"]) scene.dt = positive(root["dt"], "dt");
     parseEffects(root["effects"], "effects", scene.effects);
     if (const YAML::Node effects = root["effects"]) {
-      if (const YAML::Node contact = effects["contact"]) {
-        expectMap(contact, "effects.contact");
-        checkKeys(contact, "effects.contact", {"friction"});
-        core::ContactSettings settings;
-        if (contact["friction"]) {
-          settings.friction = nonNegative(contact["friction"], "effects.contact.friction");
-        }
-        scene.contact = settings;
-      }
+      scene.contact = parseContact(effects["contact"]);
     }
-    if (const YAML::Node obstacles = root["obstacles"]) {
-      if (!obstacles.IsSequence()) fail(obstacles, "obstacles", "expected a list of obstacles");
-      for (size_t k = 0; k < obstacles.size(); ++k) {
-        scene.obstacles.push_back(
-            parseObstacle(obstacles[k], "obstacles[" + std::to_string(k) + "]"));
-      }
-    }
-    if (const YAML::Node urdf = root["urdf"]) {
-      expectMap(urdf, "urdf");
-      checkKeys(urdf, "urdf", {"links", "file"});
-      if (urdf["file"]) {
-        std::filesystem::path path = text(urdf["file"], "urdf.file");
-        if (path.is_relative()) path = std::filesystem::path(base_directory_) / path;
-        scene.urdf_file = path.lexically_normal().string();
-      }
-      const YAML::Node links = urdf["links"];
-      if (!links || !links.IsSequence() || links.size() == 0) {
-        fail(links ? links : urdf, "urdf.links", "expected a non-empty list of link names");
-      }
-      for (size_t k = 0; k < links.size(); ++k) {
-        scene.urdf_links.push_back(text(links[k], "urdf.links[" + std::to_string(k) + "]"));
-      }
-    }
+    parseObstacles(root["obstacles"], scene.obstacles);
+    parseUrdf(root["urdf"], scene);
     if ((!scene.obstacles.empty() || !scene.urdf_links.empty()) && !scene.contact) {
       fail(root, "effects.contact",
            "obstacles are given but the contact effect is off: add effects: {contact: {}}");
     }
     parseSolver(root["solver"], scene.solver);
     parseStatic(root["static"], scene.statics);
-    const YAML::Node bodies = root["bodies"];
-    if (!bodies) fail(root, "bodies", "missing: a scene needs at least one body");
-    if (!bodies.IsSequence() || bodies.size() == 0) {
-      fail(bodies, "bodies", "expected a non-empty list of bodies");
-    }
-    std::set<std::string> names;
-    for (size_t b = 0; b < bodies.size(); ++b) {
-      const std::string key = "bodies[" + std::to_string(b) + "]";
-      scene.bodies.push_back(parseBody(bodies[b], key, scene.effects));
-      if (!names.insert(scene.bodies.back().name).second) {
-        fail(bodies[b], key + ".name", "'" + scene.bodies.back().name + "' is used twice");
-      }
-    }
+    parseBodies(root, scene);
+    scene.source.file = source_;
+    scene.source.lines = std::move(lines_);
     return scene;
   }
 
@@ -174,6 +138,87 @@ class SceneParser {
     return node.IsScalar() && YAML::convert<bool>::decode(node, value) && !value;
   }
 
+  // Keeps where `key` stands in the file, for the errors found once the spec is built.
+  void remember(const std::string& key, const YAML::Node& node) {
+    if (node.IsDefined() && node.Mark().line >= 0) lines_[key] = node.Mark().line + 1;
+  }
+
+  // One of `choices` by its name in the file.
+  template <typename Value>
+  Value choice(const YAML::Node& node, const std::string& key,
+               const std::vector<std::pair<std::string, Value>>& choices) const {
+    const std::string name = text(node, key);
+    std::string names;
+    for (const auto& [choice_name, value] : choices) {
+      if (choice_name == name) return value;
+      names += (names.empty() ? "" : ", ") + choice_name;
+    }
+    fail(node, key, "'" + name + "' is not one of: " + names);
+  }
+
+  // An integer of at least `minimum`.
+  int atLeast(const YAML::Node& node, const std::string& key, int minimum) const {
+    const int value = static_cast<int>(integer(node, key));
+    if (value < minimum) fail(node, key, "must be >= " + std::to_string(minimum));
+    return value;
+  }
+
+  std::optional<core::ContactSettings> parseContact(const YAML::Node& contact) const {
+    if (!contact) return std::nullopt;
+    expectMap(contact, "effects.contact");
+    checkKeys(contact, "effects.contact", {"friction"});
+    core::ContactSettings settings;
+    if (contact["friction"]) {
+      settings.friction = nonNegative(contact["friction"], "effects.contact.friction");
+    }
+    return settings;
+  }
+
+  void parseObstacles(const YAML::Node& obstacles, std::vector<core::PlacedShape>& shapes) const {
+    if (!obstacles) return;
+    if (!obstacles.IsSequence()) fail(obstacles, "obstacles", "expected a list of obstacles");
+    for (size_t k = 0; k < obstacles.size(); ++k) {
+      shapes.push_back(parseObstacle(obstacles[k], "obstacles[" + std::to_string(k) + "]"));
+    }
+  }
+
+  void parseUrdf(const YAML::Node& urdf, core::SceneSpec& scene) const {
+    if (!urdf) return;
+    expectMap(urdf, "urdf");
+    checkKeys(urdf, "urdf", {"links", "file"});
+    if (urdf["file"]) scene.urdf_file = resolvedPath(urdf["file"], "urdf.file");
+    const YAML::Node links = urdf["links"];
+    if (!links || !links.IsSequence() || links.size() == 0) {
+      fail(links ? links : urdf, "urdf.links", "expected a non-empty list of link names");
+    }
+    for (size_t k = 0; k < links.size(); ++k) {
+      scene.urdf_links.push_back(text(links[k], "urdf.links[" + std::to_string(k) + "]"));
+    }
+  }
+
+  // A file path, relative to the scene file's directory unless absolute.
+  std::string resolvedPath(const YAML::Node& node, const std::string& key) const {
+    std::filesystem::path path = text(node, key);
+    if (path.is_relative()) path = std::filesystem::path(base_directory_) / path;
+    return path.lexically_normal().string();
+  }
+
+  void parseBodies(const YAML::Node& root, core::SceneSpec& scene) {
+    const YAML::Node bodies = root["bodies"];
+    if (!bodies) fail(root, "bodies", "missing: a scene needs at least one body");
+    if (!bodies.IsSequence() || bodies.size() == 0) {
+      fail(bodies, "bodies", "expected a non-empty list of bodies");
+    }
+    std::set<std::string> names;
+    for (size_t b = 0; b < bodies.size(); ++b) {
+      const std::string key = "bodies[" + std::to_string(b) + "]";
+      scene.bodies.push_back(parseBody(bodies[b], key, scene.effects));
+      if (!names.insert(scene.bodies.back().name).second) {
+        fail(bodies[b], key + ".name", "'" + scene.bodies.back().name + "' is used twice");
+      }
+    }
+  }
+
   // The scene's effects (key "effects"), or a body's ("bodies[i].effects"), which start from the
   // scene's and change what they name.
   void parseEffects(const YAML::Node& node, const std::string& key,
@@ -238,42 +283,30 @@ class SceneParser {
     checkKeys(node, "solver",
               {"method", "preconditioner", "tolerance", "max_iterations", "coarse_refresh_interval",
                "threads", "warm_start", "previous_solutions", "max_rotation_updates"});
+    using Settings = core::SolverSettings;
     if (node["method"]) {
-      const std::string method = text(node["method"], "solver.method");
-      if (method == "cg") {
-        solver.method = core::SolverSettings::Method::kConjugateGradient;
-      } else if (method == "direct") {
-        solver.method = core::SolverSettings::Method::kDirect;
-      } else {
-        fail(node["method"], "solver.method", "'" + method + "' is not one of: cg, direct");
-      }
+      solver.method = choice<Settings::Method>(
+          node["method"], "solver.method",
+          {{"cg", Settings::Method::kConjugateGradient}, {"direct", Settings::Method::kDirect}});
     }
     if (node["preconditioner"]) {
-      const std::string name = text(node["preconditioner"], "solver.preconditioner");
-      if (name == "two_level") {
-        solver.preconditioner = core::SolverSettings::Preconditioner::kTwoLevel;
-      } else if (name == "block_jacobi") {
-        solver.preconditioner = core::SolverSettings::Preconditioner::kBlockJacobi;
-      } else if (name == "factorization") {
-        solver.preconditioner = core::SolverSettings::Preconditioner::kFactorization;
-      } else {
-        fail(node["preconditioner"], "solver.preconditioner",
-             "'" + name + "' is not one of: two_level, block_jacobi, factorization");
-      }
+      solver.preconditioner = choice<Settings::Preconditioner>(
+          node["preconditioner"], "solver.preconditioner",
+          {{"two_level", Settings::Preconditioner::kTwoLevel},
+           {"block_jacobi", Settings::Preconditioner::kBlockJacobi},
+           {"factorization", Settings::Preconditioner::kFactorization}});
     }
     if (node["warm_start"]) {
-      const std::string name = text(node["warm_start"], "solver.warm_start");
-      if (name == "projected") {
-        solver.warm_start = core::SolverSettings::WarmStart::kProjected;
-      } else if (name == "extrapolated") {
-        solver.warm_start = core::SolverSettings::WarmStart::kExtrapolated;
-      } else if (name == "last_velocity") {
-        solver.warm_start = core::SolverSettings::WarmStart::kLastVelocity;
-      } else {
-        fail(node["warm_start"], "solver.warm_start",
-             "'" + name + "' is not one of: projected, extrapolated, last_velocity");
-      }
+      solver.warm_start =
+          choice<Settings::WarmStart>(node["warm_start"], "solver.warm_start",
+                                      {{"projected", Settings::WarmStart::kProjected},
+                                       {"extrapolated", Settings::WarmStart::kExtrapolated},
+                                       {"last_velocity", Settings::WarmStart::kLastVelocity}});
     }
+    parseSolverLimits(node, solver);
+  }
+
+  void parseSolverLimits(const YAML::Node& node, core::SolverSettings& solver) const {
     if (node["previous_solutions"]) {
       solver.previous_solutions =
           static_cast<int>(integer(node["previous_solutions"], "solver.previous_solutions"));
@@ -281,27 +314,17 @@ class SceneParser {
         fail(node["previous_solutions"], "solver.previous_solutions", "must be in 1 .. 256");
     }
     if (node["coarse_refresh_interval"]) {
-      solver.coarse_refresh_interval = static_cast<int>(
-          integer(node["coarse_refresh_interval"], "solver.coarse_refresh_interval"));
-      if (solver.coarse_refresh_interval < 1)
-        fail(node["coarse_refresh_interval"], "solver.coarse_refresh_interval", "must be >= 1");
+      solver.coarse_refresh_interval =
+          atLeast(node["coarse_refresh_interval"], "solver.coarse_refresh_interval", 1);
     }
-    if (node["threads"]) {
-      solver.threads = static_cast<int>(integer(node["threads"], "solver.threads"));
-      if (solver.threads < 1) fail(node["threads"], "solver.threads", "must be >= 1");
-    }
+    if (node["threads"]) solver.threads = atLeast(node["threads"], "solver.threads", 1);
     if (node["max_rotation_updates"]) {
       solver.max_rotation_updates =
-          static_cast<int>(integer(node["max_rotation_updates"], "solver.max_rotation_updates"));
-      if (solver.max_rotation_updates < 0)
-        fail(node["max_rotation_updates"], "solver.max_rotation_updates", "must be >= 0");
+          atLeast(node["max_rotation_updates"], "solver.max_rotation_updates", 0);
     }
     if (node["tolerance"]) solver.tolerance = positive(node["tolerance"], "solver.tolerance");
     if (node["max_iterations"]) {
-      solver.max_iterations =
-          static_cast<int>(integer(node["max_iterations"], "solver.max_iterations"));
-      if (solver.max_iterations < 1)
-        fail(node["max_iterations"], "solver.max_iterations", "must be >= 1");
+      solver.max_iterations = atLeast(node["max_iterations"], "solver.max_iterations", 1);
     }
   }
 
@@ -310,40 +333,31 @@ class SceneParser {
     expectMap(node, "static");
     checkKeys(node, "static", {"load_steps", "max_iterations", "tolerance"});
     if (node["load_steps"]) {
-      statics.load_steps = static_cast<int>(integer(node["load_steps"], "static.load_steps"));
-      if (statics.load_steps < 1) fail(node["load_steps"], "static.load_steps", "must be >= 1");
+      statics.load_steps = atLeast(node["load_steps"], "static.load_steps", 1);
     }
     if (node["max_iterations"]) {
-      statics.max_iterations =
-          static_cast<int>(integer(node["max_iterations"], "static.max_iterations"));
-      if (statics.max_iterations < 1)
-        fail(node["max_iterations"], "static.max_iterations", "must be >= 1");
+      statics.max_iterations = atLeast(node["max_iterations"], "static.max_iterations", 1);
     }
     if (node["tolerance"]) statics.tolerance = positive(node["tolerance"], "static.tolerance");
   }
 
   core::BodySpec parseBody(const YAML::Node& node, const std::string& key,
-                           const core::BodyEffects& scene_effects) const {
+                           const core::BodyEffects& scene_effects) {
     expectMap(node, key);
     checkKeys(node, key,
               {"name", "mesh", "model", "material", "effects", "fixed", "loads", "groups",
                "wrench_radius"});
+    remember(key, node);
     core::BodySpec body;
     if (!node["name"]) fail(node, key + ".name", "missing");
     body.name = text(node["name"], key + ".name");
     parseMesh(node["mesh"], node, key + ".mesh", body);
+    remember(key + ".mesh", node["mesh"]);
     if (node["model"]) {
-      const std::string model = text(node["model"], key + ".model");
-      const std::map<std::string, core::BodyModel> models = {
-          {"fem", core::BodyModel::kFiniteElement},
-          {"pseudo_rigid", core::BodyModel::kPseudoRigid},
-          {"rigid", core::BodyModel::kRigid}};
-      const auto it = models.find(model);
-      if (it == models.end()) {
-        fail(node["model"], key + ".model",
-             "'" + model + "' is not one of: fem, pseudo_rigid, rigid");
-      }
-      body.model = it->second;
+      body.model = choice<core::BodyModel>(node["model"], key + ".model",
+                                           {{"fem", core::BodyModel::kFiniteElement},
+                                            {"pseudo_rigid", core::BodyModel::kPseudoRigid},
+                                            {"rigid", core::BodyModel::kRigid}});
     }
     if (const YAML::Node effects = node["effects"]) {
       body.effects = scene_effects;
@@ -353,44 +367,59 @@ class SceneParser {
     }
     if (!node["material"]) fail(node, key + ".material", "missing");
     parseMaterial(node["material"], key + ".material", body.material);
-    if (const YAML::Node fixed = node["fixed"]) {
-      if (!fixed.IsSequence()) fail(fixed, key + ".fixed", "expected a list of selections");
-      for (size_t k = 0; k < fixed.size(); ++k) {
-        const std::string item = key + ".fixed[" + std::to_string(k) + "]";
-        expectMap(fixed[k], item);
-        checkKeys(fixed[k], item, {"nodes", "box", "sphere"});
-        body.fixed.push_back(parseSelection(fixed[k], item));
-      }
-    }
-    if (const YAML::Node groups = node["groups"]) {
-      expectMap(groups, key + ".groups");
-      for (const auto& entry : groups) {
-        const std::string name = keyName(entry.first, key + ".groups");
-        const std::string item = key + ".groups." + name;
-        expectMap(entry.second, item);
-        checkKeys(entry.second, item, {"nodes", "box", "sphere"});
-        body.groups[name] = parseSelection(entry.second, item);
-      }
-    }
+    parseFixed(node["fixed"], key + ".fixed", body.fixed);
+    parseGroups(node["groups"], key + ".groups", body.groups);
     if (node["wrench_radius"]) {
       body.wrench_radius = nonNegative(node["wrench_radius"], key + ".wrench_radius");
+      remember(key + ".wrench_radius", node["wrench_radius"]);
     }
-    if (const YAML::Node loads = node["loads"]) {
-      if (!loads.IsSequence()) fail(loads, key + ".loads", "expected a list of loads");
-      for (size_t k = 0; k < loads.size(); ++k) {
-        body.loads.push_back(parseLoad(loads[k], key + ".loads[" + std::to_string(k) + "]"));
-      }
-    }
+    parseLoads(node["loads"], key + ".loads", body.loads);
     return body;
+  }
+
+  void parseFixed(const YAML::Node& fixed, const std::string& key,
+                  std::vector<core::NodeSelection>& selections) {
+    if (!fixed) return;
+    if (!fixed.IsSequence()) fail(fixed, key, "expected a list of selections");
+    for (size_t k = 0; k < fixed.size(); ++k) {
+      const std::string item = key + "[" + std::to_string(k) + "]";
+      expectMap(fixed[k], item);
+      checkKeys(fixed[k], item, {"nodes", "box", "sphere"});
+      selections.push_back(parseSelection(fixed[k], item));
+      remember(item, fixed[k]);
+    }
+  }
+
+  void parseGroups(const YAML::Node& groups, const std::string& key,
+                   std::map<std::string, core::NodeSelection>& selections) {
+    if (!groups) return;
+    expectMap(groups, key);
+    for (const auto& entry : groups) {
+      const std::string name = keyName(entry.first, key);
+      const std::string item = key + "." + name;
+      expectMap(entry.second, item);
+      checkKeys(entry.second, item, {"nodes", "box", "sphere"});
+      selections[name] = parseSelection(entry.second, item);
+      remember(item, entry.second);
+    }
+  }
+
+  void parseLoads(const YAML::Node& loads, const std::string& key,
+                  std::vector<core::LoadSpec>& specs) {
+    if (!loads) return;
+    if (!loads.IsSequence()) fail(loads, key, "expected a list of loads");
+    for (size_t k = 0; k < loads.size(); ++k) {
+      const std::string item = key + "[" + std::to_string(k) + "]";
+      specs.push_back(parseLoad(loads[k], item));
+      remember(item, loads[k]);
+    }
   }
 
   void parseMesh(const YAML::Node& node, const YAML::Node& parent, const std::string& key,
                  core::BodySpec& body) const {
     if (!node) fail(parent, key, "missing: a mesh file or {box: {min, max, cells}}");
     if (node.IsScalar()) {
-      std::filesystem::path path = text(node, key);
-      if (path.is_relative()) path = std::filesystem::path(base_directory_) / path;
-      body.mesh = path.lexically_normal().string();
+      body.mesh = resolvedPath(node, key);
       return;
     }
     expectMap(node, key);
@@ -419,18 +448,11 @@ class SceneParser {
     }
     spec.cells = cells.cast<int>();
     if (box["element"]) {
-      const std::string element = text(box["element"], key + ".box.element");
-      const std::map<std::string, core::BoxElement> elements = {
-          {"tetrahedron", core::BoxElement::kTetrahedron},
-          {"hexahedron", core::BoxElement::kHexahedron},
-          {"wedge", core::BoxElement::kWedge},
-          {"pyramid", core::BoxElement::kPyramid}};
-      const auto it = elements.find(element);
-      if (it == elements.end()) {
-        fail(box["element"], key + ".box.element",
-             "'" + element + "' is not one of: tetrahedron, hexahedron, wedge, pyramid");
-      }
-      spec.element = it->second;
+      spec.element = choice<core::BoxElement>(box["element"], key + ".box.element",
+                                              {{"tetrahedron", core::BoxElement::kTetrahedron},
+                                               {"hexahedron", core::BoxElement::kHexahedron},
+                                               {"wedge", core::BoxElement::kWedge},
+                                               {"pyramid", core::BoxElement::kPyramid}});
     }
     body.box_mesh = spec;
   }
@@ -566,6 +588,7 @@ class SceneParser {
 
   std::string source_;
   std::string base_directory_;
+  std::map<std::string, int> lines_;  // see core::SceneSource::lines
 };
 
 }  // namespace
@@ -590,16 +613,44 @@ core::SceneSpec readSceneFile(const std::string& path) {
   return parseScene(text.str(), path, directory.empty() ? "." : directory);
 }
 
+namespace {
+
+// "file:line: " of `key` in the scene file, or of the nearest enclosing key it kept the line of
+// ("bodies[0]" for "bodies[0].wrench_radius"); "" for a scene made in code.
+std::string whereInScene(const core::SceneSource& source, std::string key) {
+  if (source.file.empty()) return "";
+  while (!key.empty()) {
+    const auto line = source.lines.find(key);
+    if (line != source.lines.end()) return source.file + ":" + std::to_string(line->second) + ": ";
+    const size_t parent_end = key.find_last_of(".[");
+    key.resize(parent_end == std::string::npos ? 0 : parent_end);
+  }
+  return source.file + ": ";
+}
+
+}  // namespace
+
+std::string locatedMessage(const core::SceneSpec& spec, const core::SpecError& error) {
+  return whereInScene(spec.source, error.key()) + error.what();
+}
+
 std::vector<core::Mesh> readMeshes(const core::SceneSpec& spec,
                                    std::vector<std::string>* warnings) {
   std::vector<core::Mesh> meshes;
-  for (const core::BodySpec& body : spec.bodies) {
+  for (size_t b = 0; b < spec.bodies.size(); ++b) {
+    const core::BodySpec& body = spec.bodies[b];
     if (body.box_mesh) {
       meshes.push_back(core::makeBoxMesh(body.box_mesh->min, body.box_mesh->max,
                                          body.box_mesh->cells, body.box_mesh->element));
       continue;
     }
-    MeshReadResult read = readMesh(body.mesh);
+    MeshReadResult read;
+    try {
+      read = readMesh(body.mesh);
+    } catch (const MeshError& e) {
+      const std::string key = "bodies[" + std::to_string(b) + "].mesh";
+      throw MeshError(whereInScene(spec.source, key) + key + ": " + e.what());
+    }
     if (warnings) warnings->insert(warnings->end(), read.warnings.begin(), read.warnings.end());
     meshes.push_back(std::move(read.mesh));
   }
@@ -610,6 +661,8 @@ core::Simulation buildSimulation(const core::SceneSpec& spec, std::vector<std::s
   std::vector<core::Mesh> meshes = readMeshes(spec, warnings);
   try {
     return core::Simulation(spec, std::move(meshes));
+  } catch (const core::SpecError& e) {
+    throw SceneError(locatedMessage(spec, e));
   } catch (const std::invalid_argument& e) {
     throw SceneError(e.what());
   }

@@ -4,7 +4,9 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/scene_file.h"
@@ -16,7 +18,8 @@ constexpr const char* kUsage =
     "  --static     solve for equilibrium under the scene's loads (quasi-static)\n"
     "  --steps N    take N dynamic steps of the scene's dt (default 1)\n"
     "  --out FILE   write node,x0,y0,z0,ux,uy,uz per node (mesh file numbers) to FILE\n"
-    "  --quiet      print only the summary, not every step\n";
+    "  --quiet      print only the summary, not every step\n"
+    "  --help, -h   print this usage and exit\n";
 
 struct Options {
   std::string scene;
@@ -26,15 +29,18 @@ struct Options {
   bool quiet = false;
 };
 
-bool parseArguments(int argc, char** argv, Options& options) {
+enum class Parsed { kRun, kHelp, kBad };
+
+Parsed parseArguments(int argc, char** argv, Options& options) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") return Parsed::kHelp;
     if (arg == "--static") {
       options.quasi_static = true;
     } else if (arg == "--steps" && i + 1 < argc) {
       char* end = nullptr;
       options.steps = std::strtol(argv[++i], &end, 10);
-      if (*end != '\0' || options.steps < 0) return false;
+      if (*end != '\0' || options.steps < 0) return Parsed::kBad;
     } else if (arg == "--out" && i + 1 < argc) {
       options.out = argv[++i];
     } else if (arg == "--quiet") {
@@ -42,10 +48,10 @@ bool parseArguments(int argc, char** argv, Options& options) {
     } else if (!arg.empty() && arg[0] != '-' && options.scene.empty()) {
       options.scene = arg;
     } else {
-      return false;
+      return Parsed::kBad;
     }
   }
-  return !options.scene.empty();
+  return options.scene.empty() ? Parsed::kBad : Parsed::kRun;
 }
 
 void writeDisplacements(const deformable_sim::core::Simulation& sim, std::ostream& out) {
@@ -68,75 +74,105 @@ Eigen::Vector3d sumOfReactions(const deformable_sim::core::Body& body) {
   return body.reactionForces().reshaped(3, body.numNodes()).rowwise().sum();
 }
 
+using deformable_sim::core::Simulation;
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+void printBodies(const Simulation& sim) {
+  for (const auto& body : sim.bodies()) {
+    std::printf("body %s (%s): %d nodes, %d tetrahedra, %d other elements, %d constrained\n",
+                body.name().c_str(), deformable_sim::core::modelName(body.model()), body.numNodes(),
+                body.mesh().numTetrahedra(), static_cast<int>(body.mesh().cells.size()),
+                body.numConstrained());
+  }
+}
+
+// Solves for equilibrium and prints each body's report; true when every body converged.
+bool solveStatic(Simulation& sim) {
+  bool converged = true;
+  const auto start = Clock::now();
+  const auto reports = sim.solveStatic();
+  const double ms = millisecondsSince(start);
+  for (size_t b = 0; b < reports.size(); ++b) {
+    const auto& r = reports[b];
+    const Eigen::Vector3d reaction = sumOfReactions(sim.bodies()[b]);
+    std::printf(
+        "static %s: %s in %.1f ms, %d corotational iterations, %d CG iterations, last change "
+        "%.3g, residual %.3g; reactions sum to (%.9g, %.9g, %.9g) N\n",
+        sim.bodies()[b].name().c_str(), r.converged ? "converged" : "NOT converged", ms,
+        r.iterations, r.linear_iterations, r.last_change, r.last_solve.relative_residual,
+        reaction.x(), reaction.y(), reaction.z());
+    converged = converged && r.converged;
+  }
+  return converged;
+}
+
+// Takes the steps and prints each (unless quiet) and the energies at the end; true when every
+// solve converged.
+bool stepDynamically(Simulation& sim, const Options& options) {
+  bool converged = true;
+  std::vector<deformable_sim::core::StepReport> reports;
+  for (long s = 0; s < options.steps; ++s) {
+    const auto start = Clock::now();
+    sim.step(reports);
+    const double ms = millisecondsSince(start);
+    for (size_t b = 0; b < reports.size(); ++b) {
+      converged = converged && reports[b].solve.converged;
+      if (options.quiet) continue;
+      std::printf("step %ld t=%.6g s %s: %.3f ms, %d iterations, residual %.3g%s\n",
+                  sim.stepCount(), sim.time(), sim.bodies()[b].name().c_str(), ms,
+                  reports[b].solve.iterations, reports[b].solve.relative_residual,
+                  reports[b].inverted_elements ? ", inverted elements" : "");
+    }
+  }
+  for (const auto& body : sim.bodies()) {
+    std::printf("after %ld steps %s: kinetic %.6g J, elastic %.6g J\n", sim.stepCount(),
+                body.name().c_str(), body.kineticEnergy(), body.elasticEnergy());
+  }
+  return converged;
+}
+
+// Runs the scene as the options say; the process's exit status.
+int run(const Options& options) {
+  std::vector<std::string> warnings;
+  Simulation sim = deformable_sim::io::buildSimulation(
+      deformable_sim::io::readSceneFile(options.scene), &warnings);
+  for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
+  printBodies(sim);
+  const bool converged = options.quasi_static ? solveStatic(sim) : stepDynamically(sim, options);
+  if (!options.out.empty()) {
+    std::ofstream out(options.out);
+    if (!out) throw std::runtime_error(options.out + ": cannot write");
+    writeDisplacements(sim, out);
+  }
+  if (!converged) {
+    std::fprintf(stderr, "warning: a solve did not reach its tolerance\n");
+    return 3;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  using deformable_sim::core::Simulation;
   Options options;
-  if (!parseArguments(argc, argv, options)) {
-    std::cerr << kUsage;
-    return 2;
+  switch (parseArguments(argc, argv, options)) {
+    case Parsed::kHelp:
+      std::cout << kUsage;
+      return 0;
+    case Parsed::kBad:
+      std::cerr << kUsage;
+      return 2;
+    case Parsed::kRun:
+      break;
   }
   try {
-    std::vector<std::string> warnings;
-    Simulation sim = deformable_sim::io::buildSimulation(
-        deformable_sim::io::readSceneFile(options.scene), &warnings);
-    for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
-    for (const auto& body : sim.bodies()) {
-      std::printf("body %s (%s): %d nodes, %d tetrahedra, %d other elements, %d constrained\n",
-                  body.name().c_str(), deformable_sim::core::modelName(body.model()),
-                  body.numNodes(), body.mesh().numTetrahedra(),
-                  static_cast<int>(body.mesh().cells.size()), body.numConstrained());
-    }
-    using Clock = std::chrono::steady_clock;
-    bool converged = true;
-    if (options.quasi_static) {
-      const auto start = Clock::now();
-      const auto reports = sim.solveStatic();
-      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-      for (size_t b = 0; b < reports.size(); ++b) {
-        const auto& r = reports[b];
-        const Eigen::Vector3d reaction = sumOfReactions(sim.bodies()[b]);
-        std::printf(
-            "static %s: %s in %.1f ms, %d corotational iterations, %d CG iterations, last change "
-            "%.3g, residual %.3g; reactions sum to (%.9g, %.9g, %.9g) N\n",
-            sim.bodies()[b].name().c_str(), r.converged ? "converged" : "NOT converged", ms,
-            r.iterations, r.linear_iterations, r.last_change, r.last_solve.relative_residual,
-            reaction.x(), reaction.y(), reaction.z());
-        converged = converged && r.converged;
-      }
-    } else {
-      std::vector<deformable_sim::core::StepReport> reports;
-      for (long s = 0; s < options.steps; ++s) {
-        const auto start = Clock::now();
-        sim.step(reports);
-        const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-        for (size_t b = 0; b < reports.size(); ++b) {
-          converged = converged && reports[b].solve.converged;
-          if (options.quiet) continue;
-          std::printf("step %ld t=%.6g s %s: %.3f ms, %d iterations, residual %.3g%s\n",
-                      sim.stepCount(), sim.time(), sim.bodies()[b].name().c_str(), ms,
-                      reports[b].solve.iterations, reports[b].solve.relative_residual,
-                      reports[b].inverted_elements ? ", inverted elements" : "");
-        }
-      }
-      for (const auto& body : sim.bodies()) {
-        std::printf("after %ld steps %s: kinetic %.6g J, elastic %.6g J\n", sim.stepCount(),
-                    body.name().c_str(), body.kineticEnergy(), body.elasticEnergy());
-      }
-    }
-    if (!options.out.empty()) {
-      std::ofstream out(options.out);
-      if (!out) throw std::runtime_error(options.out + ": cannot write");
-      writeDisplacements(sim, out);
-    }
-    if (!converged) {
-      std::fprintf(stderr, "warning: a solve did not reach its tolerance\n");
-      return 3;
-    }
+    return run(options);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;
   }
-  return 0;
 }

@@ -1,5 +1,9 @@
 #include "deformable_sim/perf/bullet_peer.h"
 
+// Bullet's headers instantiate btModifiedGramSchmidt here, in which GCC sees a vector that may be
+// uninitialized where Bullet fills it (depending on what GCC inlines into this file).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletSoftBody/btDeformableBodySolver.h>
@@ -10,6 +14,7 @@
 #include <BulletSoftBody/btDeformableMultiBodyDynamicsWorld.h>
 #include <BulletSoftBody/btSoftBody.h>
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
+#pragma GCC diagnostic pop
 
 #include <stdexcept>
 
@@ -82,76 +87,93 @@ struct BulletPeer::World {
   ~World() {
     if (world && body) world->removeSoftBody(body.get());
   }
+
+  void createWorld(const btVector3& g);
+  void addBody(const Cantilever& cantilever);
+  void addForces(const Cantilever& cantilever, const BulletPeerSettings& settings,
+                 const btVector3& g);
+  void countPreconditionerCalls();
 };
+
+void BulletPeer::World::createWorld(const btVector3& g) {
+  constraint_solver.setDeformableSolver(&solver);
+  world = std::make_unique<btDeformableMultiBodyDynamicsWorld>(
+      &dispatcher, &broadphase, &constraint_solver, &configuration, &solver);
+  world->setGravity(g);
+  world->getWorldInfo().m_gravity = g;
+  // The world hands these to the solver at every step (its own setImplicit would be overwritten).
+  world->setImplicit(true);
+  world->setLineSearch(false);
+  world->setUseProjection(true);  // zero-inverse-mass nodes are projected out of the solve
+  solver.setImplicit(true);
+}
+
+void BulletPeer::World::addBody(const Cantilever& cantilever) {
+  const core::Mesh& mesh = cantilever.mesh;
+  // Lumped masses exactly as the core computes them (rho V / 4 per corner); Bullet's density
+  // helpers would give four times that. A clamped node gets zero inverse mass.
+  lumped = core::lumpedMasses(mesh, cantilever.material.density);
+  std::vector<btVector3> x(mesh.numNodes());
+  std::vector<btScalar> m(lumped.begin(), lumped.end());
+  for (int i = 0; i < mesh.numNodes(); ++i) x[i] = toBullet(mesh.positions[i]);
+  for (int i : cantilever.clamped) m[i] = 0.0;  // btSoftBody reads mass 0 as inverse mass 0
+  body = std::make_unique<btSoftBody>(&world->getWorldInfo(), mesh.numNodes(), x.data(), m.data());
+  for (const core::Tetrahedron& t : mesh.tetrahedra) body->appendTetra(t[0], t[1], t[2], t[3]);
+  body->initializeDmInverse();  // rest shape matrices and volumes of the tetrahedra
+  // Per-tetrahedron deformation scratch; Bullet fills it before use (GCC cannot see that).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+  body->m_tetraScratches.resize(body->m_tetras.size());
+  body->m_tetraScratchesTn.resize(body->m_tetras.size());
+#pragma GCC diagnostic pop
+  // Nothing to collide with: no collision work beyond what the world always does.
+  body->m_cfg.collisions = 0;
+  body->setSelfCollision(false);
+  body->setActivationState(DISABLE_DEACTIVATION);  // a settling body must not fall asleep
+  world->addSoftBody(body.get());
+}
+
+void BulletPeer::World::addForces(const Cantilever& cantilever, const BulletPeerSettings& settings,
+                                  const btVector3& g) {
+  const double mu = core::lameMu(cantilever.material);
+  const double lambda = core::lameLambda(cantilever.material);
+  if (settings.elasticity == BulletElasticity::kCorotatedForce) {
+    elasticity = std::make_unique<btDeformableCorotatedForce>(mu, lambda);
+  } else {
+    // Its default damping (0.01 on both terms) is off: the cantilever has none.
+    elasticity = std::make_unique<btDeformableLinearElasticityForce>(mu, lambda, 0.0, 0.0);
+  }
+  world->addForce(body.get(), elasticity.get());
+  gravity = std::make_unique<btDeformableGravityForce>(g);
+  world->addForce(body.get(), gravity.get());
+}
+
+void BulletPeer::World::countPreconditionerCalls() {
+  btDeformableBackwardEulerObjective& objective = *solver.m_objective;
+  counter = new CountingMassPreconditioner(objective.m_softBodies);
+  delete objective.m_massPreconditioner;
+  objective.m_massPreconditioner = counter;
+  objective.m_preconditioner = counter;
+}
 
 BulletPeer::BulletPeer(const Cantilever& cantilever, const BulletPeerSettings& settings)
     : world_(std::make_unique<World>()) {
   World& w = *world_;
-  const core::Mesh& mesh = cantilever.mesh;
   if (settings.substeps < 1) throw std::invalid_argument("BulletPeer: substeps must be >= 1");
   w.substeps = settings.substeps;
   w.h = cantilever.dt / settings.substeps;
   w.mass_damping = settings.mass_damping;
-  w.tetrahedra = mesh.numTetrahedra();
-
-  w.constraint_solver.setDeformableSolver(&w.solver);
-  w.world = std::make_unique<btDeformableMultiBodyDynamicsWorld>(
-      &w.dispatcher, &w.broadphase, &w.constraint_solver, &w.configuration, &w.solver);
+  w.tetrahedra = cantilever.mesh.numTetrahedra();
   const btVector3 g = toBullet(cantilever.effects.gravity.value_or(Eigen::Vector3d::Zero()));
-  w.world->setGravity(g);
-  w.world->getWorldInfo().m_gravity = g;
-  // The world hands these to the solver at every step (its own setImplicit would be overwritten).
-  w.world->setImplicit(true);
-  w.world->setLineSearch(false);
-  w.world->setUseProjection(true);  // zero-inverse-mass nodes are projected out of the solve
-  w.solver.setImplicit(true);
-
-  // Lumped masses exactly as the core computes them (rho V / 4 per corner); Bullet's density
-  // helpers would give four times that. A clamped node gets zero inverse mass.
-  w.lumped = core::lumpedMasses(mesh, cantilever.material.density);
-  std::vector<btVector3> x(mesh.numNodes());
-  std::vector<btScalar> m(w.lumped.begin(), w.lumped.end());
-  for (int i = 0; i < mesh.numNodes(); ++i) x[i] = toBullet(mesh.positions[i]);
-  for (int i : cantilever.clamped) m[i] = 0.0;  // btSoftBody reads mass 0 as inverse mass 0
-  w.body =
-      std::make_unique<btSoftBody>(&w.world->getWorldInfo(), mesh.numNodes(), x.data(), m.data());
-  for (const core::Tetrahedron& t : mesh.tetrahedra) w.body->appendTetra(t[0], t[1], t[2], t[3]);
-  w.body->initializeDmInverse();  // rest shape matrices and volumes of the tetrahedra
-  // Per-tetrahedron deformation scratch; Bullet fills it before use (GCC cannot see that).
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-  w.body->m_tetraScratches.resize(w.body->m_tetras.size());
-  w.body->m_tetraScratchesTn.resize(w.body->m_tetras.size());
-#pragma GCC diagnostic pop
-  // Nothing to collide with: no collision work beyond what the world always does.
-  w.body->m_cfg.collisions = 0;
-  w.body->setSelfCollision(false);
-  w.body->setActivationState(DISABLE_DEACTIVATION);  // a settling body must not fall asleep
-  w.world->addSoftBody(w.body.get());
-
-  const double mu = core::lameMu(cantilever.material);
-  const double lambda = core::lameLambda(cantilever.material);
-  if (settings.elasticity == BulletElasticity::kCorotatedForce) {
-    w.elasticity = std::make_unique<btDeformableCorotatedForce>(mu, lambda);
-  } else {
-    // Its default damping (0.01 on both terms) is off: the cantilever has none.
-    w.elasticity = std::make_unique<btDeformableLinearElasticityForce>(mu, lambda, 0.0, 0.0);
-  }
-  w.world->addForce(w.body.get(), w.elasticity.get());
-  w.gravity = std::make_unique<btDeformableGravityForce>(g);
-  w.world->addForce(w.body.get(), w.gravity.get());
-
+  w.createWorld(g);
+  w.addBody(cantilever);
+  w.addForces(cantilever, settings, g);
   // The core stops at |r| <= tol |b|; Bullet at r.z <= tol_b min(1, b.z0) with z the
   // preconditioned residual. Bullet 3.24 never initializes its mass preconditioner (it acts as the
   // identity, z = r), so tol_b = tol^2 is the core's test whenever |b| <= 1 (it is here).
   const double tol = cantilever.solver.tolerance;
   w.solver.setLimits(settings, settings.cg_tolerance >= 0.0 ? settings.cg_tolerance : tol * tol);
-
-  btDeformableBackwardEulerObjective& objective = *w.solver.m_objective;
-  w.counter = new CountingMassPreconditioner(objective.m_softBodies);
-  delete objective.m_massPreconditioner;
-  objective.m_massPreconditioner = w.counter;
-  objective.m_preconditioner = w.counter;
+  w.countPreconditionerCalls();
 }
 
 BulletPeer::~BulletPeer() = default;

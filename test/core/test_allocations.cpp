@@ -11,6 +11,7 @@
 #include "deformable_sim/core/default_scene.h"
 #include "deformable_sim/core/selection.h"
 #include "deformable_sim/core/simulation.h"
+#include "simulation_test_helpers.h"
 
 // Every heap allocation of the process goes through malloc (operator new and Eigen both call it):
 // interpose it and count the calls, forwarding to glibc's own implementation.
@@ -144,7 +145,7 @@ TEST(Allocations, NoneInStepsSolvedAgainOrSplit) {
 TEST(Allocations, NoneWhenAGraspMovesEveryTick) {
   const dc::SceneSpec spec = dc::defaultScene();
   const dc::BoxMeshSpec& box = *spec.bodies[0].box_mesh;
-  dc::Simulation simulation(spec, {dc::makeBoxMesh(box.min, box.max, box.cells)});
+  dc::Simulation simulation = deformable_sim::test::boxMeshSimulation(spec);
   dc::CommandProcessor commands(simulation);
   dc::GraspCommand grasp;
   grasp.name = "gripper";

@@ -13,8 +13,11 @@
 #include "deformable_sim/core/cell.h"
 #include "deformable_sim/core/corotational_elasticity.h"
 #include "deformable_sim/core/mesh.h"
+#include "element_test_helpers.h"
 
 namespace dc = deformable_sim::core;
+using deformable_sim::test::elasticForce;
+using deformable_sim::test::stacked;
 
 namespace {
 
@@ -86,21 +89,6 @@ class CellTest : public ::testing::TestWithParam<Kind> {
     return dc::makeBoxMesh({0, 0, 0}, {0.3, 0.2, 0.2}, {3, 2, 2}, GetParam().box);
   }
 };
-
-Eigen::VectorXd stacked(const dc::Mesh& mesh) {
-  Eigen::VectorXd x(3 * mesh.numNodes());
-  for (int i = 0; i < mesh.numNodes(); ++i) x.segment<3>(3 * i) = mesh.positions[i];
-  return x;
-}
-
-Eigen::VectorXd force(dc::CorotationalElasticity& elasticity, const Eigen::VectorXd& x,
-                      bool warping) {
-  elasticity.update(x, warping);
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(x.size());
-  Eigen::VectorXd scratch(x.size());
-  elasticity.addElasticForces(x, f, scratch);
-  return f;
-}
 
 }  // namespace
 
@@ -191,7 +179,7 @@ TEST_P(CellTest, AMeshPassesThePatchTest) {
   g << 0.01, 0.002, -0.003, 0.001, -0.02, 0.004, 0.0, 0.003, 0.015;
   Eigen::VectorXd x = stacked(mesh);
   for (int i = 0; i < mesh.numNodes(); ++i) x.segment<3>(3 * i) += g * mesh.positions[i];
-  const Eigen::VectorXd f = force(elasticity, x, false);
+  const Eigen::VectorXd f = elasticForce(elasticity, x, false);
   int interior = 0;
   for (int i = 0; i < mesh.numNodes(); ++i) {
     const Eigen::Vector3d& p = mesh.positions[i];
@@ -210,7 +198,7 @@ TEST_P(CellTest, AssembledStiffnessIsSymmetricAndMinusTheForceDerivative) {
   dc::CorotationalElasticity elasticity(mesh, kMaterial);
   Eigen::VectorXd x = stacked(mesh);
   for (int i = 0; i < x.size(); ++i) x[i] += 0.003 * std::sin(1.7 * i);
-  const Eigen::VectorXd f = force(elasticity, x, true);
+  const Eigen::VectorXd f = elasticForce(elasticity, x, true);
   const Eigen::MatrixXd k = elasticity.stiffness().toDense();
   EXPECT_LT((k - k.transpose()).norm(), 1e-12 * k.norm());
   // With the rotations held, f = -(K' x + f0') and the energy's gradient is -f.
@@ -229,22 +217,22 @@ TEST_P(CellTest, RotatingADeformedBodyRotatesItsForces) {
   const dc::Mesh mesh = block();
   dc::CorotationalElasticity elasticity(mesh, kMaterial);
   const Eigen::VectorXd rest = stacked(mesh);
-  EXPECT_LT(force(elasticity, rest, true).norm(), 1e-9);  // zero force at rest
+  EXPECT_LT(elasticForce(elasticity, rest, true).norm(), 1e-9);  // zero force at rest
   Eigen::VectorXd deformed = rest;
   for (int i = 0; i < rest.size(); ++i) deformed[i] += 0.002 * std::cos(0.9 * i);
-  const Eigen::VectorXd f = force(elasticity, deformed, true);
+  const Eigen::VectorXd f = elasticForce(elasticity, deformed, true);
   const Eigen::Matrix3d r =
       Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   Eigen::VectorXd turned(rest.size());
   for (int i = 0; i < mesh.numNodes(); ++i)
     turned.segment<3>(3 * i) = r * deformed.segment<3>(3 * i);
-  const Eigen::VectorXd g = force(elasticity, turned, true);
+  const Eigen::VectorXd g = elasticForce(elasticity, turned, true);
   for (int i = 0; i < mesh.numNodes(); ++i) {
     EXPECT_LT((g.segment<3>(3 * i) - r * f.segment<3>(3 * i)).norm(), 1e-9 * f.norm());
   }
   // A rigid rotation alone gives no force.
   for (int i = 0; i < mesh.numNodes(); ++i) turned.segment<3>(3 * i) = r * rest.segment<3>(3 * i);
-  EXPECT_LT(force(elasticity, turned, true).norm(), 1e-9);
+  EXPECT_LT(elasticForce(elasticity, turned, true).norm(), 1e-9);
 }
 
 TEST_P(CellTest, BoundaryIsClosedAndOutward) {

@@ -11,17 +11,13 @@
 #include "deformable_sim/core/simulation.h"
 #include "deformable_sim/core/wrench.h"
 #include "deformable_sim/io/scene_file.h"
+#include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
+using deformable_sim::test::boxMeshSimulation;
+using deformable_sim::test::defaultSimulation;
 
 namespace {
-
-dc::Simulation makeDefault() {
-  const dc::SceneSpec spec = dc::defaultScene();
-  const dc::BoxMeshSpec& box = *spec.bodies[0].box_mesh;
-  std::vector<dc::Mesh> meshes{dc::makeBoxMesh(box.min, box.max, box.cells)};
-  return dc::Simulation(spec, std::move(meshes));
-}
 
 void expectNetWrench(const std::vector<Eigen::Vector3d>& points,
                      const std::vector<Eigen::Vector3d>& forces, const Eigen::Vector3d& point,
@@ -65,7 +61,7 @@ TEST(Wrench, CollinearNodesCarryBendingButNotTwist) {
 }
 
 TEST(RigidFrame, RecoversARigidMotionAndIsIdentityAtRest) {
-  dc::Simulation sim = makeDefault();
+  dc::Simulation sim = defaultSimulation();
   const dc::Body& body = sim.bodies()[0];
   const dc::RigidFrame rest =
       dc::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses());
@@ -85,7 +81,7 @@ TEST(RigidFrame, RecoversARigidMotionAndIsIdentityAtRest) {
 }
 
 TEST(Commands, GroupWrenchIsExactAndAZeroWrenchClearsIt) {
-  dc::Simulation sim = makeDefault();
+  dc::Simulation sim = defaultSimulation();
   dc::CommandProcessor commands(sim);
   dc::Body& body = sim.bodies()[0];
   const Eigen::VectorXd scene_forces = body.externalForces();
@@ -122,7 +118,7 @@ TEST(Commands, GroupWrenchIsExactAndAZeroWrenchClearsIt) {
 }
 
 TEST(Commands, BadCommandsAreRefusedNamingTheProblemAndChangeNothing) {
-  dc::Simulation sim = makeDefault();
+  dc::Simulation sim = defaultSimulation();
   dc::CommandProcessor commands(sim);
   dc::Body& body = sim.bodies()[0];
   const Eigen::VectorXd forces = body.externalForces();
@@ -182,7 +178,7 @@ TEST(Commands, BadCommandsAreRefusedNamingTheProblemAndChangeNothing) {
 }
 
 TEST(Commands, FixDragAndReleaseNodes) {
-  dc::Simulation sim = makeDefault();
+  dc::Simulation sim = defaultSimulation();
   dc::CommandProcessor commands(sim);
   dc::Body& body = sim.bodies()[0];
   const int clamped = body.numConstrained();
@@ -248,9 +244,7 @@ dc::Simulation makeBlock() {
   block.box_mesh = dc::BoxMeshSpec{{0, 0, 0}, {0.1, 0.1, 0.1}, {4, 4, 4}};
   block.material = {5.0e4, 0.3, 200.0};
   spec.bodies.push_back(block);
-  const dc::BoxMeshSpec& box = *block.box_mesh;
-  std::vector<dc::Mesh> meshes{dc::makeBoxMesh(box.min, box.max, box.cells)};
-  return dc::Simulation(spec, std::move(meshes));
+  return boxMeshSimulation(spec);
 }
 
 dc::GraspCommand graspTopCorner(const Eigen::Isometry3d& frame) {
@@ -370,11 +364,7 @@ TEST(Commands, SphereWithANonFiniteCentreIsRefusedInAMultiBodyScene) {
   dc::SceneSpec spec = dc::defaultScene();
   spec.bodies.push_back(spec.bodies[0]);
   spec.bodies[1].name = "other";
-  std::vector<dc::Mesh> meshes;
-  for (const dc::BodySpec& b : spec.bodies) {
-    meshes.push_back(dc::makeBoxMesh(b.box_mesh->min, b.box_mesh->max, b.box_mesh->cells));
-  }
-  dc::Simulation sim(spec, std::move(meshes));
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::CommandProcessor commands(sim);
   dc::FixCommand fix;
   fix.nodes.sphere = dc::Sphere{Eigen::Vector3d(std::nan(""), 0, 0), 0.1};

@@ -8,8 +8,10 @@
 #include "deformable_sim/core/contact.h"
 #include "deformable_sim/core/shape.h"
 #include "deformable_sim/core/simulation.h"
+#include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
+using deformable_sim::test::boxMeshSimulation;
 
 TEST(Shape, SignedDistancesToTheThreePrimitives) {
   dc::Shape box;
@@ -58,8 +60,7 @@ TEST(Contact, ABlockDroppedOnATableComesToRestOnTop) {
   block.box_mesh = dc::BoxMeshSpec{{-0.05, -0.05, 0.1}, {0.05, 0.05, 0.2}, {4, 4, 4}};
   block.material = {3.0e4, 0.3, 150.0};
   spec.bodies.push_back(block);
-  const dc::BoxMeshSpec& box = *block.box_mesh;
-  dc::Simulation sim(spec, {dc::makeBoxMesh(box.min, box.max, box.cells)});
+  dc::Simulation sim = boxMeshSimulation(spec);
   std::vector<dc::StepReport> reports;
   for (int s = 0; s < 600; ++s) {
     sim.step(reports);
@@ -83,7 +84,7 @@ TEST(Contact, ABlockDroppedOnATableComesToRestOnTop) {
   // Without the contact effect the same block falls through.
   spec.contact.reset();
   spec.obstacles.clear();
-  dc::Simulation free_fall(spec, {dc::makeBoxMesh(box.min, box.max, box.cells)});
+  dc::Simulation free_fall = boxMeshSimulation(spec);
   for (int s = 0; s < 60; ++s) free_fall.step(reports);
   EXPECT_EQ(reports[0].contacts, 0);
   EXPECT_LT(free_fall.bodies()[0].positions().maxCoeff(), 1.0);

@@ -18,8 +18,10 @@
 #include "deformable_sim/core/simulation.h"
 #include "deformable_sim/core/strain.h"
 #include "deformable_sim/core/wrench.h"
+#include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
+using deformable_sim::test::boxMeshSimulation;
 
 namespace {
 
@@ -58,12 +60,20 @@ dc::NodeSelection faceAtX(double x) {
   return boxSelection({x - 1e-9, -1e3, -1e3}, {x + 1e-9, 1e3, 1e3});
 }
 
-dc::Simulation build(const dc::SceneSpec& spec) {
-  std::vector<dc::Mesh> meshes;
-  for (const dc::BodySpec& body : spec.bodies) {
-    meshes.push_back(dc::makeBoxMesh(body.box_mesh->min, body.box_mesh->max, body.box_mesh->cells));
-  }
-  return dc::Simulation(spec, std::move(meshes));
+/// A beam of 10 x 2 x 2 cells along x from x = 0, clamped there.
+dc::BodySpec clampedBeam(const std::string& name, const Eigen::Vector3d& min,
+                         const Eigen::Vector3d& max, const dc::LinearElasticMaterial& material) {
+  dc::BodySpec beam = boxBody(name, min, max, {10, 2, 2}, material);
+  beam.fixed.push_back(faceAtX(0.0));
+  return beam;
+}
+
+/// warpedScene() with gravity and the built-in scene's damping: bodies sag and come to rest.
+dc::SceneSpec settlingScene() {
+  dc::SceneSpec spec = warpedScene();
+  spec.effects.gravity = kGravity;
+  spec.effects.damping = kSceneDamping;
+  return spec;
 }
 
 bool finite(const dc::Body& body) {
@@ -224,7 +234,7 @@ SpinRun spin() {
   dc::SceneSpec spec = warpedScene();
   spec.bodies.push_back(
       boxBody("spinner", {-0.1, -0.05, -0.025}, {0.1, 0.05, 0.025}, {8, 4, 2}, kRubber));
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   const Eigen::Vector3d omega(0.0, 0.0, 20.0), drift(0.1, -0.05, 0.0);
   Eigen::VectorXd v(body.restPositions().size());
@@ -321,10 +331,9 @@ struct TwistRun {
 TwistRun twist() {
   TwistRun run;
   dc::SceneSpec spec = warpedScene();
-  dc::BodySpec beam = boxBody("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, kRubber);
-  beam.fixed.push_back(faceAtX(0.0));
+  dc::BodySpec beam = clampedBeam("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, kRubber);
   spec.bodies.push_back(beam);
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   const std::vector<int> end = dc::selectNodes(body.mesh(), faceAtX(0.5));
   EnergyMeter meter(body);
@@ -398,7 +407,7 @@ TEST(HardCases, BlockPushedThroughItselfRecovers) {
   dc::BodySpec block = boxBody("block", {0, 0, 0}, {0.1, 0.1, 0.1}, {4, 4, 4}, kRubber);
   block.fixed.push_back(boxSelection({-1, -1, -1e-9}, {1, 1, 1e-9}));
   spec.bodies.push_back(block);
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   const std::vector<int> top =
       dc::selectNodes(body.mesh(), boxSelection({-1, -1, 0.1 - 1e-9}, {1, 1, 0.1 + 1e-9}));
@@ -446,15 +455,12 @@ TEST(HardCases, BlockPushedThroughItselfRecovers) {
 // A cantilever of a nearly incompressible material (nu = 0.499, lambda = 250 mu) sagging
 // under gravity from rest: it must settle where the quasi-static solve puts it.
 TEST(HardCases, NearlyIncompressibleCantileverSagsToItsStaticState) {
-  dc::SceneSpec spec = warpedScene();
-  spec.effects.gravity = kGravity;
-  spec.effects.damping = kSceneDamping;
+  dc::SceneSpec spec = settlingScene();
   dc::BodySpec beam =
-      boxBody("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, {1.0e6, 0.499, 1000.0});
-  beam.fixed.push_back(faceAtX(0.0));
+      clampedBeam("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {1.0e6, 0.499, 1000.0});
   spec.bodies.push_back(beam);
-  dc::Simulation sim = build(spec);
-  dc::Simulation statics = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
+  dc::Simulation statics = boxMeshSimulation(spec);
   ASSERT_TRUE(statics.solveStatic()[0].converged);
   const dc::Body& reference = statics.bodies()[0];
   dc::Body& body = sim.bodies()[0];
@@ -488,17 +494,13 @@ TEST(HardCases, NearlyIncompressibleCantileverSagsToItsStaticState) {
 
 // Two cantilevers in one simulation, E = 1e4 Pa and 1e10 Pa (a ratio of 1e6), under gravity.
 TEST(HardCases, VerySoftAndVeryStiffBodiesTogether) {
-  dc::SceneSpec spec = warpedScene();
-  spec.effects.gravity = kGravity;
-  spec.effects.damping = kSceneDamping;
+  dc::SceneSpec spec = settlingScene();
   dc::BodySpec soft =
-      boxBody("soft", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, {1.0e4, 0.3, 100.0});
-  soft.fixed.push_back(faceAtX(0.0));
+      clampedBeam("soft", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {1.0e4, 0.3, 100.0});
   dc::BodySpec stiff =
-      boxBody("stiff", {0, 0.45, -0.05}, {0.5, 0.55, 0.05}, {10, 2, 2}, {1.0e10, 0.3, 100.0});
-  stiff.fixed.push_back(faceAtX(0.0));
+      clampedBeam("stiff", {0, 0.45, -0.05}, {0.5, 0.55, 0.05}, {1.0e10, 0.3, 100.0});
   spec.bodies = {soft, stiff};
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   std::vector<EnergyMeter> meters{EnergyMeter(sim.bodies()[0]), EnergyMeter(sim.bodies()[1])};
 
   std::vector<dc::StepReport> reports;
@@ -569,7 +571,7 @@ SteelRun steel(double spin) {
   spec.dt = 1.0 / 30.0;
   spec.bodies.push_back(
       boxBody("steel", {0, 0, 0}, {0.02, 0.02, 0.02}, {3, 3, 3}, {2.0e11, 0.3, 7850.0}));
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   run.critical_dt = explicitStableStep(body);
   run.ratio = spec.dt / run.critical_dt;
@@ -647,10 +649,9 @@ struct ImpulseRun {
 ImpulseRun impulse() {
   ImpulseRun run;
   dc::SceneSpec spec = warpedScene();
-  dc::BodySpec beam = boxBody("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, kRubber);
-  beam.fixed.push_back(faceAtX(0.0));
+  dc::BodySpec beam = clampedBeam("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, kRubber);
   spec.bodies.push_back(beam);
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   const std::vector<int> end = dc::selectNodes(body.mesh(), faceAtX(0.5));
   const double weight = mass(body) * 9.81;
@@ -729,13 +730,10 @@ namespace {
 
 /// Runs the case; asserts the energy bound only with `check_energy`.
 void teleport(bool check_energy) {
-  dc::SceneSpec spec = warpedScene();
-  spec.effects.gravity = kGravity;
-  spec.effects.damping = kSceneDamping;
-  dc::BodySpec beam = boxBody("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, kRubber);
-  beam.fixed.push_back(faceAtX(0.0));
+  dc::SceneSpec spec = settlingScene();
+  dc::BodySpec beam = clampedBeam("beam", {0, -0.05, -0.05}, {0.5, 0.05, 0.05}, kRubber);
   spec.bodies.push_back(beam);
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   const std::vector<int> end = dc::selectNodes(body.mesh(), faceAtX(0.5));
   body.fixNodes(end);
@@ -782,7 +780,7 @@ TEST(HardCases, AllNodesFixedMakesTheStepANoOp) {
   dc::SceneSpec spec = warpedScene();
   spec.effects.gravity = kGravity;
   spec.bodies.push_back(boxBody("held", {0, 0, 0}, {0.2, 0.1, 0.1}, {4, 2, 2}, kRubber));
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   // Held in a bent shape, so that K' x + f0' and gravity both push on every node.
   Eigen::VectorXd x = body.restPositions();
@@ -811,7 +809,7 @@ TEST(HardCases, FreeFallIsImplicitEulersExactly) {
   dc::SceneSpec spec = warpedScene();
   spec.effects.gravity = kGravity;
   spec.bodies.push_back(boxBody("falling", {0, 0, 0}, {0.2, 0.1, 0.1}, {4, 2, 2}, kRubber));
-  dc::Simulation sim = build(spec);
+  dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   const Eigen::Vector3d c0 = centreOfMass(body);
   const double h = spec.dt, g = -kGravity.z();
@@ -892,9 +890,7 @@ namespace {
 
 /// Runs the case; asserts the energy bound only with `check_energy`.
 void hangingTetrahedron(bool check_energy) {
-  dc::SceneSpec spec = warpedScene();
-  spec.effects.gravity = kGravity;
-  spec.effects.damping = kSceneDamping;
+  dc::SceneSpec spec = settlingScene();
   dc::BodySpec tet;
   tet.name = "tet";
   tet.material = kRubber;
@@ -966,9 +962,7 @@ TEST(HardCases, SliverElementsAreReportedAndSimulatedStably) {
 
   // Clamped at the bottom, sagging under gravity from rest: it must settle where the static solve
   // puts it, its energy never rising (gravity counted; the clamp does no work).
-  dc::SceneSpec spec = warpedScene();
-  spec.effects.gravity = kGravity;
-  spec.effects.damping = kSceneDamping;
+  dc::SceneSpec spec = settlingScene();
   dc::BodySpec cube;
   cube.name = "cube";
   cube.material = {1.0e5, 0.3, 1000.0};

@@ -29,6 +29,20 @@ struct RunResult {
   NodeVectors displacement;
 };
 
+// Runs a shell command; its exit code and what it wrote to its stdout.
+RunResult runCommand(const std::string& command) {
+  RunResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  char buffer[512];
+  while (fgets(buffer, sizeof buffer, pipe)) result.output += buffer;
+  result.exit_code = WEXITSTATUS(pclose(pipe));
+  return result;
+}
+
+bool startsWithUsage(const std::string& text) {
+  return text.rfind("usage: deformable_sim_run SCENE.yaml", 0) == 0;
+}
+
 // Reads "node,a,b,c" rows (after one header line) keyed by node; `first` is the first value column.
 NodeVectors readNodeCsv(const std::string& path, int first) {
   std::ifstream in(path);
@@ -76,13 +90,8 @@ RunResult runCantilever(const std::string& mesh, double traction_z, bool warping
        << "    loads: [{box: {min: [0.999999999, -1, -1], max: [1.000000001, 1, 1]},"
        << " traction: [0, 0, " << traction_z << "]}]\n";
   yaml.close();
-  RunResult result;
-  const std::string command = std::string(DEFORMABLE_SIM_RUN) + " " + scene.string() +
-                              " --static --out " + csv.string() + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  char buffer[512];
-  while (fgets(buffer, sizeof buffer, pipe)) result.output += buffer;
-  result.exit_code = WEXITSTATUS(pclose(pipe));
+  RunResult result = runCommand(std::string(DEFORMABLE_SIM_RUN) + " " + scene.string() +
+                                " --static --out " + csv.string() + " 2>&1");
   if (result.exit_code == 0) result.displacement = readNodeCsv(csv.string(), 4);
   return result;
 }
@@ -115,6 +124,23 @@ class HexahedralCantilever : public ::testing::TestWithParam<std::string> {};
 class LargeDeflection : public ::testing::TestWithParam<std::string> {};
 
 }  // namespace
+
+// Asked for, the usage is the answer: on stdout, and a success (it used to exit 2 as an error).
+TEST(RunCommand, HelpPrintsTheUsageToStdoutAndSucceeds) {
+  for (const std::string flag : {"--help", "-h"}) {
+    const RunResult run = runCommand(std::string(DEFORMABLE_SIM_RUN) + " " + flag + " 2>/dev/null");
+    EXPECT_EQ(run.exit_code, 0) << flag;
+    EXPECT_TRUE(startsWithUsage(run.output)) << flag << ": " << run.output;
+  }
+}
+
+TEST(RunCommand, AnUnknownArgumentPrintsTheUsageToStderrAndFails) {
+  const std::string command = std::string(DEFORMABLE_SIM_RUN) + " --bogus";
+  const RunResult stderr_only = runCommand(command + " 2>&1 >/dev/null");
+  EXPECT_EQ(stderr_only.exit_code, 2);
+  EXPECT_TRUE(startsWithUsage(stderr_only.output)) << stderr_only.output;
+  EXPECT_EQ(runCommand(command + " 2>/dev/null").output, "");
+}
 
 TEST(Reference, IsBesideTheClone) {
   ASSERT_TRUE(fs::exists(kReference + "/README.md"))

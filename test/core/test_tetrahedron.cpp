@@ -8,8 +8,11 @@
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/corotational_elasticity.h"
 #include "deformable_sim/core/mesh.h"
+#include "element_test_helpers.h"
 
 namespace dc = deformable_sim::core;
+using deformable_sim::test::elasticForce;
+using deformable_sim::test::stacked;
 
 namespace {
 
@@ -24,22 +27,6 @@ dc::Mesh singleTetrahedron() {
 }
 
 dc::Mesh smallBlock() { return dc::makeBoxMesh({0.0, 0.0, 0.0}, {0.3, 0.2, 0.1}, {3, 2, 1}); }
-
-Eigen::VectorXd stacked(const dc::Mesh& mesh) {
-  Eigen::VectorXd x(3 * mesh.numNodes());
-  for (int i = 0; i < mesh.numNodes(); ++i) x.segment<3>(3 * i) = mesh.positions[i];
-  return x;
-}
-
-// Elastic force f = -(K' x + f0') after updating rotations at x.
-Eigen::VectorXd force(dc::CorotationalElasticity& elasticity, const Eigen::VectorXd& x,
-                      bool warping) {
-  elasticity.update(x, warping);
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(x.size());
-  Eigen::VectorXd scratch(x.size());
-  elasticity.addElasticForces(x, f, scratch);
-  return f;
-}
 
 // A fixed, smooth, non-rigid displacement field.
 Eigen::VectorXd deformation(const Eigen::VectorXd& x0, double scale) {
@@ -93,7 +80,7 @@ TEST(Tetrahedron, ZeroForceAtRest) {
     dc::CorotationalElasticity elasticity(mesh, kMaterial);
     const Eigen::VectorXd x0 = stacked(mesh);
     for (bool warping : {false, true}) {
-      EXPECT_LT(force(elasticity, x0, warping).norm(), 1e-9) << "warping " << warping;
+      EXPECT_LT(elasticForce(elasticity, x0, warping).norm(), 1e-9) << "warping " << warping;
     }
   }
 }
@@ -173,8 +160,8 @@ TEST(Tetrahedron, RotatingADeformedBodyRotatesItsForcesOnlyWithWarping) {
   for (int i = 0; i < mesh.numNodes(); ++i) qx.segment<3>(3 * i) = q * x.segment<3>(3 * i) + shift;
 
   for (bool warping : {true, false}) {
-    const Eigen::VectorXd f = force(elasticity, x, warping);
-    const Eigen::VectorXd fq = force(elasticity, qx, warping);
+    const Eigen::VectorXd f = elasticForce(elasticity, x, warping);
+    const Eigen::VectorXd fq = elasticForce(elasticity, qx, warping);
     double mismatch = 0.0;
     for (int i = 0; i < mesh.numNodes(); ++i) {
       mismatch = std::max(mismatch, (fq.segment<3>(3 * i) - q * f.segment<3>(3 * i)).norm());
@@ -197,8 +184,8 @@ TEST(Tetrahedron, StiffnessIsMinusTheForceDerivative) {
   // Linear FEM: exact everywhere. Warped: at rest (where the rotation's derivative does not enter).
   for (bool warping : {false, true}) {
     const Eigen::VectorXd base = warping ? x0 : Eigen::VectorXd(x0 + deformation(x0, 0.3));
-    const Eigen::VectorXd df = (force(elasticity, base + eps * direction, warping) -
-                                force(elasticity, base - eps * direction, warping)) /
+    const Eigen::VectorXd df = (elasticForce(elasticity, base + eps * direction, warping) -
+                                elasticForce(elasticity, base - eps * direction, warping)) /
                                (2.0 * eps);
     elasticity.update(base, warping);
     Eigen::VectorXd k_direction(x0.size());
@@ -232,7 +219,7 @@ TEST(Tetrahedron, FlattenedAndInvertedElementsGiveProperRotationsAndFiniteForces
     const Eigen::Matrix3d& r = elasticity.rotations()[0];
     EXPECT_NEAR(r.determinant(), 1.0, 1e-12);
     EXPECT_NEAR((r.transpose() * r - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-12);
-    const Eigen::VectorXd f = force(elasticity, x, true);
+    const Eigen::VectorXd f = elasticForce(elasticity, x, true);
     EXPECT_TRUE(f.allFinite());
     // The restoring force on node 3 pushes it back up (towards positive volume).
     EXPECT_GT(f[3 * 3 + 2], 0.0);

@@ -7,22 +7,14 @@
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/default_scene.h"
 #include "deformable_sim/core/simulation.h"
+#include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
-
-namespace {
-
-dc::Simulation makeDefault() {
-  const dc::SceneSpec spec = dc::defaultScene();
-  const dc::BoxMeshSpec& box = *spec.bodies[0].box_mesh;
-  std::vector<dc::Mesh> meshes{dc::makeBoxMesh(box.min, box.max, box.cells)};
-  return dc::Simulation(spec, std::move(meshes));
-}
-
-}  // namespace
+using deformable_sim::test::boxMeshSimulation;
+using deformable_sim::test::defaultSimulation;
 
 TEST(Watchdog, UndoesANonFiniteStepAndTheBodyCarriesOn) {
-  dc::Simulation sim = makeDefault();
+  dc::Simulation sim = defaultSimulation();
   std::vector<dc::StepReport> reports;
   for (int s = 0; s < 20; ++s) sim.step(reports);
   dc::Body& body = sim.bodies()[0];
@@ -57,8 +49,7 @@ TEST(Watchdog, UndoesANonFiniteStepAndTheBodyCarriesOn) {
 TEST(Watchdog, UndoneStepLeavesNoNonFiniteConstraintForce) {
   dc::SceneSpec spec = dc::defaultScene();
   spec.bodies[0].box_mesh->max.z() = 1e300;
-  const dc::BoxMeshSpec& box = *spec.bodies[0].box_mesh;
-  dc::Simulation sim(spec, {dc::makeBoxMesh(box.min, box.max, box.cells)});
+  dc::Simulation sim = boxMeshSimulation(spec);
   const dc::Body& body = sim.bodies()[0];
   const Eigen::VectorXd before = body.positions();
   std::vector<dc::StepReport> reports;
@@ -72,7 +63,7 @@ TEST(Watchdog, UndoneStepLeavesNoNonFiniteConstraintForce) {
 }
 
 TEST(Watchdog, LeavesGoodStepsAlone) {
-  dc::Simulation sim = makeDefault();
+  dc::Simulation sim = defaultSimulation();
   std::vector<dc::StepReport> reports;
   for (int s = 0; s < 50; ++s) {
     sim.step(reports);

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <string>
 
+#include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/scene_file.h"
 
 namespace dc = deformable_sim::core;
@@ -164,15 +165,15 @@ TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
 TEST(SceneFile, EmptyOrUnknownSelectionsAreErrorsNamingTheKey) {
   EXPECT_EQ(
       errorOf(replaced(kScene, "{nodes: [13]}", "{box: {min: [5, 5, 5], max: [6, 6, 6]}}"), true),
-      "bodies[0].fixed[1]: selects no node");
+      "test.yaml:11: bodies[0].fixed[1]: selects no node");
   EXPECT_EQ(errorOf(replaced(kScene, "{nodes: [13]}", "{nodes: [13, 100000]}"), true),
-            "bodies[0].fixed[1]: node 100000 is not a node of the mesh");
+            "test.yaml:11: bodies[0].fixed[1]: node 100000 is not a node of the mesh");
   // A traction needs whole boundary faces inside its selection.
   EXPECT_EQ(errorOf(replaced(kScene, "{box: {min: [0.999, -1, -1], max: [1.001, 1, 1]}, traction",
                              "{nodes: [7], traction"),
                     true),
-            "bodies[0].loads[0]: traction selects no boundary face (all nodes of a boundary face "
-            "must be selected)");
+            "test.yaml:13: bodies[0].loads[0]: traction selects no boundary face (all nodes of a "
+            "boundary face must be selected)");
 }
 
 // Found by fuzzing: a key that is not a name (a list, a map, a null) made yaml-cpp throw its own
@@ -230,7 +231,7 @@ TEST(SceneFile, GroupsAndWrenchLoads) {
   EXPECT_EQ(errorOf(replaced(yaml, "one: {nodes: [7]}",
                              "one: {sphere: {center: [5, 5, 5], radius: 0.1}}"),
                     true),
-            "bodies[0].groups.one: selects no node");
+            "test.yaml:12: bodies[0].groups.one: selects no node");
 }
 
 TEST(SceneFile, BodiesChooseTheirModelAndChangeTheScenesEffects) {
@@ -258,6 +259,75 @@ TEST(SceneFile, BodiesChooseTheirModelAndChangeTheScenesEffects) {
   EXPECT_EQ(errorOf(replaced(kScene, "    model: fem\n",
                              "    model: rigid\n    effects: {plasticity: {yield: 0.1}}\n"),
                     true),
-            "bodies[0]: body 'beam': plasticity needs a finite-element body (rigid bodies deform "
-            "homogeneously or not at all)");
+            "test.yaml:7: bodies[0]: body 'beam': plasticity needs a finite-element body (rigid "
+            "bodies deform homogeneously or not at all)");
+}
+
+// Written as a file and read as a user's scene is: the messages name its path.
+class SceneFileOnDisk : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    directory_ = std::filesystem::temp_directory_path() / "deformable_sim_test_scene_file";
+    std::filesystem::create_directories(directory_);
+  }
+  void TearDown() override { std::filesystem::remove_all(directory_); }
+
+  std::string write(const std::string& yaml) const {
+    const std::string path = (directory_ / "scene.yaml").string();
+    std::ofstream(path) << yaml;
+    return path;
+  }
+
+  std::filesystem::path directory_;
+};
+
+// A mesh file that is not there is an error of the scene: the message says which entry names it.
+TEST_F(SceneFileOnDisk, MissingMeshFileNamesTheSceneFileLineAndKey) {
+  const std::string path = write(replaced(
+      kScene,
+      "    mesh: {box: {min: [0, -0.05, -0.05], max: [1, 0.05, 0.05], cells: [10, 2, 2]}}\n",
+      "    mesh: meshes/missing.msh\n"));
+  const dc::SceneSpec spec = dio::readSceneFile(path);
+  try {
+    dio::buildSimulation(spec, nullptr);
+    FAIL() << "expected a MeshError";
+  } catch (const dio::MeshError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ":8: bodies[0].mesh: cannot open mesh file '" +
+                                         (directory_ / "meshes/missing.msh").string() +
+                                         "': No such file or directory");
+  }
+}
+
+// Whether a group selects nodes is known only with the mesh; the message still says where the
+// group stands in the file (its own line, not its body's or the groups key's).
+TEST_F(SceneFileOnDisk, GroupThatSelectsNoNodeNamesTheSceneFileLineAndKey) {
+  const std::string path =
+      write(replaced(kScene, "    loads:\n",
+                     "    groups:\n"
+                     "      tip: {box: {min: [0.999, -1, -1], max: [1.001, 1, 1]}}\n"
+                     "      nowhere: {sphere: {center: [5, 5, 5], radius: 0.1}}\n"
+                     "    loads:\n"));
+  try {
+    dio::buildSimulation(dio::readSceneFile(path), nullptr);
+    FAIL() << "expected a SceneError";
+  } catch (const dio::SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ":14: bodies[0].groups.nowhere: selects no node");
+  }
+}
+
+// A spec made in code has no file to point into: the key alone, as before.
+TEST(SceneFile, SpecMadeInCodeErrorsNameTheKeyOnly) {
+  dc::SceneSpec spec = dio::parseScene(kScene, "test.yaml", ".");
+  spec.source = dc::SceneSource{};
+  spec.bodies[0].fixed[1].node_numbers = {100000};
+  EXPECT_THROW(
+      {
+        try {
+          dio::buildSimulation(spec, nullptr);
+        } catch (const dio::SceneError& e) {
+          EXPECT_STREQ(e.what(), "bodies[0].fixed[1]: node 100000 is not a node of the mesh");
+          throw;
+        }
+      },
+      dio::SceneError);
 }

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -222,6 +223,36 @@ class Body {
   double setStepRightHandSide(double h);
   /// Advances the state by h (a step, or a part of one split `depth` times).
   void advance(double h, int depth, StepReport& report);
+  /// What advance() keeps track of from one solve of its step to the next.
+  struct RotationSettling {
+    double start_energy = 0.0;        ///< at x with its own rotations
+    double solve_start_energy = 0.0;  ///< at x with the rotations of the solve
+    bool product_is_current = false;  ///< scratch_ = A v+ for the last solve
+    double last_excess = std::numeric_limits<double>::infinity();  ///< gained - dissipated
+  };
+  /// Whether the change of rotations gains more energy than the solve dissipated, and by how much.
+  struct EnergyCheck {
+    bool gains = false;
+    double excess = 0.0;  ///< gained - dissipated, J
+  };
+  /// next_ = A^-1 rhs_ for the step's right-hand side, counted in `report`.
+  void solveVelocity(const SystemMatrix& a, double h, bool step_start, StepReport& report);
+  /// The rotations (and elastic energy) at the end position x + h v+.
+  CorotationalElasticity::RotationUpdate rotateToEnd(double h, StepReport& report);
+  EnergyCheck checkRotationEnergy(const SystemMatrix& a,
+                                  const CorotationalElasticity::RotationUpdate& end,
+                                  RotationSettling& settling);
+  /// Reactions, x+ and the velocity history once next_ holds the step's v+.
+  void finishAdvance(const SystemMatrix& a, double h, bool product_is_current);
+  /// One corotational iteration of solveStatic() towards `fraction` of `load` and of the
+  /// constrained nodes' way from `start` to their targets: next_ = the new positions. Returns
+  /// |next_ - x|.
+  double staticIteration(const SystemMatrix& a, const Eigen::VectorXd& load,
+                         const Eigen::VectorXd& start, double fraction, StaticReport& report);
+  /// x moves the fraction `relaxation` of the way to next_ (constrained nodes all of it).
+  void relaxTowardsNext(double relaxation);
+  /// Constraint forces at equilibrium under `load`.
+  void setStaticReactions(const Eigen::VectorXd& load);
   /// x = A^-1 b with prescribed values already in x on constrained nodes. `step_start`: the
   /// first solve of a step (ConjugateGradientSolver's sequence of systems); `reference_floor`:
   /// the least norm CG measures its residual against.

@@ -133,6 +133,8 @@ class CommandProcessor {
   int findBody(const std::string& name, const NodeTarget& nodes) const;
   std::vector<int> resolve(const Body& body, const NodeTarget& nodes) const;
   void updateExternalForces(int body);
+  /// Adds the nodal forces of the active wrenches on `body` (but the one from `except`).
+  void addWrenchForces(int body, const std::string* except, Eigen::VectorXd& forces) const;
 
   Simulation& simulation_;
   CommandLimits limits_;

@@ -108,6 +108,20 @@ class ConjugateGradientSolver {
  private:
   void refreshPreconditioner(const SystemMatrix& a, const ConstraintMask& constrained,
                              const SolverSettings& settings);
+  /// Sizes the vectors and partial sums for `num_nodes` nodes (`size` = 3 num_nodes), once.
+  void resizeWorkspace(int num_nodes, Eigen::Index size);
+  /// r_ = b - A x_c on the free rows (x_c: x on the constrained nodes, zero elsewhere; p_ holds
+  /// it); returns |r_|.
+  double setFreeRightHandSide(const SystemMatrix& a, const ConstraintMask& constrained,
+                              const Eigen::VectorXd& b, const Eigen::VectorXd& x);
+  /// The projected warm start's guess into x (the stored solutions' best fit to r_); false when
+  /// it has none.
+  bool guessFromPreviousSolutions(const SystemMatrix& a, const ConstraintMask& constrained,
+                                  const SolverSettings& settings, Eigen::VectorXd& x);
+  /// iterate() on a team of a.threads threads (one parallel region), or on this one.
+  void iterateInTeam(const SystemMatrix& a, const ConstraintMask& constrained,
+                     const Eigen::VectorXd& b, const SolverSettings& settings, double reference,
+                     int min_iterations, Eigen::VectorXd& x, SolveReport& report);
   /// The first residual r = b - A x and the iterations from it; run by each thread of a
   /// parallel region.
   void iterate(const SystemMatrix& a, const ConstraintMask& constrained, const Eigen::VectorXd& b,

@@ -87,6 +87,48 @@ class ReducedDynamics {
   void returnToRemembered();
 
  private:
+  using Vector6d = Eigen::Matrix<double, 6, 1>;
+  using Vector12d = Eigen::Matrix<double, 12, 1>;
+  using Matrix12d = Eigen::Matrix<double, 12, 12>;
+  /// What a static solve's last iteration leaves over: the generalized loads and elastic forces
+  /// (the first 6 for a rigid body), and J^T J of the constraints.
+  struct StaticBalance {
+    Vector12d generalized = Vector12d::Zero();
+    Matrix12d jtj = Matrix12d::Zero();
+  };
+
+  /// The rest arm X - Xc of a constrained node, and how far the node is from its target.
+  Eigen::Vector3d restArm(const NodeConstraints& constraints, int node) const;
+  Eigen::Vector3d gapToTarget(const NodeConstraints& constraints, int node) const;
+
+  /// step() of each model, with gravity in `force` and damping = 1 + h alpha.
+  void stepRigid(double h, const Eigen::Vector3d& force, const Eigen::Matrix3d& first_moment,
+                 double damping, const NodeConstraints& constraints, Eigen::VectorXd* reactions);
+  void stepPseudoRigid(double h, const Eigen::Vector3d& force, const Eigen::Matrix3d& first_moment,
+                       double damping, double stiffness_damping, const NodeConstraints& constraints,
+                       Eigen::VectorXd* reactions);
+  /// The rigid step's (v, omega) that take the constrained nodes to their targets; `rhs` is the
+  /// momentum update, `inertia` the world-frame inertia at the start of the step.
+  Vector6d constrainedRigidVelocity(double h, double damping, const Eigen::Matrix3d& inertia,
+                                    const Vector6d& rhs, const NodeConstraints& constraints,
+                                    Eigen::VectorXd* reactions) const;
+  /// Moves the rigid body onto its constraints' targets after the turn of a step.
+  void projectRigidOntoTargets(const NodeConstraints& constraints);
+
+  /// One Newton iteration of solveStatic() of each model; returns the update's length (its
+  /// gradient part times `radius`), m.
+  double staticRigidUpdate(const Eigen::Vector3d& force, const Eigen::Matrix3d& first_moment,
+                           const NodeConstraints& constraints, double radius,
+                           StaticBalance& balance);
+  double staticPseudoRigidUpdate(const Eigen::Vector3d& force, const Eigen::Matrix3d& first_moment,
+                                 const NodeConstraints& constraints, double radius,
+                                 StaticBalance& balance);
+  /// Whether the constraints and the stiffness take up all of the leftover load.
+  bool balanced(const StaticBalance& balance, const Eigen::Vector3d& force,
+                const Eigen::Matrix3d& first_moment, double radius) const;
+  void staticReactions(const NodeConstraints& constraints, const StaticBalance& balance,
+                       Eigen::VectorXd& reactions) const;
+
   Eigen::Vector3d torque(const Eigen::Matrix3d& first_moment) const;
   /// Pseudo-rigid: the first Piola stress times the volume, and its derivative (9x9, column-major
   /// vec(F)), with the rotation of F when warping.

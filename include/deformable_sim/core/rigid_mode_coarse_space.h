@@ -59,6 +59,21 @@ class RigidModeCoarseSpace {
   /// sparse one's one at a time through an index.
   static constexpr double kDenseSpeedup = 3.0;
   void build(const BlockSparseMatrix& k, int rings);
+  /// Sets aggregate_ and num_aggregates_ for aggregates of `rings` rings of neighbours in k.
+  void aggregate(const BlockSparseMatrix& k, int rings);
+  /// Sets member_start_ and members_ from aggregate_.
+  void listMembers();
+  /// Sets coarse_row_start_ and coarse_block_; returns each coarse block's column aggregate.
+  std::vector<int> buildCoarsePattern(const BlockSparseMatrix& k);
+  /// The scalar pattern of A_c: its symbolic factorization or dense storage, coarse_value_ and
+  /// coarse_block_stored_.
+  void buildScalarPattern(const std::vector<int>& coarse_columns);
+  /// Centroids of the aggregates' free nodes and each node's offset from its aggregate's.
+  void updateOffsets(const ConstraintMask& constrained, const Eigen::VectorXd& positions);
+  /// Sums the coarse blocks of aggregate g's rows and stores them into `values` (of the storage
+  /// in use); largest_diagonal_[g] = the largest diagonal entry of its nodes' blocks.
+  void assembleAggregateRows(int g, const SystemMatrix& a, const ConstraintMask& constrained,
+                             double* values);
 
   int rings_ = 0;
   int num_aggregates_ = 0;

@@ -56,6 +56,15 @@ struct BodySpec {
   double wrench_radius = 0.05;
 };
 
+/// Where a scene file gives the entries that can only be checked once the spec is built (a mesh
+/// file, a selection that must select nodes), so that those errors can name the file and line.
+struct SceneSource {
+  std::string file;  ///< as the reader was given it; empty for a scene made in code
+  /// 1-based line of each such key ("bodies[0]", "bodies[0].mesh", "bodies[0].groups.tip",
+  /// "bodies[0].fixed[1]", "bodies[0].loads[0]").
+  std::map<std::string, int> lines;
+};
+
 struct SceneSpec {
   double dt = 0.01;  ///< s
   BodyEffects effects;
@@ -68,6 +77,7 @@ struct SceneSpec {
   SolverSettings solver;
   StaticSettings statics;
   std::vector<BodySpec> bodies;
+  SceneSource source;
 };
 
 }  // namespace deformable_sim::core

@@ -9,13 +9,15 @@
 #include "deformable_sim/core/body.h"
 #include "deformable_sim/core/mesh.h"
 #include "deformable_sim/core/scene.h"
+#include "deformable_sim/core/spec_error.h"
 
 namespace deformable_sim::core {
 
 class Simulation {
  public:
-  /// meshes[i] is the mesh of spec.bodies[i]. Throws std::invalid_argument naming the key of the
-  /// offending entry ("bodies[0].fixed[1]: selects no node") for bad selections and loads.
+  /// meshes[i] is the mesh of spec.bodies[i]. Throws SpecError (a std::invalid_argument) naming
+  /// the key of the offending entry ("bodies[0].fixed[1]: selects no node") for bad selections,
+  /// loads and materials.
   Simulation(const SceneSpec& spec, std::vector<Mesh> meshes);
 
   double dt() const { return dt_; }
@@ -53,6 +55,9 @@ class Simulation {
   std::vector<StaticReport> solveStatic();
 
  private:
+  /// Builds bodies()[b] from spec.bodies[b] and its mesh: groups, fixed nodes and loads.
+  void addBody(const SceneSpec& spec, size_t b, Mesh mesh);
+
   double dt_;
   StaticSettings statics_;
   long step_count_ = 0;

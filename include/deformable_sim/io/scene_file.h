@@ -22,6 +22,7 @@
 
 #include "deformable_sim/core/scene.h"
 #include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/spec_error.h"
 
 namespace deformable_sim::io {
 
@@ -39,11 +40,17 @@ core::SceneSpec parseScene(const std::string& yaml_text, const std::string& sour
 core::SceneSpec readSceneFile(const std::string& path);
 
 /// Reads (or generates) every body's mesh, in the order of spec.bodies. Mesh repairs are appended
-/// to `warnings`. Throws MeshError for bad mesh files.
+/// to `warnings`. Throws MeshError for bad or missing mesh files, naming the scene file, line and
+/// key first ("scene.yaml:9: bodies[0].mesh: cannot open mesh file 'beam.msh': ...").
 std::vector<core::Mesh> readMeshes(const core::SceneSpec& spec, std::vector<std::string>* warnings);
 
 /// Reads every body's mesh and builds the simulation. Mesh repairs are appended to `warnings`.
-/// Throws SceneError (bad selections, loads) or MeshError (bad mesh files).
+/// Throws SceneError (bad selections, loads; with the scene file and line of the entry) or
+/// MeshError (bad mesh files).
 core::Simulation buildSimulation(const core::SceneSpec& spec, std::vector<std::string>* warnings);
+
+/// The message of an error from building `spec` (core::Simulation, core::Session) with the scene
+/// file and line of its key in front: "scene.yaml:12: bodies[0].groups.tip: selects no node".
+std::string locatedMessage(const core::SceneSpec& spec, const core::SpecError& error);
 
 }  // namespace deformable_sim::io

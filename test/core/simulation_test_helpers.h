@@ -1,0 +1,28 @@
+// Simulations for the core's tests, built as io::buildSimulation would but without io: every
+// body of these specs has a generated box mesh.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "deformable_sim/core/box_mesh.h"
+#include "deformable_sim/core/default_scene.h"
+#include "deformable_sim/core/scene.h"
+#include "deformable_sim/core/simulation.h"
+
+namespace deformable_sim::test {
+
+/// The simulation of `spec`, each body's mesh made from its box_mesh (which each must have).
+inline core::Simulation boxMeshSimulation(const core::SceneSpec& spec) {
+  std::vector<core::Mesh> meshes;
+  for (const core::BodySpec& body : spec.bodies) {
+    const core::BoxMeshSpec& box = *body.box_mesh;
+    meshes.push_back(core::makeBoxMesh(box.min, box.max, box.cells, box.element));
+  }
+  return core::Simulation(spec, std::move(meshes));
+}
+
+/// The built-in default scene, runnable.
+inline core::Simulation defaultSimulation() { return boxMeshSimulation(core::defaultScene()); }
+
+}  // namespace deformable_sim::test
