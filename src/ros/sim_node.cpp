@@ -50,6 +50,8 @@ void SimNode::startSession() {
   try {
     session_ = std::make_unique<core::Session>(
         params_.scene, io::readMeshes(params_.scene, &warnings), params_.limits);
+  } catch (const core::SpecError& e) {
+    throw std::runtime_error("~scene: " + io::locatedMessage(params_.scene, e));
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("~scene: ") + e.what());
   }

@@ -23,6 +23,16 @@ class BadScene(unittest.TestCase):
         self.assertIn('bad_material.yaml:5: bodies[0].material.poisson_ratio: must be in (-1, 0.5)',
                       run.stderr)
 
+    def test_missing_mesh_file_names_the_scene_line_and_key(self):
+        run = start_node('_scene:=' + os.path.join(SCENES, 'missing_mesh.yaml'), '__name:=missing_mesh')
+        self.assertEqual(run.returncode, 1, run.stdout + run.stderr)
+        self.assertIn('missing_mesh.yaml:4: bodies[0].mesh: cannot open mesh file', run.stderr)
+
+    def test_group_that_selects_nothing_names_the_scene_line_and_key(self):
+        run = start_node('_scene:=' + os.path.join(SCENES, 'empty_group.yaml'), '__name:=empty_group')
+        self.assertEqual(run.returncode, 1, run.stdout + run.stderr)
+        self.assertIn('empty_group.yaml:8: bodies[0].groups.nowhere: selects no node', run.stderr)
+
     def test_missing_scene_file(self):
         run = start_node('_scene:=/nonexistent/scene.yaml', '__name:=missing_scene')
         self.assertEqual(run.returncode, 1)
