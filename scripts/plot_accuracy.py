@@ -41,6 +41,23 @@ MESHES = ["tetU_L1", "tetU_L2", "tetU_L3", "tetU_L4", "tetS_L1", "tetS_L2", "tet
 ERROR_FLOOR = 1e-9  # errors below this are drawn at it (a log axis has no zero)
 
 
+
+def log_axes(ax, title):
+    """Log-log axes with a small title, a grid and a legend."""
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_title(title, fontsize=9)
+    ax.grid(True, which="both", alpha=0.25)
+    ax.legend(fontsize=7)
+
+
+def save(fig, path, machine):
+    """Writes the figure with the machine it was measured on in its corner."""
+    fig.text(0.99, 0.005, machine, ha="right", va="bottom", fontsize=6, color="gray")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
 def read_rows(path):
     rows = []
     with open(path, newline="") as f:
@@ -136,10 +153,7 @@ def plot_case(case, rows, out_dir, machine):
                                  ("^", "warped, CG"), ("v", "linear FEM, CG"))]
     handles.append(plt.Line2D([], [], color="black", label="Pareto front (circled)"))
     ax.legend(handles=handles, fontsize=7, loc="best")
-    fig.text(0.99, 0.005, machine, ha="right", va="bottom", fontsize=6, color="gray")
-    fig.tight_layout()
-    fig.savefig(out_dir / f"accuracy_{case}.png", dpi=110)
-    plt.close(fig)
+    save(fig, out_dir / f"accuracy_{case}.png", machine)
 
 
 def sweep(rows, case, key, **fixed):
@@ -175,16 +189,9 @@ def plot_dt(rows, out_dir, machine):
             if case == "C2_damping":
                 ax.plot([r["h"] for r in single], [1 - r["theory_value"] for r in single], "--",
                         color=colour, linewidth=0.8)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
         ax.set_xlabel("implicit Euler step h = dt / substeps, s\n(hollow diamonds: substeps of 1/30 s)")
-        ax.set_title(title, fontsize=9)
-        ax.grid(True, which="both", alpha=0.25)
-        ax.legend(fontsize=7)
-    fig.text(0.99, 0.005, machine, ha="right", va="bottom", fontsize=6, color="gray")
-    fig.tight_layout()
-    fig.savefig(out_dir / "error_vs_dt.png", dpi=110)
-    plt.close(fig)
+        log_axes(ax, title)
+    save(fig, out_dir / "error_vs_dt.png", machine)
 
 
 def plot_tolerance(rows, out_dir, machine):
@@ -219,15 +226,8 @@ def plot_tolerance(rows, out_dir, machine):
                                linewidth=0.9)
             ax.set_xlabel("CG tolerance (relative residual)")
             ax.invert_xaxis()
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_title(title, fontsize=9)
-        ax.grid(True, which="both", alpha=0.25)
-        ax.legend(fontsize=7)
-    fig.text(0.99, 0.005, machine, ha="right", va="bottom", fontsize=6, color="gray")
-    fig.tight_layout()
-    fig.savefig(out_dir / "error_vs_tolerance.png", dpi=110)
-    plt.close(fig)
+        log_axes(ax, title)
+    save(fig, out_dir / "error_vs_tolerance.png", machine)
 
 
 def advice(rows, budgets=(0.05, 0.1, 0.3, 1, 3, 10, 30, 100)):

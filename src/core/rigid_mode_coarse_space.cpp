@@ -20,12 +20,10 @@ Eigen::Matrix3d crossMatrix(const Eigen::Vector3d& d) {
 }  // namespace
 
 RigidModeCoarseSpace::RigidModeCoarseSpace(const BlockSparseMatrix& k) {
-  // The finest aggregates (one ring) take the most work off the iterations (on the default
-  // scene's 425 nodes half of them), but their coarse system grows faster than the mesh, and its
-  // scalar triangular solves cost about four times a product's four-wide multiply-adds per number
-  // (on 2 025 nodes, where the factor holds 27 % as many numbers as K, a solve costs as much as a
-  // product and 23 % fewer iterations do not pay for it). Two rings keep it about ten times
-  // smaller.
+  // The finest aggregates (one ring) take the most work off the iterations, but their coarse
+  // system grows faster than the mesh, and its scalar triangular solves cost several times a
+  // product's four-wide multiply-adds per number: past kLargestFactorShare the iterations saved no
+  // longer pay for the solves. Two rings keep the coarse system far smaller.
   build(k, 1);
   if (2.0 * coarse_.factorNonZeros() > kLargestFactorShare * 9.0 * k.numBlocks()) build(k, 2);
 }

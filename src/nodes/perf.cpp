@@ -13,8 +13,8 @@
 // solver (perf/bullet_peer.h) on the two smaller meshes, ms per 0.01 s like Step. 0:
 // btDeformableLinearElasticityForce, linear elasticity in the rotated frame with implicit Euler
 // and CG, the core's model and scheme, one Bullet step. 1: btDeformableCorotatedForce, whose
-// elasticity Bullet integrates explicitly, in several Bullet steps: about 1.2 times the fewest
-// found stable (1.5k tets: 20 blow up, 22 do not; 9k: 32 blow up, 36 do not). One Newton
+// elasticity Bullet integrates explicitly, in several Bullet steps: a few more than the fewest
+// found stable (doc/performance.md says how many blew up). One Newton
 // iteration a Bullet step (Bullet's default five repeat the solve: see bullet_peer.h). Counters:
 // Bullet steps and CG iterations per 0.01 s.
 //

@@ -9,6 +9,7 @@ import xmlrpc.client
 
 import rosgraph
 import rospy
+from geometry_msgs.msg import WrenchStamped
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import Marker
 
@@ -69,6 +70,26 @@ def surface_marker(topic, timeout=10.0):
         marker = rospy.wait_for_message(topic, Marker, timeout=max(deadline - time.time(), 0.1))
         if marker.action != Marker.DELETEALL:
             return marker
+
+
+def wrench_stamped(frame, force=(0, 0, 0), torque=(0, 0, 0)):
+    m = WrenchStamped()
+    m.header.frame_id = frame
+    m.header.stamp = rospy.Time.now()
+    m.wrench.force.x, m.wrench.force.y, m.wrench.force.z = force
+    m.wrench.torque.x, m.wrench.torque.y, m.wrench.torque.z = torque
+    return m
+
+
+def grasp_when_in_tf(grasp, request, timeout=10.0):
+    """Calls the ~grasp service, again while the node's tf listener has not yet heard of the
+    request's frame (it hears of a new frame some time after the test's own buffer does)."""
+    deadline = rospy.Time.now() + rospy.Duration(timeout)
+    answer = grasp(request)
+    while not answer.success and 'not in tf' in answer.message and rospy.Time.now() < deadline:
+        rospy.sleep(0.1)
+        answer = grasp(request)
+    return answer
 
 
 def connected(*publishers, timeout=10.0):

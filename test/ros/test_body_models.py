@@ -12,7 +12,7 @@ from geometry_msgs.msg import Point, TransformStamped, WrenchStamped
 
 from deformable_sim.msg import Grasp
 from deformable_sim.srv import SetGrasp
-from sim_client import SimClient, connected, positions
+from sim_client import SimClient, connected, grasp_when_in_tf, positions
 
 PIVOT = (0.0, 0.3, 0.0)
 
@@ -97,12 +97,7 @@ class BodyModels(unittest.TestCase):
         request = Grasp(name='hand', body='cushion', action=Grasp.ATTACH, region=Grasp.REGION_BOX,
                         box_min=Point(-0.2, -0.2, -0.01), box_max=Point(0.2, 0.2, 0.01))
         request.header.frame_id = 'gripper'
-        # The node's tf listener may hear of the new frame a little after this test's buffer.
-        deadline = rospy.Time.now() + rospy.Duration(10.0)
-        answer = self.grasp(request)
-        while not answer.success and 'not in tf' in answer.message and rospy.Time.now() < deadline:
-            rospy.sleep(0.1)
-            answer = self.grasp(request)
+        answer = grasp_when_in_tf(self.grasp, request)
         self.assertTrue(answer.success, answer.message)
         held = self.body_state('cushion', lambda m: True)
         top_z = max(p[2] for p in positions(held))

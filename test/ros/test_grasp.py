@@ -14,7 +14,7 @@ from geometry_msgs.msg import Point, TransformStamped, WrenchStamped
 
 from deformable_sim.msg import Grasp
 from deformable_sim.srv import SetGrasp
-from sim_client import SimClient, positions
+from sim_client import SimClient, grasp_when_in_tf, positions
 
 MASS = 200.0 * 0.1 ** 3  # kg: density x volume of the block
 G = 9.81
@@ -70,13 +70,7 @@ class GraspTest(unittest.TestCase):
         request = Grasp(name='hand', body='block', action=Grasp.ATTACH, region=Grasp.REGION_BOX,
                         box_min=Point(-0.001, -0.001, -0.026), box_max=Point(0.026, 0.026, 0.001))
         request.header.frame_id = 'gripper'
-        # The node's tf listener hears of the gripper frame some time after its first broadcast.
-        deadline = rospy.Time.now() + rospy.Duration(10.0)
-        answer = self.grasp(request)
-        while not answer.success and 'not in tf' in answer.message and rospy.Time.now() < deadline:
-            rospy.sleep(0.1)
-            answer = self.grasp(request)
-        return answer
+        return grasp_when_in_tf(self.grasp, request)
 
     def setUp(self):
         self.sim.pause()

@@ -14,19 +14,10 @@ from geometry_msgs.msg import Point, Vector3, WrenchStamped
 from rosgraph_msgs.msg import Log
 
 from deformable_sim.msg import FixedNodes, NodeWrench
-from sim_client import SimClient, connected, all_finite, positions
+from sim_client import SimClient, all_finite, connected, positions, wrench_stamped
 
 NAN = float('nan')
 INF = float('inf')
-
-
-def wrench_stamped(frame, force=(0, 0, 0), torque=(0, 0, 0)):
-    m = WrenchStamped()
-    m.header.frame_id = frame
-    m.header.stamp = rospy.Time.now()
-    m.wrench.force.x, m.wrench.force.y, m.wrench.force.z = force
-    m.wrench.torque.x, m.wrench.torque.y, m.wrench.torque.z = torque
-    return m
 
 
 def node_wrench(body='beam', nodes=(), group='', force=(0, 0, 0), torque=(0, 0, 0)):

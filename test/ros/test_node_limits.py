@@ -10,14 +10,7 @@ import rostest
 import tf2_ros
 from geometry_msgs.msg import TransformStamped, WrenchStamped
 
-from sim_client import SimClient, all_finite, connected, positions
-
-
-def wrench_stamped(frame, force=(0, 0, 0)):
-    m = WrenchStamped()
-    m.header.frame_id = frame
-    m.wrench.force.x, m.wrench.force.y, m.wrench.force.z = force
-    return m
+from sim_client import SimClient, all_finite, connected, positions, wrench_stamped
 
 
 class NodeLimits(unittest.TestCase):

@@ -36,8 +36,7 @@ struct SolverSettings {
   /// Two-level and factorization: the coarse operator or the factorization is rebuilt every
   /// this many solves (and whenever the mass or stiffness coefficient changes); in between the
   /// last one still preconditions well, since rotations change little from one step to the next.
-  /// (A coarse rebuild costs about half a step of the default scene; every 20 solves instead of
-  /// every 10 took 0.1 more iterations a step there and on the cantilever and three-model scenes.)
+  /// (What a rebuild costs, and what a longer interval costs in iterations: doc/performance.md.)
   int coarse_refresh_interval = 20;
   /// Threads for the element loops, products with A and CG's vector operations (1: none
   /// started). Every count sums in the same order: results are identical, bit for bit.

@@ -1,6 +1,6 @@
 // Loops split over threads with OpenMP, or run inline on one thread: entering an OpenMP region
-// costs a futex system call even when the region runs on a single thread (~160 a step for CG,
-// a quarter of a small body's step).
+// costs a futex system call even when the region runs on a single thread, and CG enters many a
+// step: on a small body that is a good part of the step.
 #pragma once
 
 #include <algorithm>

@@ -1,9 +1,8 @@
 // A barrier for the threads of one OpenMP team that waits by spinning. The conjugate gradient's
 // threads meet five times an iteration, a few microseconds apart: libgomp's barrier makes a
-// futex system call at each one even when nobody sleeps (0.25 us against 0.04 us here for two
-// threads, ~20 us of a 0.43 ms step), and std::barrier puts waiters to sleep (measured slower
-// still). A wait longer than a few thousand spins (a thread descheduled) sleeps, and the last
-// thread to arrive wakes sleepers only when there are any.
+// futex system call at each one even when nobody sleeps, and std::barrier puts waiters to sleep
+// (both measured slower: doc/performance.md). A wait longer than a few thousand spins (a thread
+// descheduled) sleeps, and the last thread to arrive wakes sleepers only when there are any.
 #pragma once
 
 #include <atomic>
@@ -54,7 +53,7 @@ class SpinBarrier {
   }
 
  private:
-  static constexpr int kSpinsBeforeSleep = 4096;  // ~0.1 ms
+  static constexpr int kSpinsBeforeSleep = 4096;  // far longer than threads of one step wait
 
   static void pause() {
 #if defined(__x86_64__) || defined(__i386__)
