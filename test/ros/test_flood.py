@@ -154,7 +154,7 @@ HOSTILE = {
 GOOD = [
     (2.0, 'wrench', wrench('beam/tip', force=(0, 0.4, 0)), Applied.WRENCH),
     (6.0, 'node_wrench', node_wrench(group='tip', force=(0, 0, 0.2)), Applied.WRENCH),
-    (10.0, 'wrench', wrench('beam/tip'), Applied.WRENCH),  # zero: clears the first
+    (10.0, 'wrench', wrench('beam/tip'), Applied.CLEAR_WRENCH),  # zero: clears the first
     (13.0, 'fixed_nodes', fixed(body='beam', action=FIX, group='tip',
                                 translation=Vector3(0, 0, 0.02)), Applied.FIX),
     (17.0, 'fixed_nodes', fixed(body='beam', action=FixedNodes.RELEASE, group='tip'),
