@@ -9,12 +9,8 @@ namespace deformable_sim::core {
 namespace {
 
 Eigen::Isometry3d pose(const Body& body, const std::vector<int>& nodes = {}) {
-  const RigidFrame frame =
-      bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses(), nodes);
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = frame.origin;
-  pose.linear() = frame.rotation;
-  return pose;
+  return toIsometry(
+      bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses(), nodes));
 }
 
 std::string groupNames(const Body& body) {

@@ -20,13 +20,15 @@ std::vector<std::string> GraspFollower::plan(const CommandProcessor& commands,
   return lost;
 }
 
-std::vector<MoveGraspCommand> GraspFollower::moves(int s, int steps) const {
-  std::vector<MoveGraspCommand> moves;
+const std::vector<MoveGraspCommand>& GraspFollower::moves(int s, int steps) {
+  substep_.resize(moves_.size());
+  size_t k = 0;
   for (const auto& [grasp, poses] : moves_) {
     const auto& [from, to] = poses;
-    moves.push_back({grasp, s == steps ? to : interpolatePose(from, to, double(s) / steps)});
+    substep_[k].name = grasp;  // same length as last time: no allocation
+    substep_[k++].frame = s == steps ? to : interpolatePose(from, to, double(s) / steps);
   }
-  return moves;
+  return substep_;
 }
 
 }  // namespace deformable_sim::core

@@ -1,6 +1,6 @@
 #include "deformable_sim/core/live_settings.h"
 
-#include <cmath>
+#include <sstream>
 
 namespace deformable_sim::core {
 
@@ -63,8 +63,11 @@ std::vector<TuneCommand> tuneCommands(const Simulation& simulation, const LiveSe
     }
   }
   if (after.rate != before.rate) {
-    if (!(after.rate > 0.0) || !std::isfinite(after.rate)) {
-      throw CommandError("rate: " + std::to_string(after.rate) + " Hz, it must be finite and > 0");
+    if (!(after.rate >= kMinRate && after.rate <= kMaxRate)) {
+      std::ostringstream message;
+      message << "rate: " << after.rate << " Hz, it must be in [" << kMinRate << ", " << kMaxRate
+              << "] Hz";
+      throw CommandError(message.str());
     }
     TuneCommand tune;
     tune.dt = 1.0 / (after.rate * substeps);

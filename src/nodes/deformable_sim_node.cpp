@@ -1,7 +1,9 @@
 // deformable_sim_node: deformable bodies a ROS user drives with topics and watches in rviz.
 // Parameters, topics and services: README.md, or deformable_sim_node --help.
 #include <ros/ros.h>
+#include <ros/xmlrpc_manager.h>
 
+#include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -31,9 +33,16 @@ constexpr const char* kUsage =
     "            ~grasps/<name>/wrench /tf /diagnostics\n"
     "Services:   ~reset ~pause ~resume ~step ~grasp; live tuning: dynamic_reconfigure\n";
 
-volatile std::sig_atomic_t stop_requested = 0;
+std::atomic<bool> stop_requested{false};  // lock-free: safe in a signal handler
 
-void requestStop(int) { stop_requested = 1; }
+void requestStop(int) { stop_requested = true; }
+
+// rosnode kill, or a new node of the same name: the master's request to leave, answered as roscpp
+// does, but the node leaves through the same door as on Ctrl-C.
+void requestStopFromMaster(XmlRpc::XmlRpcValue&, XmlRpc::XmlRpcValue& result) {
+  stop_requested = true;
+  result = ros::xmlrpc::responseInt(1, "", 0);
+}
 
 }  // namespace
 
@@ -50,11 +59,13 @@ int main(int argc, char** argv) {
   std::signal(SIGTERM, requestStop);
   ros::NodeHandle node;
   ros::NodeHandle private_node("~");
+  ros::XMLRPCManager::instance()->unbind("shutdown");
+  ros::XMLRPCManager::instance()->bind("shutdown", requestStopFromMaster);
   try {
     deformable_sim::ros_layer::SimNode sim(node, private_node);
     ros::CallbackQueue& queue = *ros::getGlobalCallbackQueue();
     while (!stop_requested && ros::ok()) queue.callAvailable(ros::WallDuration(0.05));
-    sim.shutdown();
+    sim.clearMarkers();
     ros::WallDuration(0.2).sleep();  // the publishers' threads deliver the DELETEALL
   } catch (const std::exception& e) {
     ROS_FATAL("%s", e.what());

@@ -15,7 +15,7 @@ std::vector<geometry_msgs::TransformStamped> bodyFrames(const std::vector<core::
     t.header.stamp = stamp;
     t.header.frame_id = world_frame;
     t.child_frame_id = child;
-    t.transform = toTransform(toPose(frame));
+    t.transform = toTransform(core::toIsometry(frame));
     frames.push_back(t);
   };
   for (const core::Body& body : bodies) {

@@ -38,13 +38,6 @@ geometry_msgs::Transform toTransform(const Eigen::Isometry3d& pose) {
   return t;
 }
 
-Eigen::Isometry3d toPose(const core::RigidFrame& frame) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = frame.origin;
-  pose.linear() = frame.rotation;
-  return pose;
-}
-
 core::WrenchCommand toCommand(const NodeWrench& message, const Eigen::Isometry3d& frame_in_world) {
   core::WrenchCommand command;
   command.body = message.body;

@@ -69,14 +69,19 @@ const visualization_msgs::Marker& SurfaceMarkers::marker(const core::Body& body,
   return m;
 }
 
+visualization_msgs::Marker deleteAllMarker(const std_msgs::Header& header) {
+  visualization_msgs::Marker marker;
+  marker.header = header;
+  marker.action = visualization_msgs::Marker::DELETEALL;
+  marker.pose.orientation.w = 1.0;
+  return marker;
+}
+
 visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::Body>& bodies,
                                                    const core::CommandProcessor& commands,
                                                    const std_msgs::Header& header) {
   visualization_msgs::MarkerArray array;
-  visualization_msgs::Marker clear;
-  clear.header = header;
-  clear.action = visualization_msgs::Marker::DELETEALL;
-  array.markers.push_back(clear);
+  array.markers.push_back(deleteAllMarker(header));
   for (size_t b = 0; b < bodies.size(); ++b) {
     const core::Body& body = bodies[b];
     const Eigen::VectorXd& x = body.positions();

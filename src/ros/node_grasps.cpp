@@ -1,6 +1,7 @@
 #include "deformable_sim/ros/node_grasps.h"
 
 #include <geometry_msgs/WrenchStamped.h>
+#include <ros/names.h>
 
 #include "deformable_sim/core/rigid_frame.h"
 #include "deformable_sim/ros/conversions.h"
@@ -22,6 +23,12 @@ uint32_t NodeGrasps::handle(const core::Session& session, const Grasp& message) 
   if (message.action != Grasp::ATTACH) {
     throw core::CommandError("action " + std::to_string(message.action) +
                              " is neither ATTACH (0) nor RELEASE (1)");
+  }
+  // The name becomes a topic (~grasps/<name>/wrench) and a tf frame (<name>/object).
+  std::string invalid;
+  if (message.name.empty() || !ros::names::validate("grasps/" + message.name, invalid)) {
+    throw core::CommandError("grasp '" + message.name +
+                             "': not a valid ROS name (letters, digits, _ and /): " + invalid);
   }
   const auto nodes = static_cast<uint32_t>(apply_(attachCommand(session.simulation(), message)));
   follower_.follow(message.name, withoutLeadingSlash(message.header.frame_id));
@@ -121,8 +128,8 @@ void NodeGrasps::publish(const core::Session& session, const ros::Time& stamp,
     object.header.frame_id = frame;
     object.child_frame_id = frames_.prefix() + name + "/object";
     object.transform = toTransform(
-        grasp.frame.inverse() *
-        toPose(core::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses())));
+        grasp.frame.inverse() * core::toIsometry(core::bestFitFrame(
+                                    body.positions(), body.restPositions(), body.nodalMasses())));
     objects.push_back(object);
   }
   if (broadcaster && !objects.empty()) broadcaster->sendTransform(objects);

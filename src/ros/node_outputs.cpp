@@ -11,16 +11,9 @@ namespace deformable_sim::ros_layer {
 
 namespace {
 
-visualization_msgs::Marker deleteAll() {
-  visualization_msgs::Marker marker;
-  marker.action = visualization_msgs::Marker::DELETEALL;
-  marker.pose.orientation.w = 1.0;
-  return marker;
-}
-
 visualization_msgs::MarkerArray deleteAllArray() {
   visualization_msgs::MarkerArray array;
-  array.markers.push_back(deleteAll());
+  array.markers.push_back(deleteAllMarker());
   return array;
 }
 
@@ -35,7 +28,6 @@ NodeOutputs::NodeOutputs(ros::NodeHandle& node, ros::NodeHandle& private_node,
       surfaces_(session.simulation().bodies(), params.strain_colour_scale) {
   state_pub_ = private_node.advertise<BodyState>("state", 10);
   stats_pub_ = private_node.advertise<Stats>("stats", 10);
-  // A viewer that connects first forgets the markers of an earlier run of this node.
   mesh_pub_ = private_node.advertise<visualization_msgs::Marker>("mesh", 2);
   markers_pub_ = private_node.advertise<visualization_msgs::MarkerArray>("markers", 2);
   for (const core::Body& body : session.simulation().bodies()) {
@@ -44,14 +36,6 @@ NodeOutputs::NodeOutputs(ros::NodeHandle& node, ros::NodeHandle& private_node,
   }
   diagnostics_.setHardwareID("deformable_sim");
   diagnostics_.add("simulation", this, &NodeOutputs::diagnose);
-}
-
-bool NodeOutputs::newStamp(const ros::Time& now) {
-  if (!last_tf_stamp_.isZero() && now <= last_tf_stamp_ &&
-      now >= last_tf_stamp_ - ros::Duration(1.0))
-    return false;
-  last_tf_stamp_ = now;  // later, or a clock that went back (a looped bag): a new timeline
-  return true;
 }
 
 bool NodeOutputs::publishState(const core::Session& session, const ros::Time& now) {
@@ -64,7 +48,7 @@ bool NodeOutputs::publishState(const core::Session& session, const ros::Time& no
     state_message_.step = static_cast<uint64_t>(sim.stepCount());
     state_pub_.publish(state_message_);
   }
-  const bool send_tf = newStamp(now);
+  const bool send_tf = tf_stamps_.accept(static_cast<int64_t>(now.toNSec()));
   if (send_tf) {
     broadcaster_.sendTransform(
         bodyFrames(sim.bodies(), params_.world_frame, params_.frame_prefix, now));
@@ -99,7 +83,7 @@ void NodeOutputs::publishPeriodic(const core::Session& session, const TickStatus
 }
 
 void NodeOutputs::clearMarkers() {
-  mesh_pub_.publish(deleteAll());
+  mesh_pub_.publish(deleteAllMarker());
   markers_pub_.publish(deleteAllArray());
 }
 
@@ -108,7 +92,7 @@ void NodeOutputs::publishMarkers(const core::Session& session, const std_msgs::H
   if (mesh_pub_.getNumSubscribers() > 0) {
     // rviz, still showing an earlier run of this node, forgets its meshes (~markers start with
     // a DELETEALL anyway).
-    if (!mesh_cleared_) mesh_pub_.publish(deleteAll());
+    if (!mesh_cleared_) mesh_pub_.publish(deleteAllMarker());
     mesh_cleared_ = true;
     for (size_t b = 0; b < bodies.size(); ++b) {
       mesh_pub_.publish(surfaces_.marker(bodies[b], static_cast<int>(b), header));

@@ -2,12 +2,12 @@
 
 #include <ros/this_node.h>
 
-#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include "deformable_sim/core/default_scene.h"
+#include "deformable_sim/core/live_settings.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/ros/frame_resolver.h"
 
@@ -55,7 +55,8 @@ void readTiming(const ros::NodeHandle& node, NodeParameters& p) {
   require(p.substeps >= 1, "~substeps: must be >= 1");
   p.rate_hz = 1.0 / (p.scene.dt * p.substeps);
   param(node, "rate", p.rate_hz);
-  require(p.rate_hz > 0.0 && std::isfinite(p.rate_hz), "~rate: must be finite and > 0 Hz");
+  require(p.rate_hz >= core::kMinRate && p.rate_hz <= core::kMaxRate,
+          "~rate: must be finite and > 0 Hz, at most 1e5 (at least 1e-3)");
   p.scene.dt = 1.0 / (p.rate_hz * p.substeps);
   param(node, "start_paused", p.start_paused);
   param(node, "wrench_timeout", p.wrench_timeout_s);
@@ -76,7 +77,7 @@ void readLimits(const ros::NodeHandle& node, NodeParameters& p) {
   param(node, "max_torque", p.limits.max_torque);
   param(node, "max_target_distance", p.limits.max_target_distance);
   require(p.limits.max_force >= 0.0 && p.limits.max_torque >= 0.0,
-          "~max_force, ~max_torque: must be > 0 (or unset: the body's own bound)");
+          "~max_force, ~max_torque: must be >= 0 (0 or unset: the body's own bound)");
   require(p.limits.max_target_distance > 0.0, "~max_target_distance: must be > 0 m");
 }
 

@@ -25,7 +25,8 @@ ResimulatedBag::ResimulatedBag(const std::string& path, const std::string& node,
       scene_(scene),
       state_headers_(state_headers),
       marker_period_(1.0 / marker_rate),
-      surfaces_(bodies, 0.1) {
+      marker_schedule_(marker_period_),
+      surfaces_(bodies, kDefaultStrainScale) {
   try {
     bag_.open(path, rosbag::bagmode::Write);
   } catch (const rosbag::BagException& e) {
@@ -60,6 +61,8 @@ void ResimulatedBag::writeScene(const ros::Time& stamp) {
 }
 
 void ResimulatedBag::writeFrames(const core::ComparedState& state, const ros::Time& stamp) {
+  // States recorded under a coarse simulated clock may share a stamp: tf would warn.
+  if (!tf_stamps_.accept(static_cast<int64_t>(stamp.toNSec()))) return;
   tf2_msgs::TFMessage tf;
   tf.transforms =
       bodyFrames(state.simulation.bodies(), scene_.world_frame, scene_.frame_prefix, stamp);
@@ -72,12 +75,12 @@ void ResimulatedBag::writeSurface(const core::ComparedState& state,
   bag_.write(node_ + "/mesh", bagTime(header.stamp), surfaces_.marker(body, state.body, header));
 }
 
-// Every body's surface at the steps that come at the marker rate, and at an episode's start.
+// Every body's surface at the marker rate of simulated time (counted from the last time due, not
+// from the state: states at 100 Hz must give markers at 30 Hz, not 25), and at an episode's start.
 bool ResimulatedBag::markerDue(const core::ComparedState& state) {
   if (state.episode == last_episode_ && state.step == last_step_) return marker_due_;
-  const double time = state.simulation.time();
-  marker_due_ = state.episode != last_episode_ || time >= next_marker_time_;
-  if (marker_due_) next_marker_time_ = time + marker_period_;
+  if (state.episode != last_episode_) marker_schedule_ = core::PeriodicSchedule(marker_period_);
+  marker_due_ = marker_schedule_.due(state.simulation.time());
   last_episode_ = state.episode;
   last_step_ = state.step;
   return marker_due_;

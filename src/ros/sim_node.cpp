@@ -1,7 +1,5 @@
 #include "deformable_sim/ros/sim_node.h"
 
-#include <algorithm>
-
 #include "deformable_sim/Scene.h"
 #include "deformable_sim/core/body_activity.h"
 #include "deformable_sim/io/scene_file.h"

@@ -10,6 +10,7 @@
 #include "deformable_sim/core/grasp_follower.h"
 #include "deformable_sim/core/linked_obstacles.h"
 #include "deformable_sim/core/live_settings.h"
+#include "deformable_sim/core/once_per_stamp.h"
 #include "deformable_sim/core/periodic_schedule.h"
 #include "deformable_sim/core/pose_interpolation.h"
 #include "deformable_sim/core/real_time_factor.h"
@@ -154,6 +155,16 @@ TEST(PeriodicSchedule, StartsAgainWhenTheClockGoesBackOrStalls) {
   EXPECT_FALSE(schedule.due(20.01));
 }
 
+TEST(OncePerStamp, LetsEachStampThroughOnceAndANewTimelineStartAgain) {
+  OncePerStamp stamps;
+  EXPECT_TRUE(stamps.accept(5'000'000'000));
+  EXPECT_FALSE(stamps.accept(5'000'000'000));  // the timer fired twice at one time
+  EXPECT_FALSE(stamps.accept(4'990'000'000));
+  EXPECT_TRUE(stamps.accept(5'010'000'000));
+  EXPECT_TRUE(stamps.accept(1'000'000'000));  // a looped bag: seconds back
+  EXPECT_FALSE(stamps.accept(1'000'000'000));
+}
+
 TEST(RealTimeFactor, IsSimulatedTimeOverClockTimeOfTheLastSecond) {
   RealTimeFactor factor;
   EXPECT_EQ(factor.value(), 0.0);
@@ -250,9 +261,11 @@ TEST(LiveSettings, ImpossibleValuesAreRefusedNamingTheParameterNotClamped) {
   bad = before;
   bad.solver_tolerance = -1.0;
   EXPECT_NE(refusedWith(bad).find("tolerance"), std::string::npos);
-  bad = before;
-  bad.rate = 0.0;
-  EXPECT_NE(refusedWith(bad).find("rate"), std::string::npos);
+  for (const double rate : {0.0, 1e-4, 1e9, std::nan("")}) {
+    bad = before;
+    bad.rate = rate;  // a period no timer keeps
+    EXPECT_NE(refusedWith(bad).find("rate"), std::string::npos) << rate;
+  }
   bad = before;
   bad.body = "sponge";
   EXPECT_NE(refusedWith(bad).find("no body named 'sponge'"), std::string::npos);

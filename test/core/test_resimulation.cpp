@@ -33,9 +33,9 @@ std::vector<dc::Mesh> blockMeshes() {
 }
 
 // A session that records its own log (through its listener) and its states after every step.
-class RecordedSession {
+class SessionUnderRecord {
  public:
-  RecordedSession() : session_(blockScene(), blockMeshes()) {
+  SessionUnderRecord() : session_(blockScene(), blockMeshes()) {
     session_.setListener([this](const dc::AppliedCommand& c) { recording_.log.push_back(c); });
   }
   void record() {
@@ -87,7 +87,7 @@ dc::TuneCommand soften() {
 }
 
 // Episode 0 from the start: a push, fixed bottom, softer material, then let go of the push.
-void recordSession(RecordedSession& recorded) {
+void recordSession(SessionUnderRecord& recorded) {
   recorded.record();
   recorded.apply(push(0.5));
   recorded.run(10);
@@ -107,7 +107,7 @@ dc::ResimulationReport resimulate(dc::Recording recording, dc::SolverOverride so
 }  // namespace
 
 TEST(Resimulation, ARecordedLogIsReSimulatedBitForBit) {
-  RecordedSession recorded;
+  SessionUnderRecord recorded;
   recordSession(recorded);
   const dc::Recording& recording = recorded.recording();
   dc::Resimulation resimulation(blockScene(), blockMeshes(), recording);
@@ -131,7 +131,7 @@ TEST(Resimulation, ARecordedLogIsReSimulatedBitForBit) {
 }
 
 TEST(Resimulation, OtherSolverLimitsGiveAnotherResultFromWhereTheyMatter) {
-  RecordedSession recorded;
+  SessionUnderRecord recorded;
   recordSession(recorded);
   const dc::ResimulationReport report = resimulate(recorded.recording(), {1.0e-1, 1});
   EXPECT_GT(report.max_position_difference, 0.0);
@@ -142,7 +142,7 @@ TEST(Resimulation, OtherSolverLimitsGiveAnotherResultFromWhereTheyMatter) {
 }
 
 TEST(Resimulation, ALogMissingACommandDiffersFromTheStepAfterIt) {
-  RecordedSession recorded;
+  SessionUnderRecord recorded;
   recordSession(recorded);
   dc::Recording recording = recorded.recording();
   ASSERT_TRUE(std::holds_alternative<dc::TuneCommand>(recording.log[2].command));
@@ -155,7 +155,7 @@ TEST(Resimulation, ALogMissingACommandDiffersFromTheStepAfterIt) {
 }
 
 TEST(Resimulation, ALogThatStartsAtAResetIsReSimulatedFromThere) {
-  RecordedSession recorded;
+  SessionUnderRecord recorded;
   recorded.apply(push(0.5));
   recorded.run(5);
   // The recording starts here, in the middle of episode 0.
@@ -178,7 +178,7 @@ TEST(Resimulation, ALogThatStartsAtAResetIsReSimulatedFromThere) {
 }
 
 TEST(Resimulation, ALogThatStartsMidEpisodeWithoutAResetIsRefused) {
-  RecordedSession recorded;
+  SessionUnderRecord recorded;
   recorded.run(3);
   recorded.recording() = dc::Recording{};
   recorded.apply(push(0.5));
@@ -193,7 +193,7 @@ TEST(Resimulation, ALogThatStartsMidEpisodeWithoutAResetIsRefused) {
 }
 
 TEST(Resimulation, ALogWithoutStatesStartsWhereItsCommandsDo) {
-  RecordedSession recorded;
+  SessionUnderRecord recorded;
   recorded.run(3);
   recorded.apply(dc::ResetCommand{});
   recorded.run(2);
@@ -211,7 +211,7 @@ TEST(Resimulation, ALogWithoutStatesStartsWhereItsCommandsDo) {
 }
 
 TEST(Resimulation, AnOutOfOrderLogIsAnError) {
-  RecordedSession recorded;
+  SessionUnderRecord recorded;
   recordSession(recorded);
   dc::Recording recording = recorded.recording();
   std::swap(recording.log[1], recording.log[2]);  // the fix (step 10) before the tune (step 20)
@@ -224,7 +224,7 @@ TEST(Resimulation, AnOutOfOrderLogIsAnError) {
 }
 
 TEST(Resimulation, ARecordedStateOfAnotherSizeIsAnError) {
-  RecordedSession recorded;
+  SessionUnderRecord recorded;
   recordSession(recorded);
   dc::Recording recording = recorded.recording();
   dc::RecordedState& state = recording.states.begin()->second;
@@ -233,7 +233,7 @@ TEST(Resimulation, ARecordedStateOfAnotherSizeIsAnError) {
 }
 
 TEST(Resimulation, ACommandTheReSimulationRefusesIsCounted) {
-  RecordedSession recorded;
+  SessionUnderRecord recorded;
   recordSession(recorded);
   dc::Recording recording = recorded.recording();
   recording.log.push_back(dc::AppliedCommand{0, 35, dc::ReleaseGraspCommand{"no such grasp"}});

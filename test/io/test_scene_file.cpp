@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -267,8 +268,11 @@ TEST(SceneFile, BodiesChooseTheirModelAndChangeTheScenesEffects) {
 class SceneFileOnDisk : public ::testing::Test {
  protected:
   void SetUp() override {
-    directory_ = std::filesystem::temp_directory_path() / "deformable_sim_test_scene_file";
-    std::filesystem::create_directories(directory_);
+    // Unique: test runs of several workspaces on one machine must not delete each other's files.
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / "deformable_sim_scene_XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    directory_ = pattern;
   }
   void TearDown() override { std::filesystem::remove_all(directory_); }
 

@@ -9,11 +9,12 @@ import xmlrpc.client
 
 import rosgraph
 import rospy
+import tf2_ros
 from geometry_msgs.msg import WrenchStamped
 from std_srvs.srv import Trigger
 from visualization_msgs.msg import Marker
 
-from deformable_sim.msg import BodyState, Stats
+from deformable_sim.msg import BodyState, NodeWrench, Stats
 from deformable_sim.srv import Step
 
 
@@ -72,10 +73,32 @@ def surface_marker(topic, timeout=10.0):
             return marker
 
 
+class FrameBroadcaster:
+    """Broadcasts one tf frame at 50 Hz, as a robot would; set `transform` to move it."""
+
+    def __init__(self):
+        self.transform = None
+        self._broadcaster = tf2_ros.TransformBroadcaster()
+        self._timer = rospy.Timer(rospy.Duration(0.02), self._send)
+
+    def _send(self, event):
+        transform = self.transform
+        if transform is not None:
+            transform.header.stamp = rospy.Time.now()
+            self._broadcaster.sendTransform(transform)
+
+
+def node_wrench(body='beam', nodes=(), group='', force=(0, 0, 0), torque=(0, 0, 0), frame=''):
+    m = NodeWrench(body=body, nodes=list(nodes), group=group)
+    m.header.frame_id = frame
+    m.wrench.force.x, m.wrench.force.y, m.wrench.force.z = force
+    m.wrench.torque.x, m.wrench.torque.y, m.wrench.torque.z = torque
+    return m
+
+
 def wrench_stamped(frame, force=(0, 0, 0), torque=(0, 0, 0)):
     m = WrenchStamped()
     m.header.frame_id = frame
-    m.header.stamp = rospy.Time.now()
     m.wrench.force.x, m.wrench.force.y, m.wrench.force.z = force
     m.wrench.torque.x, m.wrench.torque.y, m.wrench.torque.z = torque
     return m

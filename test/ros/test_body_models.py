@@ -12,7 +12,7 @@ from geometry_msgs.msg import Point, TransformStamped, WrenchStamped
 
 from deformable_sim.msg import Grasp
 from deformable_sim.srv import SetGrasp
-from sim_client import SimClient, connected, grasp_when_in_tf, positions
+from sim_client import FrameBroadcaster, SimClient, connected, grasp_when_in_tf, positions
 
 PIVOT = (0.0, 0.3, 0.0)
 
@@ -28,15 +28,7 @@ class BodyModels(unittest.TestCase):
         connected(cls.wrench_pub)
         rospy.wait_for_service('/deformable_sim/grasp')
         cls.grasp = rospy.ServiceProxy('/deformable_sim/grasp', SetGrasp)
-        cls.broadcaster = tf2_ros.TransformBroadcaster()
-        cls.gripper = None
-        cls.timer = rospy.Timer(rospy.Duration(0.02), cls.broadcast)
-
-    @classmethod
-    def broadcast(cls, event):
-        if cls.gripper is not None:
-            cls.gripper.header.stamp = rospy.Time.now()
-            cls.broadcaster.sendTransform(cls.gripper)
+        cls.frames = FrameBroadcaster()
 
     def body_state(self, body, predicate=lambda m: True):
         return self.sim.wait('state', predicate, body=body)
@@ -90,7 +82,7 @@ class BodyModels(unittest.TestCase):
         gripper.transform.translation.x, gripper.transform.translation.y = 0.0, -0.3
         gripper.transform.translation.z = -0.2
         gripper.transform.rotation.w = 1.0
-        type(self).gripper = gripper
+        self.frames.transform = gripper
         self.assertTrue(self.buffer.can_transform('world', 'gripper', rospy.Time(0),
                                                   rospy.Duration(10.0)))
         # The top face, a little below z = -0.2 where its weight squashes the cushion.

@@ -43,7 +43,8 @@ from rosgraph_msgs.msg import Log
 
 from deformable_sim.msg import Applied, FixedNodes, Grasp, NodeWrench, Stats
 from deformable_sim.srv import SetGrasp
-from sim_client import SimClient, connected, start_recording, stop_recording
+from sim_client import (SimClient, connected, node_wrench, start_recording, stop_recording,
+                        wrench_stamped)
 
 NODE = '/deformable_sim'
 TOPICS = [NODE + '/scene', NODE + '/applied', NODE + '/state']
@@ -57,21 +58,6 @@ QUEUE = 100           # the node's subscriber queue on every command topic
 WINDOW = 4 * 90       # messages in flight at most: < QUEUE on each of the 4 topics
 GRIPPER = 'flood_gripper'  # a tf frame near the beam's tip, so that grasps get past the frame check
 
-
-def wrench(frame, force=(0, 0, 0), torque=(0, 0, 0)):
-    m = WrenchStamped()
-    m.header.frame_id = frame
-    m.wrench.force = Vector3(*force)
-    m.wrench.torque = Vector3(*torque)
-    return m
-
-
-def node_wrench(body='beam', nodes=(), group='', force=(0, 0, 0), torque=(0, 0, 0), frame=''):
-    m = NodeWrench(body=body, nodes=list(nodes), group=group)
-    m.header.frame_id = frame
-    m.wrench.force = Vector3(*force)
-    m.wrench.torque = Vector3(*torque)
-    return m
 
 
 def fixed(frame='', **fields):
@@ -91,16 +77,16 @@ FIX, SPHERE = FixedNodes.FIX, Grasp.REGION_SPHERE
 # bodies, groups and grasps, regions that hold no node, nothing selected at all, bad constants.
 HOSTILE = {
     'wrench': [
-        wrench('beam/tip', force=(0, 0, NAN)),
-        wrench('beam', torque=(INF, 0, 0)),
-        wrench('beam/tip', force=(0, 0, -1e12)),
-        wrench('beam', force=(-INF, NAN, 1e308)),
-        wrench('intruder_frame', force=(0, 0, -1)),
-        wrench('beam/nope', force=(0, 0, -1)),
-        wrench('sponge', force=(0, 1, 0)),
-        wrench('', force=(1, 0, 0)),
-        wrench('intruder_frame'),  # zero wrenches that clear nothing name their target too
-        wrench('beam/nope'),
+        wrench_stamped('beam/tip', force=(0, 0, NAN)),
+        wrench_stamped('beam', torque=(INF, 0, 0)),
+        wrench_stamped('beam/tip', force=(0, 0, -1e12)),
+        wrench_stamped('beam', force=(-INF, NAN, 1e308)),
+        wrench_stamped('intruder_frame', force=(0, 0, -1)),
+        wrench_stamped('beam/nope', force=(0, 0, -1)),
+        wrench_stamped('sponge', force=(0, 1, 0)),
+        wrench_stamped('', force=(1, 0, 0)),
+        wrench_stamped('intruder_frame'),  # zero wrenches that clear nothing name their target too
+        wrench_stamped('beam/nope'),
     ],
     'node_wrench': [
         node_wrench(nodes=[123456, -7], force=(0, 0, -1)),
@@ -152,9 +138,9 @@ HOSTILE = {
 # The good commands, at seconds into the flood, on the same topics, and the ~applied kind each
 # must produce.
 GOOD = [
-    (2.0, 'wrench', wrench('beam/tip', force=(0, 0.4, 0)), Applied.WRENCH),
+    (2.0, 'wrench', wrench_stamped('beam/tip', force=(0, 0.4, 0)), Applied.WRENCH),
     (6.0, 'node_wrench', node_wrench(group='tip', force=(0, 0, 0.2)), Applied.WRENCH),
-    (10.0, 'wrench', wrench('beam/tip'), Applied.CLEAR_WRENCH),  # zero: clears the first
+    (10.0, 'wrench', wrench_stamped('beam/tip'), Applied.CLEAR_WRENCH),  # zero: clears the first
     (13.0, 'fixed_nodes', fixed(body='beam', action=FIX, group='tip',
                                 translation=Vector3(0, 0, 0.02)), Applied.FIX),
     (17.0, 'fixed_nodes', fixed(body='beam', action=FixedNodes.RELEASE, group='tip'),

@@ -14,7 +14,7 @@ from geometry_msgs.msg import Point, TransformStamped, WrenchStamped
 
 from deformable_sim.msg import Grasp
 from deformable_sim.srv import SetGrasp
-from sim_client import SimClient, grasp_when_in_tf, positions
+from sim_client import FrameBroadcaster, SimClient, grasp_when_in_tf, positions
 
 MASS = 200.0 * 0.1 ** 3  # kg: density x volume of the block
 G = 9.81
@@ -39,13 +39,11 @@ class GraspTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('test_grasp')
         cls.sim = SimClient()
-        cls.broadcaster = tf2_ros.TransformBroadcaster()
+        cls.frames = FrameBroadcaster()
         cls.buffer = tf2_ros.Buffer()
         cls.listener = tf2_ros.TransformListener(cls.buffer)
         rospy.wait_for_service('/deformable_sim/grasp')
         cls.grasp = rospy.ServiceProxy('/deformable_sim/grasp', SetGrasp)
-        cls.gripper = None
-        cls.timer = rospy.Timer(rospy.Duration(0.02), cls.broadcast)
 
     def move_gripper(self, translation, r=np.eye(3)):
         """Sets the gripper's pose (broadcast at 50 Hz, as a robot would) and waits until the node
@@ -56,14 +54,8 @@ class GraspTest(unittest.TestCase):
         t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = translation
         (t.transform.rotation.x, t.transform.rotation.y, t.transform.rotation.z,
          t.transform.rotation.w) = quaternion(r)
-        type(self).gripper = t
+        self.frames.transform = t
         rospy.sleep(0.3)
-
-    @classmethod
-    def broadcast(cls, event):
-        if cls.gripper is not None:
-            cls.gripper.header.stamp = rospy.Time.now()
-            cls.broadcaster.sendTransform(cls.gripper)
 
     def attach_top_corner(self):
         """Grasps the nodes within 2.6 cm of the block's top corner (0, 0, 0.1)."""
@@ -155,6 +147,13 @@ class GraspTest(unittest.TestCase):
         self.assertFalse(answer.success)
         self.assertIn('finger', answer.message)
         self.assertFalse(self.grasp(Grasp(name='nothing', action=Grasp.RELEASE)).success)
+        # A name that cannot be a topic (~grasps/<name>/wrench) is refused before anything is held.
+        dashed = Grasp(name='left-hand', action=Grasp.ATTACH, region=Grasp.REGION_SPHERE,
+                       sphere_radius=0.05)
+        dashed.header.frame_id = 'gripper'
+        answer = self.grasp(dashed)
+        self.assertFalse(answer.success)
+        self.assertIn("grasp 'left-hand': not a valid ROS name", answer.message)
         stats = self.sim.wait('stats')
         self.assertEqual(stats.bodies[0].fixed_nodes, 0)
 

@@ -5,7 +5,6 @@
 The scene has no gravity and no load, so the beam stays at rest (to round-off) unless a command
 moves it.
 """
-import math
 import unittest
 
 import rospy
@@ -14,17 +13,11 @@ from geometry_msgs.msg import Point, Vector3, WrenchStamped
 from rosgraph_msgs.msg import Log
 
 from deformable_sim.msg import FixedNodes, NodeWrench
-from sim_client import SimClient, all_finite, connected, positions, wrench_stamped
+from sim_client import (SimClient, all_finite, connected, node_wrench, positions,
+                        wrench_stamped)
 
 NAN = float('nan')
 INF = float('inf')
-
-
-def node_wrench(body='beam', nodes=(), group='', force=(0, 0, 0), torque=(0, 0, 0)):
-    m = NodeWrench(body=body, nodes=list(nodes), group=group)
-    m.wrench.force.x, m.wrench.force.y, m.wrench.force.z = force
-    m.wrench.torque.x, m.wrench.torque.y, m.wrench.torque.z = torque
-    return m
 
 
 class HostileInput(unittest.TestCase):

@@ -6,7 +6,6 @@ import unittest
 import rospy
 import rostest
 import tf2_ros
-from visualization_msgs.msg import Marker
 
 from sim_client import SimClient, surface_marker
 

@@ -8,7 +8,6 @@ import subprocess
 import tempfile
 import unittest
 
-import rospkg
 import rospy
 import rostest
 from geometry_msgs.msg import WrenchStamped

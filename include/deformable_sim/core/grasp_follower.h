@@ -35,11 +35,13 @@ class GraspFollower {
   /// its grasp where it is. Returns the grasps whose frames had none.
   std::vector<std::string> plan(const CommandProcessor& commands, const FramePose& pose);
   /// The moves after substep `s` of `steps` (1 <= s <= steps): exactly the target at the last.
-  std::vector<MoveGraspCommand> moves(int s, int steps) const;
+  /// Valid until the next call.
+  const std::vector<MoveGraspCommand>& moves(int s, int steps);
 
  private:
   std::map<std::string, std::string> frames_;
   std::map<std::string, std::pair<Eigen::Isometry3d, Eigen::Isometry3d>> moves_;  ///< from, to
+  std::vector<MoveGraspCommand> substep_;  ///< the moves of one substep, reused
 };
 
 }  // namespace deformable_sim::core

@@ -10,6 +10,11 @@
 
 namespace deformable_sim::core {
 
+/// The rates (Hz) a driver's timer may tick at: a step of a thousand seconds at the slowest, a
+/// period a timer can still keep at the fastest.
+constexpr double kMinRate = 1.0e-3;
+constexpr double kMaxRate = 1.0e5;
+
 struct LiveSettings {
   std::string body;  ///< the body the material, damping and solver settings apply to; "": all
   double youngs_modulus = 0.0;     ///< Pa
@@ -27,7 +32,8 @@ LiveSettings liveSettings(const Body& body, double rate);
 
 /// The commands that change what differs between `before` and `after`: per body (every body, or
 /// the one `after.body` names), then the step dt = 1 / (rate substeps) when the rate changed.
-/// Throws CommandError when `after.body` names no body, or when the rate is not finite and > 0.
+/// Throws CommandError when `after.body` names no body, or when the rate is outside
+/// [kMinRate, kMaxRate].
 std::vector<TuneCommand> tuneCommands(const Simulation& simulation, const LiveSettings& before,
                                       const LiveSettings& after, int substeps);
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <vector>
 
 namespace deformable_sim::core {
@@ -13,6 +14,14 @@ struct RigidFrame {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  ///< proper rotation
   Eigen::Vector3d rest_origin = Eigen::Vector3d::Zero();   ///< rest mass centroid c0, m
 };
+
+/// The frame as a pose in the world: origin at the current centroid.
+inline Eigen::Isometry3d toIsometry(const RigidFrame& frame) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = frame.origin;
+  pose.linear() = frame.rotation;
+  return pose;
+}
 
 /// Best-fit frame of the nodes `nodes` (all nodes when empty) of stacked 3n positions x, rest
 /// positions x0 and masses m: c = Σ m x / Σ m, rotation = polar rotation of

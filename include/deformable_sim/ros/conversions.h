@@ -23,8 +23,6 @@ geometry_msgs::Point toPoint(const Eigen::Vector3d& v);
 geometry_msgs::Vector3 toVector3(const Eigen::Vector3d& v);
 Eigen::Isometry3d toEigen(const geometry_msgs::Transform& t);
 geometry_msgs::Transform toTransform(const Eigen::Isometry3d& pose);
-/// The pose of a best-fit frame in the world: origin at the current centroid.
-Eigen::Isometry3d toPose(const core::RigidFrame& frame);
 
 /// A NodeWrench whose frame is `frame_in_world` (the pose of header.frame_id in the world frame).
 core::WrenchCommand toCommand(const NodeWrench& message, const Eigen::Isometry3d& frame_in_world);

@@ -14,6 +14,9 @@
 
 namespace deformable_sim::ros_layer {
 
+/// The strain a surface vertex is drawn red at, unless the node is told otherwise.
+constexpr double kDefaultStrainScale = 0.1;
+
 /// The bodies' surfaces as rviz markers, for the node's ~mesh and the replay's output bag: a
 /// TRIANGLE_LIST a body, three points per triangle in the mesh's outward order, namespace = the
 /// body's name. A body with stress_colouring has its vertices coloured by their strain, from blue
@@ -31,6 +34,9 @@ class SurfaceMarkers {
   std::vector<double> strain_;
   visualization_msgs::Marker marker_;
 };
+
+/// A marker that tells rviz to forget every marker of its topic.
+visualization_msgs::Marker deleteAllMarker(const std_msgs::Header& header = {});
 
 /// Markers of what acts on the bodies: fixed nodes (red spheres), grasped nodes (yellow spheres),
 /// node groups (blue points) and applied wrenches (green arrows from the application point, 0.1 m

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "deformable_sim/BodyState.h"
+#include "deformable_sim/core/once_per_stamp.h"
 #include "deformable_sim/core/periodic_schedule.h"
 #include "deformable_sim/core/refusal_log.h"
 #include "deformable_sim/core/session.h"
@@ -39,8 +40,6 @@ class NodeOutputs {
   tf2_ros::TransformBroadcaster& broadcaster() { return broadcaster_; }
 
  private:
-  /// Whether tf may be sent at `now` (later than the last stamp sent); remembers `now` if so.
-  bool newStamp(const ros::Time& now);
   void publishMarkers(const core::Session& session, const std_msgs::Header& header);
   void publishStats(const core::Session& session, const TickStatus& status,
                     const core::RefusalLog& refusals, const ros::Time& now);
@@ -52,7 +51,7 @@ class NodeOutputs {
   tf2_ros::TransformBroadcaster broadcaster_;
   diagnostic_updater::Updater diagnostics_;
   core::PeriodicSchedule marker_schedule_, stats_schedule_;
-  ros::Time last_tf_stamp_;
+  core::OncePerStamp tf_stamps_;
   bool mesh_cleared_ = false;  ///< the first publication on ~mesh was a DELETEALL
   SurfaceMarkers surfaces_;
   BodyState state_message_;

@@ -7,6 +7,7 @@
 
 #include "deformable_sim/core/commands.h"
 #include "deformable_sim/core/scene.h"
+#include "deformable_sim/ros/markers.h"
 
 namespace deformable_sim::ros_layer {
 
@@ -22,7 +23,7 @@ struct NodeParameters {
   double wrench_timeout_s = 0.0;  ///< 0: wrenches stay until replaced
   double stats_rate_hz = 10.0;
   double marker_rate_hz = 30.0;
-  double strain_colour_scale = 0.1;
+  double strain_colour_scale = kDefaultStrainScale;
   int max_steps_per_call = 1000;  ///< the most ~step takes in one call
   core::CommandLimits limits;
 };

@@ -12,6 +12,8 @@
 
 #include "deformable_sim/BodyState.h"
 #include "deformable_sim/Scene.h"
+#include "deformable_sim/core/once_per_stamp.h"
+#include "deformable_sim/core/periodic_schedule.h"
 #include "deformable_sim/core/resimulation.h"
 #include "deformable_sim/ros/markers.h"
 
@@ -43,13 +45,14 @@ class ResimulatedBag {
   const Scene& scene_;
   const std::vector<std_msgs::Header>& state_headers_;
   double marker_period_;  ///< s of simulated time
+  core::PeriodicSchedule marker_schedule_;
+  core::OncePerStamp tf_stamps_;
   SurfaceMarkers surfaces_;
   bool scene_written_ = false;
   // Which step the last state belonged to, and whether that step gets markers.
   long last_episode_ = -1, last_step_ = -1;
   bool marker_due_ = false;
-  double next_marker_time_ = 0.0;  ///< s
-  BodyState state_message_;        ///< kept between states so that its arrays are reused
+  BodyState state_message_;  ///< kept between states so that its arrays are reused
 };
 
 }  // namespace deformable_sim::ros_layer

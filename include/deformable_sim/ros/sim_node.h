@@ -38,8 +38,8 @@ class SimNode {
   /// Reads the parameters and the scene (~scene, or the built-in default scene) and starts the
   /// timer. Throws std::runtime_error naming the parameter or scene key when it cannot start.
   SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node);
-  /// Tells rviz to forget this node's markers.
-  void shutdown() { outputs_->clearMarkers(); }
+  /// Tells rviz to forget this node's markers (before it leaves).
+  void clearMarkers() { outputs_->clearMarkers(); }
 
  private:
   void startSession();
