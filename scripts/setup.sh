@@ -25,7 +25,7 @@ packages=(
   build-essential cmake libgtest-dev libeigen3-dev libyaml-cpp-dev libbenchmark-dev
   libbullet-dev pkg-config
   ros-core-dev catkin python3-catkin-pkg python3-rostest rosbash
-  libtf2-ros-dev libstd-srvs-dev libdiagnostic-updater-dev liburdfdom-dev
+  libtf2-ros-dev libstd-srvs-dev libdiagnostic-updater-dev liburdfdom-dev libassimp-dev
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   python3-geometry-msgs python3-visualization-msgs python3-std-srvs python3-tf2-msgs
   python3-tf2-ros python3-diagnostic-msgs python3-sensor-msgs ros-robot-state-publisher

@@ -3,8 +3,14 @@
 namespace deformable_sim::core {
 
 void ContactState::hold(Body& body) {
+  const Eigen::VectorXd& v = body.velocities();
   for (int i = 0; i < body.numNodes(); ++i) {
-    held_[i] = !normal_[i].isZero(0.0) && !body.isConstrained(i);
+    // Only a node that sticks (friction stopped it, or it was held): holding a sliding node
+    // would stop it for a whole step, and a frictionless block on a slope would creep down
+    // instead of sliding with g sin θ.
+    const Eigen::Vector3d velocity = v.segment<3>(3 * i);
+    const bool sticks = (velocity - velocity.dot(normal_[i]) * normal_[i]).isZero(0.0);
+    held_[i] = !normal_[i].isZero(0.0) && sticks && !body.isConstrained(i);
     if (held_[i]) body.holdNode(i);
   }
 }

@@ -30,6 +30,9 @@ void validate(const Shape& shape, const std::string& what) {
         throw std::invalid_argument(what + ": a cylinder needs a finite radius and length > 0 m");
       }
       break;
+    case Shape::Kind::kMesh:
+      if (!shape.mesh) throw std::invalid_argument(what + ": a mesh shape needs its triangles");
+      break;
   }
 }
 
@@ -116,6 +119,8 @@ double signedDistance(const Shape& shape, const Eigen::Vector3d& p, Eigen::Vecto
     case Shape::Kind::kCylinder:
       nearest = nearestOnCylinder(shape.radius, shape.length, p);
       break;
+    case Shape::Kind::kMesh:
+      return shape.mesh->signedDistance(p, surface, normal);
   }
   if (surface) *surface = nearest.surface;
   if (normal) *normal = nearest.normal;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -13,6 +14,7 @@
 
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/io/mesh_reader.h"
+#include "deformable_sim/io/triangle_mesh_reader.h"
 
 namespace deformable_sim::io {
 
@@ -21,8 +23,10 @@ namespace {
 // Reads typed values out of YAML nodes; every error names the source, the line and the key.
 class SceneParser {
  public:
-  SceneParser(std::string source, std::string base_directory)
-      : source_(std::move(source)), base_directory_(std::move(base_directory)) {}
+  SceneParser(std::string source, std::string base_directory, ObstacleMeshLoader load_mesh)
+      : source_(std::move(source)),
+        base_directory_(std::move(base_directory)),
+        load_mesh_(std::move(load_mesh)) {}
 
   core::SceneSpec parse(const YAML::Node& root) {
     core::SceneSpec scene;
@@ -178,7 +182,7 @@ class SceneParser {
     if (!obstacles) return;
     if (!obstacles.IsSequence()) fail(obstacles, "obstacles", "expected a list of obstacles");
     for (size_t k = 0; k < obstacles.size(); ++k) {
-      shapes.push_back(parseObstacle(obstacles[k], "obstacles[" + std::to_string(k) + "]"));
+      shapes.push_back(parseObstacle(obstacles[k], sceneObstacleKey(static_cast<int>(k))));
     }
   }
 
@@ -512,12 +516,33 @@ class SceneParser {
 
   core::PlacedShape parseObstacle(const YAML::Node& node, const std::string& key) const {
     expectMap(node, key);
-    checkKeys(node, key, {"name", "box", "sphere", "cylinder", "position", "rpy"});
+    checkKeys(node, key, {"name", "box", "sphere", "cylinder", "mesh", "position", "rpy"});
     core::PlacedShape obstacle;
     obstacle.name = node["name"] ? text(node["name"], key + ".name") : key;
-    const int kinds = (node["box"] ? 1 : 0) + (node["sphere"] ? 1 : 0) + (node["cylinder"] ? 1 : 0);
-    if (kinds != 1) fail(node, key, "expected exactly one of: box, sphere, cylinder");
-    core::Shape& shape = obstacle.shape;
+    const int kinds = (node["box"] ? 1 : 0) + (node["sphere"] ? 1 : 0) +
+                      (node["cylinder"] ? 1 : 0) + (node["mesh"] ? 1 : 0);
+    if (kinds != 1) fail(node, key, "expected exactly one of: box, sphere, cylinder, mesh");
+    obstacle.shape = node["mesh"] ? parseMeshShape(node["mesh"], key) : parsePrimitive(node, key);
+    try {
+      core::validate(obstacle.shape, key);
+    } catch (const std::invalid_argument& e) {
+      fail(node, key, e.what());
+    }
+    if (node["position"])
+      obstacle.pose.translation() = vector3(node["position"], key + ".position");
+    if (node["rpy"]) {
+      const Eigen::Vector3d rpy = vector3(node["rpy"], key + ".rpy");
+      obstacle.pose.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
+                                Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+                                Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
+                                   .toRotationMatrix();
+    }
+    return obstacle;
+  }
+
+  // The box, sphere or cylinder of an obstacle entry.
+  core::Shape parsePrimitive(const YAML::Node& node, const std::string& key) const {
+    core::Shape shape;
     if (const YAML::Node box = node["box"]) {
       expectMap(box, key + ".box");
       checkKeys(box, key + ".box", {"size"});
@@ -541,21 +566,39 @@ class SceneParser {
       shape.radius = positive(cylinder["radius"], key + ".cylinder.radius");
       shape.length = positive(cylinder["length"], key + ".cylinder.length");
     }
+    return shape;
+  }
+
+  // {file: ramp.stl, scale: [1, 1, 1]}: read here, so that a bad file is reported at its line.
+  core::Shape parseMeshShape(const YAML::Node& node, const std::string& obstacle_key) const {
+    const std::string key = obstacle_key + ".mesh";
+    expectMap(node, key);
+    checkKeys(node, key, {"file", "scale"});
+    if (!node["file"]) fail(node, key + ".file", "missing");
+    Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+    if (node["scale"]) {
+      scale = vector3(node["scale"], key + ".scale");
+      if ((scale.array() == 0.0).any()) fail(node["scale"], key + ".scale", "must not be 0");
+    }
+    core::Shape shape;
+    shape.kind = core::Shape::Kind::kMesh;
     try {
-      core::validate(shape, key);
-    } catch (const std::invalid_argument& e) {
-      fail(node, key, e.what());
+      const std::string path = resolveMeshUri(text(node["file"], key + ".file"));
+      std::filesystem::path file = path;
+      if (file.is_relative()) file = std::filesystem::path(base_directory_) / file;
+      const std::string name = file.lexically_normal().string();
+      try {
+        shape.mesh =
+            load_mesh_
+                ? load_mesh_(obstacle_key, name, scale)
+                : std::make_shared<const core::TriangleMeshShape>(readTriangleMesh(name, scale));
+      } catch (const std::invalid_argument& e) {
+        throw TriangleMeshError("mesh file '" + name + "': " + e.what());
+      }
+    } catch (const TriangleMeshError& e) {
+      fail(node["file"], key + ".file", e.what());
     }
-    if (node["position"])
-      obstacle.pose.translation() = vector3(node["position"], key + ".position");
-    if (node["rpy"]) {
-      const Eigen::Vector3d rpy = vector3(node["rpy"], key + ".rpy");
-      obstacle.pose.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
-                                Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
-                                Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
-                                   .toRotationMatrix();
-    }
-    return obstacle;
+    return shape;
   }
 
   core::LoadSpec parseLoad(const YAML::Node& node, const std::string& key) const {
@@ -588,20 +631,23 @@ class SceneParser {
 
   std::string source_;
   std::string base_directory_;
+  ObstacleMeshLoader load_mesh_;      // empty: from the file
   std::map<std::string, int> lines_;  // see core::SceneSource::lines
 };
 
 }  // namespace
 
+std::string sceneObstacleKey(int index) { return "obstacles[" + std::to_string(index) + "]"; }
+
 core::SceneSpec parseScene(const std::string& yaml_text, const std::string& source,
-                           const std::string& base_directory) {
+                           const std::string& base_directory, const ObstacleMeshLoader& load_mesh) {
   YAML::Node root;
   try {
     root = YAML::Load(yaml_text);
   } catch (const YAML::Exception& e) {
     throw SceneError(source + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
   }
-  return SceneParser(source, base_directory).parse(root);
+  return SceneParser(source, base_directory, load_mesh).parse(root);
 }
 
 core::SceneSpec readSceneFile(const std::string& path) {

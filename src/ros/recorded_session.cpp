@@ -70,10 +70,11 @@ void addState(const BodyState& message, RecordedSession& session) {
   session.state_headers.push_back(message.header);
 }
 
-void addCommand(const Applied& message, RecordedSession& session) {
+void addCommand(const Applied& message, ObstacleMeshCatalogue& meshes, RecordedSession& session) {
   try {
-    session.recording.log.push_back(core::AppliedCommand{
-        static_cast<long>(message.episode), static_cast<long>(message.step), fromMessage(message)});
+    session.recording.log.push_back(core::AppliedCommand{static_cast<long>(message.episode),
+                                                         static_cast<long>(message.step),
+                                                         fromMessage(message, meshes)});
   } catch (const core::CommandError&) {
     ++session.unknown_commands;
   }
@@ -83,17 +84,26 @@ void readMessages(const rosbag::Bag& bag, const std::string& path, RecordedSessi
   const std::string& node = session.node;
   rosbag::View view(bag, rosbag::TopicQuery({node + "/scene", node + "/applied", node + "/state"}));
   bool have_scene = false;
+  // Read once the scene is known: a command may name a mesh obstacle that ~scene carries.
+  std::vector<Applied::ConstPtr> applied;
   for (const rosbag::MessageInstance& m : view) {
     if (m.getTopic() == node + "/scene") {
       const Scene::ConstPtr scene = instantiate<Scene>(m, path);
       if (!have_scene) session.scene = *scene;
       have_scene = true;
     } else if (m.getTopic() == node + "/applied") {
-      addCommand(*instantiate<Applied>(m, path), session);
+      applied.push_back(instantiate<Applied>(m, path));
     } else {
       addState(*instantiate<BodyState>(m, path), session);
     }
   }
+  ObstacleMeshCatalogue meshes;
+  try {
+    meshes.receive(session.scene.obstacle_meshes);
+  } catch (const core::CommandError& e) {
+    throw ReplayError(path + ": the recorded scene: " + e.what());
+  }
+  for (const Applied::ConstPtr& message : applied) addCommand(*message, meshes, session);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "deformable_sim/core/default_scene.h"
 #include "deformable_sim/io/scene_file.h"
+#include "deformable_sim/io/triangle_mesh_reader.h"
 #include "deformable_sim/ros/recorded_session.h"
 #include "deformable_sim/ros/resimulated_bag.h"
 #include "deformable_sim/ros/session_messages.h"
@@ -12,6 +13,22 @@
 namespace deformable_sim::ros_layer {
 
 namespace {
+
+// The mesh obstacles' triangles as ~scene recorded them, in place of their files.
+io::ObstacleMeshLoader recordedMeshes(const Scene& scene) {
+  return [&scene](const std::string& key, const std::string& path, const Eigen::Vector3d&) {
+    for (const ObstacleMesh& mesh : scene.obstacle_meshes) {
+      if (mesh.id != key) continue;
+      try {
+        return fromMessage(mesh);
+      } catch (const core::CommandError& e) {
+        throw io::TriangleMeshError(e.what());
+      }
+    }
+    throw io::TriangleMeshError("mesh file '" + path +
+                                "': the recorded scene has no triangles for " + key);
+  };
+}
 
 // The scene as the node read it: its file's text, or the built-in scene, at the node's step.
 core::SceneSpec recordedScene(const Scene& scene) {
@@ -22,7 +39,7 @@ core::SceneSpec recordedScene(const Scene& scene) {
     const std::string directory = std::filesystem::path(scene.path).parent_path().string();
     try {
       spec = io::parseScene(scene.yaml, scene.path.empty() ? "~scene" : scene.path,
-                            directory.empty() ? "." : directory);
+                            directory.empty() ? "." : directory, recordedMeshes(scene));
     } catch (const io::SceneError& e) {
       throw ReplayError(std::string("the recorded scene: ") + e.what());
     }

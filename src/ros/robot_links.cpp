@@ -2,13 +2,28 @@
 
 #include <ros/console.h>
 #include <ros/node_handle.h>
+#include <ros/package.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "deformable_sim/io/urdf_shapes.h"
 
 namespace deformable_sim::ros_layer {
+
+namespace {
+
+// package://pkg/rest -> <pkg's directory>/rest, "" when ROS knows no such package.
+std::string packagePath(const std::string& uri) {
+  const std::string rest = uri.substr(std::string("package://").size());
+  const size_t slash = rest.find('/');
+  const std::string directory = ros::package::getPath(rest.substr(0, slash));
+  if (directory.empty()) return "";
+  return slash == std::string::npos ? directory : directory + rest.substr(slash);
+}
+
+}  // namespace
 
 const std::vector<core::PlacedShape>& RobotLinks::shapes(const std::string& link) {
   load();
@@ -34,7 +49,9 @@ void RobotLinks::load() {
   }
   std::vector<std::string> warnings;
   try {
-    shapes_ = io::readCollisionShapes(xml, &warnings);
+    // Relative mesh file names: against the URDF file's directory, or the working directory.
+    const std::string base = std::filesystem::path(urdf_file_).parent_path().string();
+    shapes_ = io::readCollisionShapes(xml, &warnings, packagePath, base);
   } catch (const io::UrdfError& e) {
     throw core::CommandError(e.what());
   }

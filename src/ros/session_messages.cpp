@@ -3,13 +3,15 @@
 #include <stdexcept>
 
 #include "deformable_sim/core/mesh_arrays.h"
+#include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/ros/conversions.h"
 
 namespace deformable_sim::ros_layer {
 
 namespace {
 
-Obstacle toMessage(const core::PlacedShape& placed) {
+Obstacle toMessage(const core::PlacedShape& placed, ObstacleMeshCatalogue& catalogue,
+                   std::vector<ObstacleMesh>& unrecorded) {
   Obstacle m;
   m.name = placed.name;
   switch (placed.shape.kind) {
@@ -22,6 +24,10 @@ Obstacle toMessage(const core::PlacedShape& placed) {
     case core::Shape::Kind::kCylinder:
       m.shape = Obstacle::CYLINDER;
       break;
+    case core::Shape::Kind::kMesh:
+      m.shape = Obstacle::MESH;
+      m.mesh_id = catalogue.idFor(placed.shape.mesh, unrecorded);
+      break;
   }
   m.size = toVector3(placed.shape.size);
   m.radius = placed.shape.radius;
@@ -30,7 +36,7 @@ Obstacle toMessage(const core::PlacedShape& placed) {
   return m;
 }
 
-core::PlacedShape fromMessage(const Obstacle& m) {
+core::PlacedShape fromMessage(const Obstacle& m, const ObstacleMeshCatalogue& catalogue) {
   core::PlacedShape placed;
   placed.name = m.name;
   switch (m.shape) {
@@ -43,6 +49,10 @@ core::PlacedShape fromMessage(const Obstacle& m) {
     case Obstacle::CYLINDER:
       placed.shape.kind = core::Shape::Kind::kCylinder;
       break;
+    case Obstacle::MESH:
+      placed.shape.kind = core::Shape::Kind::kMesh;
+      placed.shape.mesh = catalogue.find(m.mesh_id);
+      break;
     default:
       throw core::CommandError("obstacle '" + m.name + "': unknown shape " +
                                std::to_string(m.shape));
@@ -54,7 +64,8 @@ core::PlacedShape fromMessage(const Obstacle& m) {
   return placed;
 }
 
-AppliedNodes toMessage(const core::NodeTarget& t) {
+AppliedNodes toMessage(const core::NodeTarget& t, ObstacleMeshCatalogue& catalogue,
+                       std::vector<ObstacleMesh>& unrecorded) {
   AppliedNodes m;
   m.node_ids.assign(t.node_numbers.begin(), t.node_numbers.end());
   m.group = t.group;
@@ -69,76 +80,79 @@ AppliedNodes toMessage(const core::NodeTarget& t) {
     m.sphere_radius = t.sphere->radius;
   }
   m.region_pose = toTransform(t.region_pose);
-  for (const core::PlacedShape& s : t.shapes) m.shapes.push_back(toMessage(s));
+  for (const core::PlacedShape& s : t.shapes)
+    m.shapes.push_back(toMessage(s, catalogue, unrecorded));
   m.shape_margin = t.shape_margin;
   m.whole_body = t.whole_body;
   return m;
 }
 
-core::NodeTarget fromMessage(const AppliedNodes& m) {
+core::NodeTarget fromMessage(const AppliedNodes& m, const ObstacleMeshCatalogue& catalogue) {
   core::NodeTarget t;
   t.node_numbers.assign(m.node_ids.begin(), m.node_ids.end());
   t.group = m.group;
   if (m.has_box) t.box = core::Box{toEigen(m.box_min), toEigen(m.box_max)};
   if (m.has_sphere) t.sphere = core::Sphere{toEigen(m.sphere_center), m.sphere_radius};
   t.region_pose = toEigen(m.region_pose);
-  for (const Obstacle& s : m.shapes) t.shapes.push_back(fromMessage(s));
+  for (const Obstacle& s : m.shapes) t.shapes.push_back(fromMessage(s, catalogue));
   t.shape_margin = m.shape_margin;
   t.whole_body = m.whole_body;
   return t;
 }
 
 // Each command's fields into the message (its kind and what that kind uses).
-void record(const core::WrenchCommand& c, Applied& m) {
+void record(const core::WrenchCommand& c, Applied& m, ObstacleMeshCatalogue& catalogue) {
   m.kind = Applied::WRENCH;
   m.name = c.source;
   m.body = c.body;
-  m.nodes = toMessage(c.nodes);
+  m.nodes = toMessage(c.nodes, catalogue, m.meshes);
   m.force = toVector3(c.force);
   m.torque = toVector3(c.torque);
   m.has_point = c.point.has_value();
   if (c.point) m.point = toPoint(*c.point);
 }
 
-void record(const core::ClearWrenchCommand& c, Applied& m) {
+void record(const core::ClearWrenchCommand& c, Applied& m, ObstacleMeshCatalogue&) {
   m.kind = Applied::CLEAR_WRENCH;
   m.name = c.source;
 }
 
-void record(const core::FixCommand& c, Applied& m) {
+void record(const core::FixCommand& c, Applied& m, ObstacleMeshCatalogue& catalogue) {
   m.kind = c.fix ? Applied::FIX : Applied::RELEASE;
   m.body = c.body;
-  m.nodes = toMessage(c.nodes);
+  m.nodes = toMessage(c.nodes, catalogue, m.meshes);
   for (const Eigen::Vector3d& p : c.targets) m.targets.push_back(toPoint(p));
   m.has_translation = c.translation.has_value();
   if (c.translation) m.translation = toVector3(*c.translation);
 }
 
-void record(const core::GraspCommand& c, Applied& m) {
+void record(const core::GraspCommand& c, Applied& m, ObstacleMeshCatalogue& catalogue) {
   m.kind = Applied::GRASP;
   m.name = c.name;
   m.body = c.body;
-  m.nodes = toMessage(c.nodes);
+  m.nodes = toMessage(c.nodes, catalogue, m.meshes);
   m.frame = toTransform(c.frame);
 }
 
-void record(const core::ReleaseGraspCommand& c, Applied& m) {
+void record(const core::ReleaseGraspCommand& c, Applied& m, ObstacleMeshCatalogue&) {
   m.kind = Applied::RELEASE_GRASP;
   m.name = c.name;
 }
 
-void record(const core::MoveGraspCommand& c, Applied& m) {
+void record(const core::MoveGraspCommand& c, Applied& m, ObstacleMeshCatalogue&) {
   m.kind = Applied::MOVE_GRASP;
   m.name = c.name;
   m.frame = toTransform(c.frame);
 }
 
-void record(const core::SetObstaclesCommand& c, Applied& m) {
+void record(const core::SetObstaclesCommand& c, Applied& m, ObstacleMeshCatalogue& catalogue) {
   m.kind = Applied::OBSTACLES;
-  for (const core::PlacedShape& s : c.obstacles) m.obstacles.push_back(toMessage(s));
+  for (const core::PlacedShape& s : c.obstacles) {
+    m.obstacles.push_back(toMessage(s, catalogue, m.meshes));
+  }
 }
 
-void record(const core::TuneCommand& c, Applied& m) {
+void record(const core::TuneCommand& c, Applied& m, ObstacleMeshCatalogue&) {
   m.kind = Applied::TUNE;
   m.body = c.body;
   m.has_material = c.material.has_value();
@@ -160,24 +174,27 @@ void record(const core::TuneCommand& c, Applied& m) {
   m.dt = c.dt.value_or(0.0);
 }
 
-void record(const core::ResetCommand&, Applied& m) { m.kind = Applied::RESET; }
+void record(const core::ResetCommand&, Applied& m, ObstacleMeshCatalogue&) {
+  m.kind = Applied::RESET;
+}
 
 }  // namespace
 
-Applied toMessage(const core::SessionCommand& command) {
+Applied toMessage(const core::SessionCommand& command, ObstacleMeshCatalogue& catalogue) {
   Applied m;
   m.frame.rotation.w = 1.0;
-  std::visit([&m](const auto& c) { record(c, m); }, command);
+  std::visit([&m, &catalogue](const auto& c) { record(c, m, catalogue); }, command);
   return m;
 }
 
-core::SessionCommand fromMessage(const Applied& m) {
+core::SessionCommand fromMessage(const Applied& m, ObstacleMeshCatalogue& catalogue) {
+  catalogue.receive(m.meshes);
   switch (m.kind) {
     case Applied::WRENCH: {
       core::WrenchCommand c;
       c.source = m.name;
       c.body = m.body;
-      c.nodes = fromMessage(m.nodes);
+      c.nodes = fromMessage(m.nodes, catalogue);
       c.force = toEigen(m.force);
       c.torque = toEigen(m.torque);
       if (m.has_point) c.point = toEigen(m.point);
@@ -190,7 +207,7 @@ core::SessionCommand fromMessage(const Applied& m) {
       core::FixCommand c;
       c.fix = m.kind == Applied::FIX;
       c.body = m.body;
-      c.nodes = fromMessage(m.nodes);
+      c.nodes = fromMessage(m.nodes, catalogue);
       for (const geometry_msgs::Point& p : m.targets) c.targets.push_back(toEigen(p));
       if (m.has_translation) c.translation = toEigen(m.translation);
       return c;
@@ -199,7 +216,7 @@ core::SessionCommand fromMessage(const Applied& m) {
       core::GraspCommand c;
       c.name = m.name;
       c.body = m.body;
-      c.nodes = fromMessage(m.nodes);
+      c.nodes = fromMessage(m.nodes, catalogue);
       c.frame = toEigen(m.frame);
       return c;
     }
@@ -209,7 +226,7 @@ core::SessionCommand fromMessage(const Applied& m) {
       return core::MoveGraspCommand{m.name, toEigen(m.frame)};
     case Applied::OBSTACLES: {
       core::SetObstaclesCommand c;
-      for (const Obstacle& o : m.obstacles) c.obstacles.push_back(fromMessage(o));
+      for (const Obstacle& o : m.obstacles) c.obstacles.push_back(fromMessage(o, catalogue));
       return c;
     }
     case Applied::TUNE: {
@@ -231,8 +248,23 @@ core::SessionCommand fromMessage(const Applied& m) {
 
 Scene toSceneMessage(const std::string& path, const std::string& yaml, double dt, int substeps,
                      const std::vector<core::Mesh>& meshes,
-                     const std::vector<std::string>& body_names) {
+                     const std::vector<std::string>& body_names,
+                     const std::vector<core::PlacedShape>& obstacles,
+                     const std::vector<core::PlacedShape>& link_shapes,
+                     ObstacleMeshCatalogue& catalogue) {
   Scene m;
+  for (size_t k = 0; k < obstacles.size(); ++k) {
+    if (obstacles[k].shape.kind != core::Shape::Kind::kMesh) continue;
+    const std::string id = io::sceneObstacleKey(static_cast<int>(k));
+    m.obstacle_meshes.push_back(toMessage(id, *obstacles[k].shape.mesh));
+    catalogue.addRecorded(id, obstacles[k].shape.mesh);
+  }
+  for (const core::PlacedShape& shape : link_shapes) {
+    if (shape.shape.kind == core::Shape::Kind::kMesh) {
+      catalogue.idFor(shape.shape.mesh, m.obstacle_meshes);
+    }
+  }
+  catalogue.markRecorded(m.obstacle_meshes);
   m.path = path;
   m.yaml = yaml;
   m.dt = dt;

@@ -60,6 +60,7 @@ void SimNode::startSession() {
     recording_.episode = static_cast<uint64_t>(applied.episode);
     recording_.step = static_cast<uint64_t>(applied.step);
     applied_pub_.publish(recording_);
+    obstacle_meshes_.markRecorded(recording_.meshes);
   });
   status_.reports.assign(session_->simulation().bodies().size(), core::StepReport{});
 }
@@ -87,15 +88,21 @@ void SimNode::logStart() const {
 int SimNode::apply(const core::SessionCommand& command) {
   // Applied as recorded: the command read back from the very message published on ~applied, so
   // that a replay of it acts exactly as it did here (a pose's quaternion does not round-trip).
-  recording_ = toMessage(command);
-  return session_->apply(fromMessage(recording_));
+  recording_ = toMessage(command, obstacle_meshes_);
+  return session_->apply(fromMessage(recording_, obstacle_meshes_));
 }
 
 void SimNode::publishScene() {
   std::vector<std::string> names;
   for (const core::BodySpec& body : params_.scene.bodies) names.push_back(body.name);
+  std::vector<core::PlacedShape> link_shapes;  // read already: sceneObstacles() needed them
+  for (const std::string& link : params_.scene.urdf_links) {
+    const std::vector<core::PlacedShape>& shapes = robot_links_.shapes(link);
+    link_shapes.insert(link_shapes.end(), shapes.begin(), shapes.end());
+  }
   Scene message = toSceneMessage(params_.scene_path, params_.scene_text, sim().dt(),
-                                 params_.substeps, session_->meshes(), names);
+                                 params_.substeps, session_->meshes(), names,
+                                 params_.scene.obstacles, link_shapes, obstacle_meshes_);
   message.header.stamp = ros::Time::now();
   message.header.frame_id = params_.world_frame;
   message.world_frame = params_.world_frame;

@@ -3,6 +3,7 @@
 
 #include <atomic>
 #include <cstdlib>
+#include <memory>
 #include <tuple>
 
 #include "deformable_sim/core/body.h"
@@ -10,7 +11,9 @@
 #include "deformable_sim/core/commands.h"
 #include "deformable_sim/core/default_scene.h"
 #include "deformable_sim/core/selection.h"
+#include "deformable_sim/core/shape.h"
 #include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/triangle_mesh_shape.h"
 #include "simulation_test_helpers.h"
 
 // Every heap allocation of the process goes through malloc (operator new and Eigen both call it):
@@ -167,4 +170,46 @@ TEST(Allocations, NoneWhenAGraspMovesEveryTick) {
   const dc::Body& body = simulation.bodies()[0];
   const int node = commands.grasps().at("gripper").nodes[0];
   EXPECT_NEAR(body.positions()[3 * node + 2] - body.restPositions()[3 * node + 2], 0.02, 1e-9);
+}
+
+// Contact with a mesh obstacle queries its tree for every node at every step: from a fixed-size
+// stack, without allocating.
+TEST(Allocations, NoneInContactWithAMeshObstacle) {
+  dc::TriangleMesh grid;  // a 2 m x 2 m table top of 20 x 20 squares, facing up
+  const int n = 20;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) grid.vertices.emplace_back(-1.0 + 0.1 * i, -1.0 + 0.1 * j, 0.0);
+  }
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+      grid.triangles.emplace_back(a, b, c);
+      grid.triangles.emplace_back(a, c, d);
+    }
+  }
+  dc::SceneSpec spec;
+  spec.dt = 0.01;
+  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
+  spec.effects.warping = true;
+  spec.contact = dc::ContactSettings{0.5};
+  dc::PlacedShape table;
+  table.shape.kind = dc::Shape::Kind::kMesh;
+  table.shape.mesh = std::make_shared<const dc::TriangleMeshShape>(grid);
+  spec.obstacles.push_back(table);
+  dc::BodySpec block;
+  block.name = "block";
+  block.box_mesh = dc::BoxMeshSpec{{-0.05, -0.05, 0.001}, {0.05, 0.05, 0.101}, {3, 3, 3}};
+  block.material = {1.0e5, 0.3, 500.0};
+  spec.bodies.push_back(block);
+  dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+  std::vector<dc::StepReport> reports;
+  for (int s = 0; s < 5; ++s) sim.step(reports);  // it lands: contacts exist from here on
+  const long before = g_allocations.load();
+  int contacts = 0;
+  for (int s = 0; s < 20; ++s) {
+    sim.step(reports);
+    contacts += reports[0].contacts;
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_GT(contacts, 0);
 }

@@ -142,6 +142,27 @@ TEST(RunCommand, AnUnknownArgumentPrintsTheUsageToStderrAndFails) {
   EXPECT_EQ(runCommand(command + " 2>/dev/null").output, "");
 }
 
+// A scene with a mesh obstacle (an STL table tilted by 0.2 rad) runs offline: the block lands on
+// the table's top and no node ends inside it.
+TEST(RunCommand, RunsASceneWithAMeshObstacle) {
+  const fs::path csv = fs::temp_directory_path() / "deformable_sim_block_on_mesh_table.csv";
+  const RunResult run =
+      runCommand(std::string(DEFORMABLE_SIM_RUN) +
+                 " " DEFORMABLE_SIM_SOURCE_DIR
+                 "/test/data/scenes/block_on_mesh_table.yaml --steps 150 --quiet --out " +
+                 csv.string() + " 2>&1");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const NodeVectors rest = readNodeCsv(csv.string(), 1), moved = readNodeCsv(csv.string(), 4);
+  const Eigen::Vector3d normal(0.0, -std::sin(0.2), std::cos(0.2));
+  const Eigen::Vector3d top = Eigen::Vector3d(0.0, 0.0, -0.05) + 0.05 * normal;
+  double lowest = INFINITY;
+  for (const auto& [node, x0] : rest)
+    lowest = std::min(lowest, (x0 + moved.at(node) - top).dot(normal));
+  EXPECT_GT(lowest, -1e-9);
+  EXPECT_LT(lowest, 1e-6);  // it landed
+  fs::remove(csv);
+}
+
 TEST(Reference, IsBesideTheClone) {
   ASSERT_TRUE(fs::exists(kReference + "/README.md"))
       << "the reference cases are expected at " << kReference << " (../shared/reference)";

@@ -335,3 +335,60 @@ TEST(SceneFile, SpecMadeInCodeErrorsNameTheKeyOnly) {
       },
       dio::SceneError);
 }
+
+namespace {
+
+const std::string kScenes = DEFORMABLE_SIM_SOURCE_DIR "/test/data/scenes/";
+
+std::string meshObstacleScene(const std::string& mesh) {
+  return "effects: {contact: {friction: 0.3}}\n"
+         "obstacles:\n"
+         "  - {name: ramp, mesh: " +
+         mesh +
+         ", position: [0, 0, 1], rpy: [0, 0, 0]}\n"
+         "bodies:\n"
+         "  - {name: b, mesh: {box: {min: [0, 0, 0], max: [1, 1, 1], cells: [1, 1, 1]}}, "
+         "material: {}}\n";
+}
+
+}  // namespace
+
+TEST(SceneFile, MeshObstaclesAreReadRelativeToTheSceneFile) {
+  const dc::SceneSpec spec = dio::readSceneFile(kScenes + "block_on_mesh_table.yaml");
+  ASSERT_EQ(spec.obstacles.size(), 1u);
+  const dc::PlacedShape& table = spec.obstacles[0];
+  EXPECT_EQ(table.name, "table");
+  ASSERT_EQ(table.shape.kind, dc::Shape::Kind::kMesh);
+  ASSERT_TRUE(table.shape.mesh);
+  EXPECT_TRUE(table.shape.mesh->closed());
+  EXPECT_EQ(table.shape.mesh->mesh().triangles.size(), 12u);
+  // Scaled to 1 x 1 x 0.1 m: 5 cm from its centre to its top.
+  EXPECT_NEAR(dc::signedDistance(table.shape, {0.1, 0.2, 0.0}), -0.05, 1e-9);
+  EXPECT_TRUE(table.pose.translation().isApprox(Eigen::Vector3d(0, 0, -0.05)));
+}
+
+TEST(SceneFile, MeshObstacleErrorsNameTheFileLineAndKey) {
+  const std::string meshes = DEFORMABLE_SIM_SOURCE_DIR "/test/data/meshes";
+  auto error = [&](const std::string& mesh) {
+    try {
+      dio::parseScene(meshObstacleScene(mesh), "test.yaml", meshes);
+    } catch (const dio::SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(error("{file: cube.obj, scale: [2, 2, 2]}"), "accepted");
+  EXPECT_EQ(error("{file: nowhere.stl}"),
+            "test.yaml:3: obstacles[0].mesh.file: cannot open mesh "
+            "file '" +
+                meshes + "/nowhere.stl': no such file");
+  EXPECT_EQ(error("{file: cube.obj, size: 2}"),
+            "test.yaml:3: obstacles[0].mesh.size: unknown key (expected one of: file, scale)");
+  EXPECT_EQ(error("{file: cube.obj, scale: [1, 0, 1]}"),
+            "test.yaml:3: obstacles[0].mesh.scale: must not be 0");
+  EXPECT_EQ(error("{scale: [1, 1, 1]}"), "test.yaml:3: obstacles[0].mesh.file: missing");
+  const std::string empty = error("{file: no_triangles.obj}");
+  EXPECT_NE(empty.find("test.yaml:3: obstacles[0].mesh.file: mesh file '"), std::string::npos)
+      << empty;
+  EXPECT_NE(empty.find("no_triangles.obj': holds no triangle"), std::string::npos) << empty;
+}

@@ -1,21 +1,26 @@
-// Primitive solids for obstacles and grasp regions (boxes, spheres, cylinders as URDF has them),
-// with the distance queries that contact and grasping need.
+// Solids for obstacles and grasp regions (boxes, spheres, cylinders as URDF has them, and triangle
+// meshes), with the distance queries that contact and grasping need.
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
 #include <string>
+
+#include "deformable_sim/core/triangle_mesh_shape.h"
 
 namespace deformable_sim::core {
 
 /// A solid in its own frame: a box centred on the origin, a sphere around it, or a cylinder along
-/// z centred on it (the URDF conventions).
+/// z centred on it (the URDF conventions), or a triangle mesh in its file's coordinates.
 struct Shape {
-  enum class Kind { kBox, kSphere, kCylinder };
+  enum class Kind { kBox, kSphere, kCylinder, kMesh };
   Kind kind = Kind::kBox;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< kBox: edge lengths, m
   double radius = 0.0;                             ///< kSphere, kCylinder: m
   double length = 0.0;                             ///< kCylinder: along z, m
+  /// kMesh: shared, since the tree is built once and the shape is copied with every pose.
+  std::shared_ptr<const TriangleMeshShape> mesh;
 };
 
 /// Throws std::invalid_argument naming `what` unless every dimension is finite and > 0.
@@ -37,7 +42,7 @@ struct PlacedShape {
 inline bool operator==(const PlacedShape& a, const PlacedShape& b) {
   return a.name == b.name && a.shape.kind == b.shape.kind && a.shape.size == b.shape.size &&
          a.shape.radius == b.shape.radius && a.shape.length == b.shape.length &&
-         a.pose.matrix() == b.pose.matrix();
+         a.shape.mesh == b.shape.mesh && a.pose.matrix() == b.pose.matrix();
 }
 
 }  // namespace deformable_sim::core

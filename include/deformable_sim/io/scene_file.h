@@ -11,11 +11,17 @@
 //       material: {youngs_modulus: 1.0e6, poisson_ratio: 0.3, density: 1000.0}
 //       fixed: [{box: {min: [...], max: [...]}}, {nodes: [12, 40]}, {sphere: {center, radius}}]
 //       loads: [{box: {...}, traction: [0, 0, -2.5]}, {nodes: [7], total_force: [0, 0, -0.01]}]
+//   obstacles:                                 # needs effects: {contact: {friction: 0.5}}
+//     - {name: table, box: {size: [1, 1, 0.1]}, position: [0, 0, -0.05], rpy: [0, 0, 0]}
+//     - {name: ramp, mesh: {file: ramp.stl, scale: [1, 1, 1]}, position: [..], rpy: [..]}
+//                                              # STL, DAE or OBJ, relative to the scene file
 //
 // Effects that are not named are off. Unknown keys, wrong types and impossible values throw
 // SceneError with the file, the line and the key ("scene.yaml:7: bodies[0].material.density: ...").
 #pragma once
 
+#include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -31,10 +37,21 @@ class SceneError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Reads the mesh of the obstacle at `key` ("obstacles[2]") from `path` (resolved against the
+/// scene file's directory) at `scale`; throws TriangleMeshError. A replay takes the recorded
+/// triangles instead of the file.
+using ObstacleMeshLoader = std::function<std::shared_ptr<const core::TriangleMeshShape>(
+    const std::string& key, const std::string& path, const Eigen::Vector3d& scale)>;
+
+/// "obstacles[k]": the key of the scene's k-th obstacle, in messages and as a mesh's id.
+std::string sceneObstacleKey(int index);
+
 /// Parses scene YAML text. `source` names it in messages; relative mesh paths are resolved
-/// against `base_directory`.
+/// against `base_directory`. Mesh obstacles are read with `load_mesh`, by default from their
+/// files.
 core::SceneSpec parseScene(const std::string& yaml_text, const std::string& source,
-                           const std::string& base_directory);
+                           const std::string& base_directory,
+                           const ObstacleMeshLoader& load_mesh = {});
 
 /// Reads and parses a scene file.
 core::SceneSpec readSceneFile(const std::string& path);

@@ -1,6 +1,8 @@
 // Between the core's session commands and the messages that record them (~applied), and between
 // a scene with its meshes and the ~scene message. The node applies a command only as it reads
-// back from its message, so that a replay of the recorded messages repeats it exactly.
+// back from its message, so that a replay of the recorded messages repeats it exactly. Mesh
+// obstacles travel by id: their triangles go once into the message that first needs them
+// (through the catalogue, which the node and a replay each keep for the whole session).
 #pragma once
 
 #include <string>
@@ -10,18 +12,28 @@
 #include "deformable_sim/Scene.h"
 #include "deformable_sim/core/mesh.h"
 #include "deformable_sim/core/session.h"
+#include "deformable_sim/core/shape.h"
+#include "deformable_sim/ros/obstacle_mesh_catalogue.h"
 
 namespace deformable_sim::ros_layer {
 
-Applied toMessage(const core::SessionCommand& command);
-/// Throws core::CommandError for an unknown kind or shape code.
-core::SessionCommand fromMessage(const Applied& message);
+/// A mesh that `catalogue` has not recorded yet goes into the message's `meshes`; once the
+/// message is published, catalogue.markRecorded(message.meshes).
+Applied toMessage(const core::SessionCommand& command, ObstacleMeshCatalogue& catalogue);
+/// Throws core::CommandError for an unknown kind or shape code, or a mesh id that no message
+/// (this one, an earlier one, the scene) carried.
+core::SessionCommand fromMessage(const Applied& message, ObstacleMeshCatalogue& catalogue);
 
-/// The scene (its file's text and path, or empty for the built-in one), the node's step and
-/// every body's mesh.
+/// The scene (its file's text and path, or empty for the built-in one), the node's step, every
+/// body's mesh, and the triangles of the meshes among the scene's `obstacles` (recorded in
+/// `catalogue` under io::sceneObstacleKey(k)) and its obstacle links' `link_shapes` (so that a
+/// bag whose recording starts late still holds them).
 Scene toSceneMessage(const std::string& path, const std::string& yaml, double dt, int substeps,
                      const std::vector<core::Mesh>& meshes,
-                     const std::vector<std::string>& body_names);
+                     const std::vector<std::string>& body_names,
+                     const std::vector<core::PlacedShape>& obstacles,
+                     const std::vector<core::PlacedShape>& link_shapes,
+                     ObstacleMeshCatalogue& catalogue);
 /// The meshes of a ~scene message. Throws std::invalid_argument when the arrays do not fit.
 std::vector<core::Mesh> meshesFromMessage(const Scene& message);
 

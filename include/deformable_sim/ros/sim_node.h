@@ -29,6 +29,7 @@
 #include "deformable_sim/ros/node_grasps.h"
 #include "deformable_sim/ros/node_outputs.h"
 #include "deformable_sim/ros/node_parameters.h"
+#include "deformable_sim/ros/obstacle_mesh_catalogue.h"
 #include "deformable_sim/ros/robot_links.h"
 
 namespace deformable_sim::ros_layer {
@@ -68,6 +69,7 @@ class SimNode {
   NodeParameters params_;
   std::unique_ptr<core::Session> session_;
   Applied recording_;  ///< the message of the command being applied, published once it took effect
+  ObstacleMeshCatalogue obstacle_meshes_;  ///< meshes recorded in ~scene and ~applied, by id
   std::vector<core::PlacedShape> requested_obstacles_;  ///< as last applied
   TickStatus status_;
   core::RealTimeFactor real_time_factor_;

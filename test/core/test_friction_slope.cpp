@@ -1,0 +1,148 @@
+// A block on a plane tilted at theta, on a primitive box and on a triangle mesh: by Coulomb's law
+// it stays where tan(theta) < mu and otherwise slides down with g (sin(theta) - mu cos(theta)).
+// The contact effect does the first and the frictionless slide; sliding against friction is not
+// reached yet (see DISABLED_ below).
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <memory>
+
+#include "deformable_sim/core/contact.h"
+#include "deformable_sim/core/shape.h"
+#include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/triangle_mesh_shape.h"
+#include "simulation_test_helpers.h"
+
+namespace dc = deformable_sim::core;
+using deformable_sim::test::boxMeshSimulation;
+
+namespace {
+
+constexpr double kGravity = 9.81;
+
+enum class Plane { kPrimitiveBox, kOpenMesh };
+
+// The obstacle: a 4 m x 4 m plane whose top is z = 0 in its frame.
+dc::Shape planeShape(Plane plane) {
+  dc::Shape shape;
+  if (plane == Plane::kPrimitiveBox) {
+    shape.kind = dc::Shape::Kind::kBox;
+    shape.size = {4.0, 4.0, 0.2};
+    return shape;
+  }
+  dc::TriangleMesh square;  // a table top: one open square, facing up
+  square.vertices = {{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}};
+  square.triangles = {{0, 1, 2}, {0, 2, 3}};
+  shape.kind = dc::Shape::Kind::kMesh;
+  shape.mesh = std::make_shared<const dc::TriangleMeshShape>(square);
+  return shape;
+}
+
+struct Slide {
+  double distance = 0.0;      ///< m down the slope, over the whole run
+  double acceleration = 0.0;  ///< m/s^2 down the slope, from the mean velocity's growth
+};
+
+// A 10 cm block resting on the plane tilted by `theta` about x, released at rest and run for one
+// second.
+Slide slideOnSlope(Plane plane, double theta, double mu) {
+  const Eigen::Matrix3d tilt =
+      Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  dc::SceneSpec spec;
+  spec.dt = 0.01;
+  spec.effects.gravity = Eigen::Vector3d(0, 0, -kGravity);
+  spec.effects.warping = true;
+  spec.effects.damping =
+      dc::RayleighDamping{0.0, 0.01};  // no mass damping: it would slow the slide
+  spec.contact = dc::ContactSettings{mu};
+  dc::PlacedShape ground;
+  ground.name = "slope";
+  ground.shape = planeShape(plane);
+  ground.pose.linear() = tilt;
+  if (plane == Plane::kPrimitiveBox) ground.pose.translation() = tilt * Eigen::Vector3d(0, 0, -0.1);
+  spec.obstacles.push_back(ground);
+  dc::BodySpec block;
+  block.name = "block";
+  block.box_mesh = dc::BoxMeshSpec{{-0.05, -0.05, 0.0}, {0.05, 0.05, 0.1}, {2, 2, 2}};
+  block.material = {1.0e5, 0.3, 500.0};
+  spec.bodies.push_back(block);
+  dc::Simulation sim = boxMeshSimulation(spec);
+  dc::Body& body = sim.bodies()[0];
+  Eigen::VectorXd x = body.restPositions();
+  for (int i = 0; i < body.numNodes(); ++i) x.segment<3>(3 * i) = tilt * x.segment<3>(3 * i);
+  body.setState(x, Eigen::VectorXd::Zero(x.size()));
+  const Eigen::Vector3d downhill = tilt * -Eigen::Vector3d::UnitY();
+  auto along = [&](const Eigen::VectorXd& values) {
+    double sum = 0.0;
+    for (int i = 0; i < body.numNodes(); ++i) sum += values.segment<3>(3 * i).dot(downhill);
+    return sum / body.numNodes();
+  };
+  const double start = along(body.positions());
+  // The acceleration: the least-squares slope of the mean velocity over time, past the landing.
+  double sum_t = 0.0, sum_v = 0.0, sum_tt = 0.0, sum_tv = 0.0;
+  int samples = 0;
+  std::vector<dc::StepReport> reports;
+  for (int s = 1; s <= 100; ++s) {
+    sim.step(reports);
+    if (s <= 10) continue;
+    const double t = s * spec.dt, v = along(body.velocities());
+    sum_t += t;
+    sum_v += v;
+    sum_tt += t * t;
+    sum_tv += t * v;
+    ++samples;
+  }
+  const double acceleration =
+      (samples * sum_tv - sum_t * sum_v) / (samples * sum_tt - sum_t * sum_t);
+  return {along(body.positions()) - start, acceleration};
+}
+
+void expectStays(Plane plane, double theta, double mu) {
+  const Slide slide = slideOnSlope(plane, theta, mu);
+  EXPECT_LT(std::abs(slide.distance), 1e-3) << "theta " << theta << " mu " << mu;
+  EXPECT_LT(std::abs(slide.acceleration), 1e-2) << "theta " << theta << " mu " << mu;
+}
+
+void expectSlides(Plane plane, double theta, double mu) {
+  const double expected = kGravity * (std::sin(theta) - mu * std::cos(theta));
+  const Slide slide = slideOnSlope(plane, theta, mu);
+  EXPECT_NEAR(slide.acceleration, expected, 0.05 * expected) << "theta " << theta << " mu " << mu;
+  // It lands first and starts at rest: a little short of a t^2 / 2 after one second.
+  EXPECT_GT(slide.distance, 0.8 * 0.5 * expected) << "theta " << theta << " mu " << mu;
+  EXPECT_LT(slide.distance, 1.05 * 0.5 * expected) << "theta " << theta << " mu " << mu;
+}
+
+}  // namespace
+
+TEST(FrictionSlope, BlockOnAPrimitivePlaneStaysBelowTheFrictionAngle) {
+  expectStays(Plane::kPrimitiveBox, 0.3, 0.5);  // tan = 0.31
+  expectStays(Plane::kPrimitiveBox, 0.2, 0.3);  // tan = 0.20
+}
+
+TEST(FrictionSlope, BlockOnAMeshPlaneStaysBelowTheFrictionAngle) {
+  expectStays(Plane::kOpenMesh, 0.3, 0.5);
+  expectStays(Plane::kOpenMesh, 0.2, 0.3);
+}
+
+TEST(FrictionSlope, FrictionlessBlockSlidesDownAPrimitivePlaneWithGSinTheta) {
+  expectSlides(Plane::kPrimitiveBox, 0.3, 0.0);
+  expectSlides(Plane::kPrimitiveBox, 0.6, 0.0);
+}
+
+TEST(FrictionSlope, FrictionlessBlockSlidesDownAMeshPlaneWithGSinTheta) {
+  expectSlides(Plane::kOpenMesh, 0.3, 0.0);
+  expectSlides(Plane::kOpenMesh, 0.6, 0.0);
+}
+
+// Fails today: a landing node that friction stops is held through the next solve, and the held
+// step decides stick or slip from its own constraint force only afterwards; with the elastic
+// impulses of a 2 x 2 x 2 block the bottom nodes keep landing stopped, and the block stops or
+// creeps (on some slopes it slides, 10 % slow) instead of sliding with g (sin θ - μ cos θ).
+TEST(FrictionSlope, DISABLED_BlockSlidesAgainstFrictionAboveTheFrictionAngle) {
+  for (const Plane plane : {Plane::kPrimitiveBox, Plane::kOpenMesh}) {
+    expectSlides(plane, 0.3, 0.2);  // tan = 0.31
+    expectSlides(plane, 0.5, 0.3);  // tan = 0.55
+    expectSlides(plane, 0.6, 0.5);  // tan = 0.68
+  }
+}
