@@ -194,6 +194,16 @@ void Body::addGroup(const std::string& name, std::vector<int> nodes) {
   groups_[name] = std::move(nodes);
 }
 
+void Body::moveReducedBy(const Eigen::Vector3d& centre, const Eigen::Matrix3d& gradient,
+                         const Eigen::Vector3d& velocity, const Eigen::Matrix3d& gradient_rate) {
+  if (!reduced_)
+    throw std::logic_error("body '" + name_ + "': it has no rigid or pseudo-rigid model");
+  reduced_->setState(reduced_->centre() + centre, reduced_->gradient() + gradient,
+                     reduced_->linearVelocity() + velocity,
+                     reduced_->gradientRate() + gradient_rate);
+  nodes_stale_ = true;
+}
+
 void Body::setState(const Eigen::VectorXd& positions, const Eigen::VectorXd& velocities) {
   if (positions.size() != x_.size() || velocities.size() != v_.size()) {
     throw std::invalid_argument("body '" + name_ + "': state of the wrong size");

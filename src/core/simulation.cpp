@@ -1,5 +1,6 @@
 #include "deformable_sim/core/simulation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -108,6 +109,35 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
   if (contact_) contact_states_.reserve(spec.bodies.size());
   wrench_radii_.reserve(spec.bodies.size());
   for (size_t b = 0; b < spec.bodies.size(); ++b) addBody(spec, b, std::move(meshes[b]));
+  addBodyContact();
+}
+
+void Simulation::addBodyContact() {
+  if (!contact_ || (!contact_->bodies && !contact_->self)) return;
+  std::vector<bool> with_bodies, with_self;
+  for (const Body& body : bodies_) {
+    with_bodies.push_back(body.effects().contact_bodies.value_or(contact_->bodies) &&
+                          contact_->bodies);
+    // Only finite elements bend far enough to meet themselves.
+    with_self.push_back(body.effects().contact_self.value_or(contact_->self) && contact_->self &&
+                        body.model() == BodyModel::kFiniteElement);
+  }
+  const auto count = [](const std::vector<bool>& v) {
+    return std::count(v.begin(), v.end(), true);
+  };
+  if (count(with_bodies) < 2 && count(with_self) == 0) return;
+  if (count(with_bodies) < 2) with_bodies.assign(with_bodies.size(), false);
+  body_contact_.emplace(bodies_, *contact_, with_bodies, with_self);
+}
+
+void Simulation::resolveBodyContact(std::vector<StepReport>& reports) {
+  body_contact_->resolve(bodies_, dt_, reports);
+  ++body_contact_steps_;
+  // Contact between bodies may have pushed a node into an obstacle: obstacles have the last say.
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    if (!contact_states_[b] || !body_contact_->takesPart(static_cast<int>(b))) continue;
+    reports[b].contacts = contact_states_[b]->project(bodies_[b], obstacles_, *contact_);
+  }
 }
 
 void Simulation::addBody(const SceneSpec& spec, size_t b, Mesh mesh) {
@@ -181,6 +211,7 @@ void Simulation::step(std::vector<StepReport>& reports) {
       ++recoveries_[b];
     }
   }
+  if (body_contact_) resolveBodyContact(reports);
   ++step_count_;
   time_ += dt_;
 }

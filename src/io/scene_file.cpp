@@ -170,12 +170,24 @@ class SceneParser {
   std::optional<core::ContactSettings> parseContact(const YAML::Node& contact) const {
     if (!contact) return std::nullopt;
     expectMap(contact, "effects.contact");
-    checkKeys(contact, "effects.contact", {"friction"});
+    checkKeys(contact, "effects.contact", {"friction", "bodies", "self"});
     core::ContactSettings settings;
     if (contact["friction"]) {
       settings.friction = nonNegative(contact["friction"], "effects.contact.friction");
     }
+    if (contact["bodies"]) settings.bodies = boolean(contact["bodies"], "effects.contact.bodies");
+    if (contact["self"]) settings.self = boolean(contact["self"], "effects.contact.self");
     return settings;
+  }
+
+  // A body's say on contact between bodies and with itself (bodies[i].effects.contact); the
+  // friction and the obstacles are the scene's.
+  void parseBodyContact(const YAML::Node& contact, const std::string& key,
+                        core::BodyEffects& effects) const {
+    expectMap(contact, key);
+    checkKeys(contact, key, {"bodies", "self"});
+    if (contact["bodies"]) effects.contact_bodies = boolean(contact["bodies"], key + ".bodies");
+    if (contact["self"]) effects.contact_self = boolean(contact["self"], key + ".self");
   }
 
   void parseObstacles(const YAML::Node& obstacles, std::vector<core::PlacedShape>& shapes) const {
@@ -232,8 +244,9 @@ class SceneParser {
     const bool scene = key == "effects";
     std::set<std::string> keys = {"gravity",    "warping",          "damping",
                                   "plasticity", "stress_colouring", "reactions"};
-    if (scene) keys.insert("contact");
+    keys.insert("contact");
     checkKeys(node, key, keys);
+    if (!scene && node["contact"]) parseBodyContact(node["contact"], key + ".contact", effects);
     if (node["stress_colouring"]) {
       effects.stress_colouring = boolean(node["stress_colouring"], key + ".stress_colouring");
     }

@@ -110,6 +110,15 @@ bool solveStatic(Simulation& sim) {
   return converged;
 }
 
+// The contacts of a body's step, if it had any: with obstacles, other bodies and itself.
+void printContacts(const deformable_sim::core::StepReport& r) {
+  if (r.contacts > 0) std::printf(", %d on obstacles", r.contacts);
+  if (r.body_contacts > 0) {
+    std::printf(", %d with bodies (left %.3g m deep)", r.body_contacts, r.body_penetration);
+  }
+  if (r.self_contacts > 0) std::printf(", %d with itself", r.self_contacts);
+}
+
 // Takes the steps and prints each (unless quiet) and the energies at the end; true when every
 // solve converged.
 bool stepDynamically(Simulation& sim, const Options& options) {
@@ -122,10 +131,12 @@ bool stepDynamically(Simulation& sim, const Options& options) {
     for (size_t b = 0; b < reports.size(); ++b) {
       converged = converged && reports[b].solve.converged;
       if (options.quiet) continue;
-      std::printf("step %ld t=%.6g s %s: %.3f ms, %d iterations, residual %.3g%s\n",
-                  sim.stepCount(), sim.time(), sim.bodies()[b].name().c_str(), ms,
-                  reports[b].solve.iterations, reports[b].solve.relative_residual,
+      std::printf("step %ld t=%.6g s %s: %.3f ms, %d iterations, residual %.3g%s", sim.stepCount(),
+                  sim.time(), sim.bodies()[b].name().c_str(), ms, reports[b].solve.iterations,
+                  reports[b].solve.relative_residual,
                   reports[b].inverted_elements ? ", inverted elements" : "");
+      printContacts(reports[b]);
+      std::printf("\n");
     }
   }
   for (const auto& body : sim.bodies()) {

@@ -213,3 +213,34 @@ TEST(Allocations, NoneInContactWithAMeshObstacle) {
   EXPECT_EQ(g_allocations.load() - before, 0);
   EXPECT_GT(contacts, 0);
 }
+
+// Contact between bodies of every model and of a body with itself: once the bodies touch, their
+// steps allocate nothing either.
+TEST(Allocations, NoneInContactBetweenBodies) {
+  dc::SceneSpec spec;
+  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
+  spec.contact = dc::ContactSettings{0.5, true, true};
+  dc::PlacedShape floor;
+  floor.shape.size = Eigen::Vector3d(1, 1, 0.1);
+  floor.pose.translation() = Eigen::Vector3d(0, 0, -0.05);
+  spec.obstacles.push_back(floor);
+  const dc::BodyModel models[] = {dc::BodyModel::kFiniteElement, dc::BodyModel::kRigid,
+                                  dc::BodyModel::kPseudoRigid};
+  for (int k = 0; k < 3; ++k) {
+    dc::BodySpec body;
+    body.name = dc::modelName(models[k]);
+    body.model = models[k];
+    body.box_mesh = dc::BoxMeshSpec{
+        {-0.05, -0.05, 0.101 * k}, {0.05, 0.05, 0.101 * k + 0.1}, Eigen::Vector3i(2, 2, 2)};
+    body.material = {1e5, 0.3, 100};
+    spec.bodies.push_back(body);
+  }
+  dc::Simulation simulation = deformable_sim::test::boxMeshSimulation(spec);
+  std::vector<dc::StepReport> reports;
+  for (int s = 0; s < 20; ++s) simulation.step(reports);
+  ASSERT_GT(reports[1].body_contacts, 0);
+  const long before = g_allocations.load();
+  for (int s = 0; s < 20; ++s) simulation.step(reports);
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_GT(reports[1].body_contacts, 0);
+}

@@ -254,9 +254,11 @@ TEST(SceneFile, BodiesChooseTheirModelAndChangeTheScenesEffects) {
                 .bodies[0]
                 .model,
             dc::BodyModel::kPseudoRigid);
-  EXPECT_EQ(errorOf(replaced(kScene, "    model: fem\n", "    effects: {contact: {}}\n")),
-            "test.yaml:9: bodies[0].effects.contact: unknown key (expected one of: damping, "
-            "gravity, plasticity, reactions, stress_colouring, warping)");
+  // A body has its say on contact between bodies and with itself, not on friction.
+  EXPECT_EQ(
+      errorOf(replaced(kScene, "    model: fem\n", "    effects: {contact: {friction: 1}}\n")),
+      "test.yaml:9: bodies[0].effects.contact.friction: unknown key (expected one of: "
+      "bodies, self)");
   EXPECT_EQ(errorOf(replaced(kScene, "    model: fem\n",
                              "    model: rigid\n    effects: {plasticity: {yield: 0.1}}\n"),
                     true),
@@ -391,4 +393,26 @@ TEST(SceneFile, MeshObstacleErrorsNameTheFileLineAndKey) {
   EXPECT_NE(empty.find("test.yaml:3: obstacles[0].mesh.file: mesh file '"), std::string::npos)
       << empty;
   EXPECT_NE(empty.find("no_triangles.obj': holds no triangle"), std::string::npos) << empty;
+}
+
+// effects: {contact: {friction, bodies, self}}, and a body that turns them off for itself.
+TEST(SceneFile, ContactBetweenBodiesAndWithItselfIsTurnedOnByTheSceneAndOffByABody) {
+  std::string yaml = replaced(kScene, "effects: {gravity: [0, 0, -9.81],",
+                              "effects: {contact: {friction: 0.3, bodies: true, self: false}, "
+                              "gravity: [0, 0, -9.81],");
+  yaml = replaced(yaml, "    model: fem\n", "    effects: {contact: {bodies: false}}\n");
+  const dc::SceneSpec spec = dio::parseScene(yaml, "test.yaml", ".");
+  ASSERT_TRUE(spec.contact.has_value());
+  EXPECT_EQ(spec.contact->friction, 0.3);
+  EXPECT_TRUE(spec.contact->bodies);
+  EXPECT_FALSE(spec.contact->self);
+  ASSERT_TRUE(spec.bodies[0].effects.has_value());
+  EXPECT_EQ(spec.bodies[0].effects->contact_bodies, false);
+  EXPECT_FALSE(spec.bodies[0].effects->contact_self.has_value());  // the scene's
+  // Without the keys, contact is with obstacles only, as before.
+  const dc::SceneSpec plain =
+      dio::parseScene(replaced(kScene, "effects: {", "effects: {contact: {}, "), "t", ".");
+  EXPECT_FALSE(plain.contact->bodies);
+  EXPECT_FALSE(plain.contact->self);
+  EXPECT_NE(errorOf(replaced(kScene, "effects: {", "effects: {contact: {self: 2}, ")), "");
 }

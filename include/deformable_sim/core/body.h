@@ -38,6 +38,9 @@ struct BodyEffects {
   bool stress_colouring = false;  ///< the surface marker is coloured by strain (ROS layer)
   /// The force each constraint exerts (reactionForces()); grasps and contact friction read it.
   bool reactions = true;
+  /// The body's own say on the contact effect's `bodies` and `self` (its `effects: {contact:
+  /// ...}`); unset: the scene's. Both need the scene's contact effect.
+  std::optional<bool> contact_bodies, contact_self;
 };
 
 /// How often each effect's code ran: a step counts once per effect it computed. An effect that is
@@ -81,6 +84,11 @@ struct StepReport {
   double largest_rotation_change = 0.0;
   int inverted_elements = 0;  ///< elements with det F <= 0 at the start of the step
   int contacts = 0;           ///< nodes put back on an obstacle's surface after the step
+  /// Contact between bodies: node-triangle pairs with another body that this body is part of
+  /// (its node or its triangle), and with itself; the largest depth such a pair is left at, m.
+  int body_contacts = 0;
+  int self_contacts = 0;
+  double body_penetration = 0.0;
   /// The step left a non-finite value and was undone by Simulation's watchdog: the body is back
   /// at its last good positions, at rest.
   bool recovered = false;
@@ -149,6 +157,10 @@ class Body {
   /// element bodies only (std::logic_error otherwise).
   Eigen::VectorXd& mutablePositions();
   Eigen::VectorXd& mutableVelocities();
+  /// Rigid and pseudo-rigid bodies: changes the centre, the gradient and their rates by the given
+  /// amounts (contact between bodies gathers them); a rigid body's gradient stays a rotation.
+  void moveReducedBy(const Eigen::Vector3d& centre, const Eigen::Matrix3d& gradient,
+                     const Eigen::Vector3d& velocity, const Eigen::Matrix3d& gradient_rate);
   /// Replaces the state (sizes must match); e.g. to start from a given deformation. A rigid or
   /// pseudo-rigid body takes the motion of its model that fits them best (least squares).
   void setState(const Eigen::VectorXd& positions, const Eigen::VectorXd& velocities);

@@ -17,6 +17,8 @@ namespace deformable_sim::core {
 
 struct ContactSettings {
   double friction = 0.5;  ///< Coulomb coefficient μ >= 0; with 0 a node never sticks
+  bool bodies = false;    ///< bodies touch one another (core/body_contact.h)
+  bool self = false;      ///< a body touches itself
 };
 
 /// Which nodes touch an obstacle, from step to step. Sized once per body; allocates nothing after.

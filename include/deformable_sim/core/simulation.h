@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "deformable_sim/core/body.h"
+#include "deformable_sim/core/body_contact.h"
 #include "deformable_sim/core/mesh.h"
 #include "deformable_sim/core/scene.h"
 #include "deformable_sim/core/spec_error.h"
@@ -50,6 +51,10 @@ class Simulation {
   const std::optional<ContactSettings>& contact() const { return contact_; }
   /// Body steps that ran the contact effect (zero without it): its counter, as Body's.
   long contactSteps() const { return contact_steps_; }
+  /// Steps that ran contact between bodies or of a body with itself (zero unless the scene turns
+  /// it on for some body), and that contact, or null.
+  long bodyContactSteps() const { return body_contact_steps_; }
+  const BodyContact* bodyContact() const { return body_contact_ ? &*body_contact_ : nullptr; }
 
   /// Quasi-static equilibrium of every body.
   std::vector<StaticReport> solveStatic();
@@ -57,6 +62,10 @@ class Simulation {
  private:
   /// Builds bodies()[b] from spec.bodies[b] and its mesh: groups, fixed nodes and loads.
   void addBody(const SceneSpec& spec, size_t b, Mesh mesh);
+  /// Contact between bodies and with themselves, if the scene and some body ask for it.
+  void addBodyContact();
+  /// After the bodies' steps: contact between them, then their obstacles again.
+  void resolveBodyContact(std::vector<StepReport>& reports);
 
   double dt_;
   StaticSettings statics_;
@@ -68,6 +77,8 @@ class Simulation {
   /// Per body, with the contact effect and a finite-element model.
   std::vector<std::optional<ContactState>> contact_states_;
   long contact_steps_ = 0;
+  std::optional<BodyContact> body_contact_;  ///< only when some body touches others or itself
+  long body_contact_steps_ = 0;
   std::vector<PlacedShape> obstacles_;
   std::vector<long> recoveries_;  ///< per body: steps the watchdog undid
 };

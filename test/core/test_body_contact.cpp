@@ -1,0 +1,264 @@
+// Contact between bodies and of a body with itself: the broad phase (bounding-volume tree over a
+// body's surface triangles), the swept node-triangle test, and scenes through the core.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "contact_test_helpers.h"
+#include "deformable_sim/core/aabb_tree.h"
+#include "deformable_sim/core/body_surface.h"
+#include "deformable_sim/core/box_mesh.h"
+#include "deformable_sim/core/node_triangle.h"
+#include "deformable_sim/core/simulation.h"
+#include "simulation_test_helpers.h"
+
+namespace dc = deformable_sim::core;
+
+namespace {
+
+std::vector<dc::Box3> randomBoxes(std::mt19937& random, int count) {
+  std::uniform_real_distribution<double> where(-1.0, 1.0), size(0.0, 0.2);
+  std::vector<dc::Box3> boxes;
+  for (int k = 0; k < count; ++k) {
+    const Eigen::Vector3d min(where(random), where(random), where(random));
+    boxes.emplace_back(min, min + Eigen::Vector3d(size(random), size(random), size(random)));
+  }
+  return boxes;
+}
+
+std::vector<int> overlapping(const dc::AabbTree& tree, const dc::Box3& box) {
+  std::vector<int> found;
+  tree.query(box, [&](int item) { found.push_back(item); });
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+std::vector<int> overlappingByHand(const std::vector<dc::Box3>& boxes, const dc::Box3& box) {
+  std::vector<int> found;
+  for (size_t k = 0; k < boxes.size(); ++k) {
+    if (boxes[k].intersects(box)) found.push_back(static_cast<int>(k));
+  }
+  return found;
+}
+
+}  // namespace
+
+TEST(AabbTree, FindsExactlyTheOverlappingBoxesBeforeAndAfterARefit) {
+  std::mt19937 random(7);
+  std::vector<dc::Box3> boxes = randomBoxes(random, 500);
+  dc::AabbTree tree;
+  tree.build(boxes);
+  const std::vector<dc::Box3> queries = randomBoxes(random, 50);
+  for (const dc::Box3& q : queries) EXPECT_EQ(overlapping(tree, q), overlappingByHand(boxes, q));
+  // Every box moves elsewhere: the same tree, refitted, still answers exactly.
+  boxes = randomBoxes(random, 500);
+  tree.refit(boxes);
+  int hits = 0;
+  for (const dc::Box3& q : queries) {
+    EXPECT_EQ(overlapping(tree, q), overlappingByHand(boxes, q));
+    hits += static_cast<int>(overlapping(tree, q).size());
+  }
+  EXPECT_GT(hits, 0);
+  EXPECT_LT(tree.numNodes(), 2 * 500 / dc::AabbTree::kLeafSize * 2);
+}
+
+TEST(BodySurface, AreTheBoundaryTrianglesAndNodesOfAnyMesh) {
+  for (dc::BoxElement element : {dc::BoxElement::kTetrahedron, dc::BoxElement::kHexahedron}) {
+    const dc::Mesh mesh = dc::makeBoxMesh({0, 0, 0}, {0.2, 0.2, 0.1}, {2, 2, 1}, element);
+    Eigen::VectorXd x(3 * mesh.numNodes());
+    for (int i = 0; i < mesh.numNodes(); ++i) x.segment<3>(3 * i) = mesh.positions[i];
+    const dc::BodySurface surface(mesh, x, true);
+    EXPECT_EQ(surface.triangles().size(), 2u * (2 * 4 + 4 * 2));  // 8 quads top/bottom, 8 sides
+    EXPECT_EQ(surface.nodes().size(), 18u);                       // all nodes are on it
+    EXPECT_NEAR(surface.size(), std::sqrt(0.09), 1e-12);
+    EXPECT_NEAR(surface.shortestEdge(), 0.1, 1e-12);
+    EXPECT_TRUE(surface.adjacent(0, 1));
+    EXPECT_FALSE(surface.adjacent(0, 2));  // two cells apart along x
+    // Swept upwards by 1 m: the tree's root covers start and end.
+    Eigen::VectorXd up = x;
+    for (int i = 0; i < mesh.numNodes(); ++i) up[3 * i + 2] += 1.0;
+    dc::BodySurface moving(mesh, x, false);
+    moving.sweep(up, 0.01);
+    EXPECT_NEAR(moving.tree().rootBox().min().z(), -0.01, 1e-12);
+    EXPECT_NEAR(moving.tree().rootBox().max().z(), 1.11, 1e-12);
+  }
+}
+
+TEST(NodeTriangle, ANodeThatCameThroughIsFoundDeepANodeInsideFromTheStartOnlyWhenShallow) {
+  dc::SweptTriangle floor;  // z = 0, outward normal +z, still
+  floor.start[0] = floor.end[0] = {0, 0, 0};
+  floor.start[1] = floor.end[1] = {1, 0, 0};
+  floor.start[2] = floor.end[2] = {0, 1, 0};
+  dc::NodeTriangleHit hit;
+  // Through the triangle within the step, ending 0.5 m below it: found, by the side it came from.
+  EXPECT_TRUE(dc::nodeHitsTriangle({{0.2, 0.2, 0.3}, {0.2, 0.2, -0.5}}, floor, 1e-3, 0.01, &hit));
+  EXPECT_DOUBLE_EQ(hit.depth, 0.5);
+  EXPECT_EQ(hit.normal, Eigen::Vector3d::UnitZ());
+  EXPECT_NEAR(hit.weights.sum(), 1.0, 1e-15);
+  EXPECT_TRUE(hit.weights.isApprox(Eigen::Vector3d(0.6, 0.2, 0.2)));
+  // Deep below from the start (the far side of a body): not this triangle's business.
+  EXPECT_FALSE(dc::nodeHitsTriangle({{0.2, 0.2, -0.4}, {0.2, 0.2, -0.5}}, floor, 1e-3, 0.01, &hit));
+  // Shallow below from the start (resting on it): found.
+  EXPECT_TRUE(
+      dc::nodeHitsTriangle({{0.2, 0.2, -0.004}, {0.2, 0.2, -0.005}}, floor, 1e-3, 0.01, &hit));
+  // In front, or beside the triangle: not.
+  EXPECT_FALSE(dc::nodeHitsTriangle({{0.2, 0.2, 0.3}, {0.2, 0.2, 0.1}}, floor, 1e-3, 0.01, &hit));
+  EXPECT_FALSE(dc::nodeHitsTriangle({{0.8, 0.8, 0.3}, {0.8, 0.8, -0.1}}, floor, 1e-3, 0.01, &hit));
+  // A triangle that rises through a still node catches it too.
+  dc::SweptTriangle rising = floor;
+  for (Eigen::Vector3d& corner : rising.end) corner.z() = 0.5;
+  EXPECT_TRUE(dc::nodeHitsTriangle({{0.2, 0.2, 0.1}, {0.2, 0.2, 0.1}}, rising, 1e-3, 0.01, &hit));
+  EXPECT_NEAR(hit.depth, 0.4, 1e-15);
+}
+
+namespace {
+
+using deformable_sim::test::deepestInside;
+using deformable_sim::test::totalMomentum;
+
+const dc::LinearElasticMaterial kSoft{1.0e5, 0.3, 100.0};
+
+dc::BodySpec cube(const std::string& name, const Eigen::Vector3d& min, double side,
+                  dc::BodyModel model = dc::BodyModel::kFiniteElement, int cells = 2) {
+  dc::BodySpec body;
+  body.name = name;
+  body.model = model;
+  body.box_mesh =
+      dc::BoxMeshSpec{min, min + Eigen::Vector3d::Constant(side), Eigen::Vector3i::Constant(cells)};
+  body.material = kSoft;
+  return body;
+}
+
+/// A scene with contact between bodies on, exact solves (momentum to round-off), no gravity.
+dc::SceneSpec bodyContactScene() {
+  dc::SceneSpec spec;
+  spec.dt = 0.01;
+  spec.effects.warping = true;
+  spec.contact = dc::ContactSettings{0.5, true, false};
+  spec.solver.method = dc::SolverSettings::Method::kDirect;
+  return spec;
+}
+
+void setVelocity(dc::Body& body, const Eigen::Vector3d& velocity) {
+  Eigen::VectorXd v = body.velocities();
+  for (int i = 0; i < body.numNodes(); ++i) v.segment<3>(3 * i) = velocity;
+  body.setState(body.positions(), v);
+}
+
+Eigen::Vector3d centreOf(const dc::Body& body) {
+  return body.positions().reshaped(3, body.numNodes()).rowwise().mean();
+}
+
+}  // namespace
+
+/// Soft, yet stiff enough for a body to answer a blow as a whole within a step (a wave crosses it
+/// in less than one): contact acts on nodes, so a mesh this coarse needs it at 5 m/s.
+constexpr double kThrownStiffness = 1.0e6;
+constexpr int kThrownCells = 2;
+
+TEST(BodyContact, BodiesThrownAtEachOtherBounceOffWithMomentumKeptForEveryModelPair) {
+  const dc::BodyModel models[] = {dc::BodyModel::kFiniteElement, dc::BodyModel::kPseudoRigid,
+                                  dc::BodyModel::kRigid};
+  for (dc::BodyModel left : models) {
+    for (dc::BodyModel right : models) {
+      const std::string pair = std::string(dc::modelName(left)) + "-" + dc::modelName(right);
+      dc::SceneSpec spec = bodyContactScene();
+      spec.bodies.push_back(cube("left", {-0.35, -0.1, -0.1}, 0.2, left, kThrownCells));
+      spec.bodies.push_back(cube("right", {0.15, -0.07, -0.13}, 0.2, right, kThrownCells));
+      for (dc::BodySpec& body : spec.bodies) body.material.youngs_modulus = kThrownStiffness;
+      dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+      setVelocity(sim.bodies()[0], {5.0, 0.0, 0.0});
+      setVelocity(sim.bodies()[1], {-5.0, 0.0, 0.0});
+      const double scale = 5.0 * 0.8;  // either body's momentum: 5 m/s, 0.2^3 m^3 of 100 kg/m^3
+      const double tolerance = sim.bodyContact()->tolerance(0, 1);
+      std::vector<dc::StepReport> reports;
+      int touching = 0;
+      for (int s = 0; s < 30; ++s) {
+        sim.step(reports);
+        touching += reports[0].body_contacts;
+        // Every pair the contact found is put back to within the tolerance (a node that slips
+        // past a triangle's edge within a step is not found: doc/physics.md).
+        ASSERT_LE(reports[0].body_penetration, tolerance) << pair << " step " << s;
+        ASSERT_LE(totalMomentum(sim.bodies()).norm(), 1e-6 * scale) << pair << " step " << s;
+      }
+      EXPECT_GT(touching, 0) << pair;
+      // They met and came apart again, each on its own side.
+      EXPECT_LT(centreOf(sim.bodies()[0]).x(), centreOf(sim.bodies()[1]).x()) << pair;
+      EXPECT_LT(deformable_sim::test::momentum(sim.bodies()[0]).x(), 0.0) << pair;
+    }
+  }
+}
+
+TEST(BodyContact, ASoftCubeSquashedToAFifthOfItsHeightBetweenTwoPlatesComesBack) {
+  dc::SceneSpec spec = bodyContactScene();
+  spec.solver.method = dc::SolverSettings::Method::kConjugateGradient;
+  spec.effects.damping = dc::RayleighDamping{2.0, 0.005};
+  for (double z : {-0.02, 0.101}) {  // plates just below and just above the cube
+    dc::BodySpec plate;
+    plate.name = z < 0 ? "bottom" : "top";
+    plate.box_mesh = dc::BoxMeshSpec{{-0.15, -0.15, z}, {0.15, 0.15, z + 0.02}, {3, 3, 1}};
+    plate.material = kSoft;
+    spec.bodies.push_back(plate);
+  }
+  spec.bodies.push_back(cube("cube", {-0.05, -0.05, 0.0}, 0.1));
+  dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+  dc::Body& top = sim.bodies()[1];
+  std::vector<int> all(top.numNodes());
+  for (int i = 0; i < top.numNodes(); ++i) all[i] = i;
+  sim.bodies()[0].fixNodes(all);
+  const Eigen::VectorXd rest_top = top.positions();
+  const auto moveTopTo = [&](double lowest) {  // the top plate's underside at z = lowest
+    std::vector<Eigen::Vector3d> targets(all.size());
+    for (int i : all)
+      targets[i] = rest_top.segment<3>(3 * i) + Eigen::Vector3d(0, 0, lowest - 0.101);
+    top.setNodeTargets(all, targets);
+  };
+  const double tolerance = sim.bodyContact()->tolerance(1, 2);
+  const dc::Body& cube_body = sim.bodies()[2];
+  const auto height = [&] {
+    const auto z = cube_body.positions().reshaped(3, cube_body.numNodes()).row(2);
+    return z.maxCoeff() - z.minCoeff();
+  };
+  std::vector<dc::StepReport> reports;
+  for (int s = 1; s <= 250; ++s) {  // down to 20 % of the height in 2 s, held for half a second
+    moveTopTo(std::max(0.02, 0.101 - 0.0005 * s));
+    sim.step(reports);
+    ASSERT_LE(deepestInside(cube_body, top), tolerance) << s;
+    ASSERT_LE(deepestInside(cube_body, sim.bodies()[0]), tolerance) << s;
+  }
+  EXPECT_LE(height(), 0.02 + 2 * tolerance);
+  EXPECT_GT(reports[2].body_contacts, 0);
+  moveTopTo(0.3);  // released: the plate leaves in one step
+  for (int s = 0; s < 300; ++s) {
+    sim.step(reports);
+    ASSERT_EQ(reports[2].inverted_elements, 0) << s;
+  }
+  EXPECT_NEAR(height(), 0.1, 0.005);
+  EXPECT_TRUE(cube_body.stateIsFinite());
+}
+
+TEST(BodyContact, RunsOnlyWhenTheSceneAndAtLeastTwoBodiesOrOneSelfAskForIt) {
+  dc::SceneSpec spec = bodyContactScene();
+  spec.bodies.push_back(cube("a", {0, 0, 0}, 0.1));
+  spec.bodies.push_back(cube("b", {0.2, 0, 0}, 0.1, dc::BodyModel::kRigid));
+  const auto steppedSteps = [](const dc::SceneSpec& scene) {
+    dc::Simulation sim = deformable_sim::test::boxMeshSimulation(scene);
+    std::vector<dc::StepReport> reports;
+    for (int s = 0; s < 3; ++s) sim.step(reports);
+    return std::make_pair(sim.bodyContact() != nullptr, sim.bodyContactSteps());
+  };
+  EXPECT_EQ(steppedSteps(spec), std::make_pair(true, 3L));
+  dc::SceneSpec off = spec;
+  off.contact->bodies = false;  // obstacles only: nothing of contact between bodies is made
+  EXPECT_EQ(steppedSteps(off), std::make_pair(false, 0L));
+  dc::SceneSpec alone = spec;  // the other body opts out: nobody left to touch
+  alone.bodies[1].effects = spec.effects;
+  alone.bodies[1].effects->contact_bodies = false;
+  EXPECT_EQ(steppedSteps(alone), std::make_pair(false, 0L));
+  dc::SceneSpec self = off;
+  self.contact->self = true;  // the finite-element body touches itself; the rigid one cannot
+  EXPECT_EQ(steppedSteps(self), std::make_pair(true, 3L));
+  self.bodies[0].effects = spec.effects;
+  self.bodies[0].effects->contact_self = false;
+  EXPECT_EQ(steppedSteps(self), std::make_pair(false, 0L));
+}
