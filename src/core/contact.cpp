@@ -15,15 +15,32 @@ void ContactState::hold(Body& body) {
   }
 }
 
-void ContactState::release(Body& body, const ContactSettings& settings) {
+void ContactState::release(Body& body, const ContactSettings& settings, double dt) {
+  // Coulomb's law for the held nodes together: single nodes of a body carry uneven parts of the
+  // load, and judging each by itself lets some slip while the body sticks (it creeps) and keeps
+  // others held while it slides (it stops).
+  const Eigen::VectorXd& reactions = body.reactionForces();
+  double pushing_sum = 0.0, mass_sum = 0.0;
+  Eigen::Vector3d sliding_sum = Eigen::Vector3d::Zero();
+  for (int i = 0; i < body.numNodes(); ++i) {
+    const double pushing = reactions.segment<3>(3 * i).dot(normal_[i]);
+    if (!held_[i] || !(pushing > 0.0)) continue;
+    pushing_sum += pushing;
+    sliding_sum += reactions.segment<3>(3 * i) - pushing * normal_[i];
+    mass_sum += body.nodalMasses()[i];
+  }
+  const double sliding = sliding_sum.norm(), friction = settings.friction * pushing_sum;
+  const bool sticks = sliding <= friction * (1.0 + 1e-12);
+  // Held, they did not move although the obstacle resisted only `friction` of `sliding`: the
+  // velocity the rest would have given them in the step, so that they slide on.
+  const Eigen::Vector3d slip =
+      sticks ? Eigen::Vector3d::Zero()
+             : Eigen::Vector3d(-(sliding - friction) * dt / mass_sum * sliding_sum / sliding);
   for (int i = 0; i < body.numNodes(); ++i) {
     if (!held_[i]) continue;
-    const Eigen::Vector3d r = body.reactionForces().segment<3>(3 * i);
-    const double pushing = r.dot(normal_[i]);
-    const double sliding = (r - pushing * normal_[i]).norm();
-    if (!(pushing > 0.0 && sliding <= settings.friction * pushing + 1e-12 * r.norm())) {
-      normal_[i].setZero();  // it lifts off or slides: free in the next step
-    }
+    const double pushing = reactions.segment<3>(3 * i).dot(normal_[i]);
+    if (!(sticks && pushing > 0.0)) normal_[i].setZero();  // it lifts off or slides: free
+    if (!sticks && pushing > 0.0) body.mutableVelocities().segment<3>(3 * i) += slip;
     body.releaseNode(i);
     held_[i] = 0;
   }

@@ -199,7 +199,7 @@ void Simulation::step(std::vector<StepReport>& reports) {
       ContactState& contacts = *contact_states_[b];
       contacts.hold(body);
       reports[b] = body.step(dt_);
-      contacts.release(body, *contact_);
+      contacts.release(body, *contact_, dt_);
       reports[b].contacts = contacts.project(body, obstacles_, *contact_);
       ++contact_steps_;
     }

@@ -219,7 +219,7 @@ void EffectCost(benchmark::State& state) {
     if (contact) contacts.hold(body);
     const core::StepReport report = body.step(c.dt);
     if (contact) {
-      contacts.release(body, friction);
+      contacts.release(body, friction, c.dt);
       touching = contacts.project(body, obstacles, friction);
     }
     if (body.effects().stress_colouring) core::nodalStrain(body, strain);

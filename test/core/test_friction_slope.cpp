@@ -1,7 +1,6 @@
 // A block on a plane tilted at theta, on a primitive box and on a triangle mesh: by Coulomb's law
 // it stays where tan(theta) < mu and otherwise slides down with g (sin(theta) - mu cos(theta)).
-// The contact effect does the first and the frictionless slide; sliding against friction is not
-// reached yet (see DISABLED_ below).
+// Close below the friction angle it still creeps (see DISABLED_ below).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -135,14 +134,18 @@ TEST(FrictionSlope, FrictionlessBlockSlidesDownAMeshPlaneWithGSinTheta) {
   expectSlides(Plane::kOpenMesh, 0.6, 0.0);
 }
 
-// Fails today: a landing node that friction stops is held through the next solve, and the held
-// step decides stick or slip from its own constraint force only afterwards; with the elastic
-// impulses of a 2 x 2 x 2 block the bottom nodes keep landing stopped, and the block stops or
-// creeps (on some slopes it slides, 10 % slow) instead of sliding with g (sin θ - μ cos θ).
-TEST(FrictionSlope, DISABLED_BlockSlidesAgainstFrictionAboveTheFrictionAngle) {
+TEST(FrictionSlope, BlockSlidesAgainstFrictionAboveTheFrictionAngle) {
   for (const Plane plane : {Plane::kPrimitiveBox, Plane::kOpenMesh}) {
     expectSlides(plane, 0.3, 0.2);  // tan = 0.31
     expectSlides(plane, 0.5, 0.3);  // tan = 0.55
     expectSlides(plane, 0.6, 0.5);  // tan = 0.68
   }
+}
+
+// Fails today: at tan = 0.55 and mu = 0.6 the block creeps 3 to 5 cm in a second. Stick or slip is
+// decided from the constraint forces of the step in which the touching nodes were held, and a
+// node that lands is held only once friction has stopped it: near the friction angle the held
+// set changes from step to step, and each change lets the block move a little.
+TEST(FrictionSlope, DISABLED_BlockStaysJustBelowTheFrictionAngle) {
+  for (const Plane plane : {Plane::kPrimitiveBox, Plane::kOpenMesh}) expectStays(plane, 0.5, 0.6);
 }

@@ -54,8 +54,12 @@ class MeshObstacles(unittest.TestCase):
             cls.states.append(cls.sim.state_at(answer.step))
         cls.stats = cls.sim.wait('stats')
         time.sleep(1.0)  # the last messages reach the recorder
-        os.killpg(recorder.pid, signal.SIGINT)
+        os.killpg(recorder.pid, signal.SIGINT)  # rosbag and its recorder: the bag is closed
         recorder.wait(timeout=30)
+        deadline = time.time() + 10.0  # the recorder renames session.bag.active when it is done
+        while not os.path.exists(cls.bag) and time.time() < deadline:
+            time.sleep(0.1)
+        assert os.path.exists(cls.bag), 'rosbag record wrote no bag'
 
     @classmethod
     def tearDownClass(cls):

@@ -1,10 +1,10 @@
 // Contact with rigid obstacles (the `contact` effect). After each step, nodes that ended up inside
 // an obstacle are put back on its surface and their velocity into it removed. A node that touches
-// an obstacle is then held in the next step's implicit solve, so the obstacle supports the body
-// through the solve (a resting body is not over-compressed), and let go when the constraint would
-// pull it into the obstacle or, by Coulomb's law, when the tangential force exceeds μ times the
-// normal force (it slides). Stable at any stiffness and step; costs nothing when the scene does not
-// enable it.
+// an obstacle without sliding is then held in the next step's implicit solve, so the obstacle
+// supports the body through the solve (a resting body is not over-compressed), and let go when
+// the constraint would pull it into the obstacle or, by Coulomb's law applied to the body's held
+// nodes together, when their tangential force exceeds μ times their normal force (it slides).
+// Stable at any stiffness and step; costs nothing when the scene does not enable it.
 #pragma once
 
 #include <cstdint>
@@ -29,9 +29,10 @@ class ContactState {
 
   /// Before a step: holds the free nodes that touch an obstacle.
   void hold(Body& body);
-  /// After the step: lets the held nodes go, keeping as touching those whose constraint force
-  /// pushes them out of the obstacle within the friction cone.
-  void release(Body& body, const ContactSettings& settings);
+  /// After the step of `dt` s: lets the held nodes go. While their constraint forces together
+  /// push out of the obstacles within the friction cone, those that push stay touching (held
+  /// in the next step); else they all start to slide.
+  void release(Body& body, const ContactSettings& settings, double dt);
   /// Projects the free nodes out of every obstacle and records them as touching. Returns the
   /// number of nodes touching an obstacle.
   int project(Body& body, const std::vector<PlacedShape>& obstacles,
