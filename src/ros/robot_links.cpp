@@ -34,6 +34,15 @@ const std::vector<core::PlacedShape>& RobotLinks::shapes(const std::string& link
   }
 }
 
+std::vector<core::PlacedShape> RobotLinks::shapes(const std::vector<std::string>& links) {
+  std::vector<core::PlacedShape> all;
+  for (const std::string& link : links) {
+    const std::vector<core::PlacedShape>& mine = shapes(link);
+    all.insert(all.end(), mine.begin(), mine.end());
+  }
+  return all;
+}
+
 void RobotLinks::load() {
   if (loaded_) return;
   std::string xml;

@@ -95,14 +95,10 @@ int SimNode::apply(const core::SessionCommand& command) {
 void SimNode::publishScene() {
   std::vector<std::string> names;
   for (const core::BodySpec& body : params_.scene.bodies) names.push_back(body.name);
-  std::vector<core::PlacedShape> link_shapes;  // read already: sceneObstacles() needed them
-  for (const std::string& link : params_.scene.urdf_links) {
-    const std::vector<core::PlacedShape>& shapes = robot_links_.shapes(link);
-    link_shapes.insert(link_shapes.end(), shapes.begin(), shapes.end());
-  }
-  Scene message = toSceneMessage(params_.scene_path, params_.scene_text, sim().dt(),
-                                 params_.substeps, session_->meshes(), names,
-                                 params_.scene.obstacles, link_shapes, obstacle_meshes_);
+  Scene message =
+      toSceneMessage(params_.scene_path, params_.scene_text, sim().dt(), params_.substeps,
+                     session_->meshes(), names, params_.scene.obstacles,
+                     robot_links_.shapes(params_.scene.urdf_links), obstacle_meshes_);
   message.header.stamp = ros::Time::now();
   message.header.frame_id = params_.world_frame;
   message.world_frame = params_.world_frame;

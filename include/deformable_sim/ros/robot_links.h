@@ -22,6 +22,8 @@ class RobotLinks {
   /// The link's collision shapes in its own frame. Throws core::CommandError naming the problem
   /// when there is no valid robot description or the link has no usable shape.
   const std::vector<core::PlacedShape>& shapes(const std::string& link);
+  /// The shapes of every link named, in order.
+  std::vector<core::PlacedShape> shapes(const std::vector<std::string>& links);
 
  private:
   void load();
