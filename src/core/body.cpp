@@ -371,14 +371,16 @@ void Body::releaseNodes(const std::vector<int>& nodes) {
   }
 }
 
-void Body::holdNode(int node) {
+void Body::holdNode(int node) { holdNodeAt(node, positions().segment<3>(3 * node)); }
+
+void Body::holdNodeAt(int node, const Eigen::Vector3d& target) {
   if (reduced_) {  // contact acts on finite-element bodies only; keep the general path
-    setNodeTargets({node}, {positions().segment<3>(3 * node)});
+    setNodeTargets({node}, {target});
     return;
   }
   if (!constrained_[node]) matrix_changed_ = true;
   constrained_[node] = 1;
-  targets_.segment<3>(3 * node) = x_.segment<3>(3 * node);
+  targets_.segment<3>(3 * node) = target;
 }
 
 void Body::releaseNode(int node) {

@@ -136,7 +136,8 @@ void Simulation::resolveBodyContact(std::vector<StepReport>& reports) {
   // Contact between bodies may have pushed a node into an obstacle: obstacles have the last say.
   for (size_t b = 0; b < bodies_.size(); ++b) {
     if (!contact_states_[b] || !body_contact_->takesPart(static_cast<int>(b))) continue;
-    reports[b].contacts = contact_states_[b]->project(bodies_[b], obstacles_, *contact_);
+    reports[b].contacts =
+        contact_states_[b]->project(bodies_[b], obstacles_, obstacle_starts_, *contact_, dt_);
   }
 }
 
@@ -188,8 +189,20 @@ void Simulation::setDt(double dt) {
   dt_ = dt;
 }
 
+void Simulation::followObstacles() {
+  if (obstacle_starts_.size() == obstacles_.size()) return;
+  // Other obstacles than before (a scene's first step, a robot's links appearing in tf): they
+  // start where they are, and no node touches them yet.
+  obstacle_starts_.resize(obstacles_.size());  // allocates only when their number changes
+  for (size_t k = 0; k < obstacles_.size(); ++k) obstacle_starts_[k] = obstacles_[k].pose;
+  for (std::optional<ContactState>& state : contact_states_) {
+    if (state) state->forget();
+  }
+}
+
 void Simulation::step(std::vector<StepReport>& reports) {
   reports.resize(bodies_.size());
+  if (contact_) followObstacles();
   for (size_t b = 0; b < bodies_.size(); ++b) {
     Body& body = bodies_[b];
     body.rememberState();
@@ -197,10 +210,10 @@ void Simulation::step(std::vector<StepReport>& reports) {
       reports[b] = body.step(dt_);
     } else {
       ContactState& contacts = *contact_states_[b];
-      contacts.hold(body);
+      contacts.hold(body, obstacles_);
       reports[b] = body.step(dt_);
-      contacts.release(body, *contact_, dt_);
-      reports[b].contacts = contacts.project(body, obstacles_, *contact_);
+      contacts.release(body, obstacles_, *contact_, dt_);
+      reports[b].contacts = contacts.project(body, obstacles_, obstacle_starts_, *contact_, dt_);
       ++contact_steps_;
     }
     // Constraint forces too: a tiny dt (1e-320 s) divides a finite solve into infinite forces.
@@ -212,8 +225,14 @@ void Simulation::step(std::vector<StepReport>& reports) {
     }
   }
   if (body_contact_) resolveBodyContact(reports);
+  for (size_t k = 0; k < obstacle_starts_.size(); ++k) obstacle_starts_[k] = obstacles_[k].pose;
   ++step_count_;
   time_ += dt_;
+}
+
+const std::vector<ObstacleContact>& Simulation::obstacleContacts(int b) const {
+  static const std::vector<ObstacleContact> none;
+  return contact_states_[b] ? contact_states_[b]->obstacleContacts() : none;
 }
 
 std::vector<StaticReport> Simulation::solveStatic() {

@@ -212,15 +212,16 @@ void EffectCost(benchmark::State& state) {
   floor.shape.size = Eigen::Vector3d(4.0, 4.0, 0.2);
   floor.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.21);  // top at z = -0.11
   const std::vector<core::PlacedShape> obstacles = {floor};
+  const std::vector<Eigen::Isometry3d> starts = {floor.pose};
   std::vector<double> strain;
   double iterations = 0.0;
   int touching = 0;
   const auto step = [&] {
-    if (contact) contacts.hold(body);
+    if (contact) contacts.hold(body, obstacles);
     const core::StepReport report = body.step(c.dt);
     if (contact) {
-      contacts.release(body, friction, c.dt);
-      touching = contacts.project(body, obstacles, friction);
+      contacts.release(body, obstacles, friction, c.dt);
+      touching = contacts.project(body, obstacles, starts, friction, c.dt);
     }
     if (body.effects().stress_colouring) core::nodalStrain(body, strain);
     return report;

@@ -182,6 +182,8 @@ class Body {
   /// step loop (contact), so they allocate nothing (finite-element bodies) and do not check the
   /// index.
   void holdNode(int node);
+  /// The same, prescribing where the node is at the end of the next step (a moving contact).
+  void holdNodeAt(int node, const Eigen::Vector3d& target);
   void releaseNode(int node);
   bool isConstrained(int node) const { return constrained_[node] != 0; }
   int numConstrained() const;

@@ -45,10 +45,14 @@ class Simulation {
   /// Steps of bodies()[index] that the watchdog undid, since construction.
   long recoveries(int index) const { return recoveries_[index]; }
 
-  /// Obstacles of the contact effect; their poses may be changed between steps.
+  /// Obstacles of the contact effect; their poses may be changed between steps (a pose changed
+  /// before a step is reached within it: the obstacle moves, and carries what sticks to it).
   std::vector<PlacedShape>& obstacles() { return obstacles_; }
   const std::vector<PlacedShape>& obstacles() const { return obstacles_; }
   const std::optional<ContactSettings>& contact() const { return contact_; }
+  /// What bodies()[b] felt from each obstacle in the last step (empty without contact, or for a
+  /// body contact does not act on).
+  const std::vector<ObstacleContact>& obstacleContacts(int b) const;
   /// Body steps that ran the contact effect (zero without it): its counter, as Body's.
   long contactSteps() const { return contact_steps_; }
   /// Steps that ran contact between bodies or of a body with itself (zero unless the scene turns
@@ -64,6 +68,8 @@ class Simulation {
   void addBody(const SceneSpec& spec, size_t b, Mesh mesh);
   /// Contact between bodies and with themselves, if the scene and some body ask for it.
   void addBodyContact();
+  /// Before a step: when the obstacles are others than in the last step, forgets their contacts.
+  void followObstacles();
   /// After the bodies' steps: contact between them, then their obstacles again.
   void resolveBodyContact(std::vector<StepReport>& reports);
 
@@ -80,7 +86,8 @@ class Simulation {
   std::optional<BodyContact> body_contact_;  ///< only when some body touches others or itself
   long body_contact_steps_ = 0;
   std::vector<PlacedShape> obstacles_;
-  std::vector<long> recoveries_;  ///< per body: steps the watchdog undid
+  std::vector<Eigen::Isometry3d> obstacle_starts_;  ///< their poses at the step's start
+  std::vector<long> recoveries_;                    ///< per body: steps the watchdog undid
 };
 
 }  // namespace deformable_sim::core

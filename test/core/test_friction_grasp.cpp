@@ -1,0 +1,119 @@
+// Grasping by friction: two finger obstacles squeeze a soft block on a table and lift it. Held by
+// friction alone it rises with them, and what the fingers feel, summed, carries its weight; too
+// light a squeeze lets it slip out. Obstacles that move carry the nodes that stick to them.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "deformable_sim/core/contact.h"
+#include "deformable_sim/core/shape.h"
+#include "deformable_sim/core/simulation.h"
+#include "simulation_test_helpers.h"
+
+namespace dc = deformable_sim::core;
+using deformable_sim::test::boxMeshSimulation;
+
+namespace {
+
+constexpr double kGravity = 9.81;
+constexpr double kHalfWidth = 0.03;  // the block: a 6 cm cube on the table, centred on the z axis
+constexpr double kLift = 0.1;        // m
+
+dc::PlacedShape box(const std::string& name, const Eigen::Vector3d& size,
+                    const Eigen::Vector3d& centre) {
+  dc::PlacedShape shape;
+  shape.name = name;
+  shape.shape.kind = dc::Shape::Kind::kBox;
+  shape.shape.size = size;
+  shape.pose.translation() = centre;
+  return shape;
+}
+
+struct Grasp {
+  double rise = 0.0;  ///< m the block's centre of mass rose while the fingers rose kLift
+  Eigen::Vector3d finger_force = Eigen::Vector3d::Zero();  ///< on the block, both fingers, N
+  Eigen::Vector3d table_force = Eigen::Vector3d::Zero();   ///< on the block from the table, N
+  double weight = 0.0;                                     ///< N
+  int finger_points = 0;
+};
+
+Eigen::Vector3d centreOfMass(const dc::Body& body) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double mass = 0.0;
+  for (int i = 0; i < body.numNodes(); ++i) {
+    sum += body.nodalMasses()[i] * body.positions().segment<3>(3 * i);
+    mass += body.nodalMasses()[i];
+  }
+  return sum / mass;
+}
+
+// Fingers 1 cm thick close on the block's sides by `squeeze` each in 0.5 s, rise kLift in 1 s,
+// and hold still for 1.5 s.
+Grasp squeezeAndLift(double squeeze, double friction) {
+  dc::SceneSpec spec;
+  spec.dt = 0.01;
+  spec.effects.gravity = Eigen::Vector3d(0, 0, -kGravity);
+  spec.effects.warping = true;
+  spec.effects.damping = dc::RayleighDamping{2.0, 0.002};
+  spec.contact = dc::ContactSettings{friction};
+  spec.obstacles.push_back(box("table", {0.4, 0.4, 0.04}, {0, 0, -0.02}));
+  const Eigen::Vector3d finger_size(0.03, 0.01, 0.05);
+  const double open = kHalfWidth + 0.005 + 0.002;  // finger centres 2 mm off the block
+  for (int side : {-1, 1}) {
+    spec.obstacles.push_back(box(side < 0 ? "left" : "right", finger_size, {0, side * open, 0.03}));
+  }
+  dc::BodySpec block;
+  block.name = "block";
+  block.box_mesh =
+      dc::BoxMeshSpec{{-kHalfWidth, -kHalfWidth, 0.0}, {kHalfWidth, kHalfWidth, 0.06}, {3, 3, 3}};
+  block.material = {3.0e4, 0.3, 150.0};
+  spec.bodies.push_back(block);
+  dc::Simulation sim = boxMeshSimulation(spec);
+  std::vector<dc::StepReport> reports;
+  const double start = centreOfMass(sim.bodies()[0]).z();
+  const auto place = [&](double closing, double height) {
+    for (int f = 1; f <= 2; ++f) {
+      const double side = f == 1 ? -1.0 : 1.0;
+      sim.obstacles()[f].pose.translation() =
+          Eigen::Vector3d(0, side * (open - closing), 0.03 + height);
+    }
+  };
+  for (int s = 1; s <= 50; ++s) place((0.002 + squeeze) * s / 50.0, 0.0), sim.step(reports);
+  for (int s = 1; s <= 100; ++s) {
+    place(0.002 + squeeze, kLift * (0.5 - 0.5 * std::cos(M_PI * s / 100.0)));
+    sim.step(reports);
+  }
+  for (int s = 0; s < 150; ++s) sim.step(reports);
+  Grasp grasp;
+  grasp.rise = centreOfMass(sim.bodies()[0]).z() - start;
+  for (int f = 1; f <= 2; ++f) {
+    grasp.finger_force += sim.obstacleContacts(0)[f].force;
+    grasp.finger_points += sim.obstacleContacts(0)[f].points;
+  }
+  grasp.table_force = sim.obstacleContacts(0)[0].force;
+  for (double m : sim.bodies()[0].nodalMasses()) grasp.weight += m * kGravity;
+  return grasp;
+}
+
+}  // namespace
+
+TEST(FrictionGrasp, ASqueezedBlockRisesWithTheFingersAndTheyCarryItsWeight) {
+  const Grasp grasp = squeezeAndLift(0.002, 0.5);
+  // It rises with the fingers, less only the little it sags and slips while it starts to hang.
+  EXPECT_NEAR(grasp.rise, kLift, 0.005);
+  EXPECT_GT(grasp.finger_points, 0);
+  // Hanging still, the fingers' forces on it balance its weight; the table no longer touches it.
+  EXPECT_NEAR(grasp.finger_force.z(), grasp.weight, 0.02 * grasp.weight);
+  EXPECT_NEAR(grasp.finger_force.x(), 0.0, 0.02 * grasp.weight);
+  EXPECT_NEAR(grasp.finger_force.y(), 0.0, 0.02 * grasp.weight);
+  EXPECT_TRUE(grasp.table_force.isZero(0.0));
+}
+
+TEST(FrictionGrasp, TooLightASqueezeLetsTheBlockSlipOut) {
+  // The same squeeze with a tenth of the friction: μ times the squeeze is less than the weight.
+  const Grasp grasp = squeezeAndLift(0.002, 0.05);
+  EXPECT_LT(grasp.rise, 0.2 * kLift);
+  // It is back on the table, which carries it.
+  EXPECT_NEAR(grasp.table_force.z(), grasp.weight, 0.05 * grasp.weight);
+}
