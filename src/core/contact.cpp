@@ -8,7 +8,8 @@ ContactState::ContactState(int num_nodes)
     : obstacle_(num_nodes, -1),
       point_(num_nodes, Eigen::Vector3d::Zero()),
       normal_(num_nodes, Eigen::Vector3d::Zero()),
-      sticking_(num_nodes, 0) {
+      sticking_(num_nodes, 0),
+      held_flag_(num_nodes, 0) {
   held_.reserve(num_nodes);
 }
 
@@ -22,7 +23,7 @@ void ContactState::resizeForObstacles(size_t count) {
     contacts_.resize(count);
     patches_.resize(count);
   }
-  std::fill(contacts_.begin(), contacts_.end(), ObstacleContact{});
+  std::fill(contacts_.begin(), contacts_.end(), ContactLoad{});
   std::fill(patches_.begin(), patches_.end(), Patch{});
 }
 
@@ -44,6 +45,7 @@ void ContactState::hold(Body& body, const std::vector<PlacedShape>& obstacles) {
     if (k < 0 || !sticking_[i] || body.isConstrained(i)) continue;
     body.holdNodeAt(i, obstacles[k].pose * point_[i]);
     held_.push_back(i);
+    held_flag_[i] = 1;
   }
 }
 
@@ -77,6 +79,10 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
                            const ContactSettings& settings, double dt) {
   resizeForObstacles(obstacles.size());
   judgePatches(body, obstacles, settings, dt);
+  // Nodes not held touch only if project() finds them inside again.
+  for (int i = 0; i < body.numNodes(); ++i) {
+    if (!held_flag_[i]) obstacle_[i] = -1, sticking_[i] = 0;
+  }
   for (int i : held_) {
     const int k = obstacle_[i];
     const Patch& patch = patches_[k];
@@ -91,6 +97,7 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
     sticking_[i] = patch.sticks && pushing > 0.0;
     if (!sticking_[i]) obstacle_[i] = -1;  // it lifts off or slides: free
     body.releaseNode(i);
+    held_flag_[i] = 0;
   }
   held_.clear();
 }
@@ -134,23 +141,27 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
       contacts_[k].penetration = std::max(contacts_[k].penetration, -distance);
       const Eigen::Vector3d on_surface = obstacle.pose * surface;
       x.segment<3>(3 * i) = on_surface;
+      // A node held at its point of this obstacle moved with it: it is inside by round-off only,
+      // and still sticks.
+      const bool stuck = obstacle_[i] == static_cast<int>(k) && sticking_[i];
       if (obstacle_[i] != static_cast<int>(k)) sticking_[i] = 0;  // a new contact
       obstacle_[i] = static_cast<int>(k);
       point_[i] = surface;
       normal_[i] = normal;
+      if (stuck) continue;
       applyFriction(body, i, (on_surface - to_start * on_surface) / dt,
                     obstacle.pose.linear() * normal, settings, dt);
     }
   }
   int touching = 0;
-  for (ObstacleContact& c : contacts_) c.points = 0, c.centre.setZero();
+  for (ContactLoad& c : contacts_) c.points = 0, c.centre.setZero();
   for (int i = 0; i < body.numNodes(); ++i) {
     if (obstacle_[i] < 0) continue;
     ++touching;
     ++contacts_[obstacle_[i]].points;
     contacts_[obstacle_[i]].centre += x.segment<3>(3 * i);
   }
-  for (ObstacleContact& c : contacts_) {
+  for (ContactLoad& c : contacts_) {
     if (c.points > 0) c.centre /= c.points;
   }
   return touching;

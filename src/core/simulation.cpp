@@ -230,8 +230,8 @@ void Simulation::step(std::vector<StepReport>& reports) {
   time_ += dt_;
 }
 
-const std::vector<ObstacleContact>& Simulation::obstacleContacts(int b) const {
-  static const std::vector<ObstacleContact> none;
+const std::vector<ContactLoad>& Simulation::obstacleContacts(int b) const {
+  static const std::vector<ContactLoad> none;
   return contact_states_[b] ? contact_states_[b]->obstacleContacts() : none;
 }
 

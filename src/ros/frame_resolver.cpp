@@ -25,6 +25,20 @@ core::BodyFrame FrameResolver::resolve(const core::Simulation& simulation,
   return found;
 }
 
+std::optional<Eigen::Isometry3d> FrameResolver::lookupAt(const std::string& frame,
+                                                         const ros::Time& time,
+                                                         std::string* error) const {
+  if (tf_.canTransform(world_frame_, frame, time)) {
+    try {
+      const Eigen::Isometry3d pose =
+          toEigen(tf_.lookupTransform(world_frame_, frame, time).transform);
+      if (pose.matrix().allFinite()) return pose;
+    } catch (const tf2::TransformException&) {
+    }
+  }
+  return lookup(frame, error);
+}
+
 std::optional<Eigen::Isometry3d> FrameResolver::lookup(const std::string& frame,
                                                        std::string* error) const {
   try {

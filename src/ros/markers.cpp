@@ -129,4 +129,25 @@ visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::Body>
   return array;
 }
 
+void appendContactMarkers(const std::vector<core::ContactPair>& pairs,
+                          const std_msgs::Header& header, visualization_msgs::MarkerArray& array) {
+  if (pairs.empty()) return;
+  visualization_msgs::Marker centres =
+      marker(header, "contacts", 0, visualization_msgs::Marker::SPHERE_LIST, 0.012,
+             rgba(0.9f, 0.4f, 0.9f));
+  int id = 1;
+  for (const core::ContactPair& pair : pairs) {
+    centres.points.push_back(toPoint(pair.load.centre));
+    if (pair.load.force.isZero(0.0)) continue;
+    visualization_msgs::Marker arrow = marker(
+        header, "contacts", id++, visualization_msgs::Marker::ARROW, 0.0, rgba(0.9f, 0.4f, 0.9f));
+    arrow.scale.x = 0.005;  // shaft diameter
+    arrow.scale.y = 0.01;   // head diameter
+    arrow.points.push_back(toPoint(pair.load.centre));
+    arrow.points.push_back(toPoint(pair.load.centre + 0.1 * pair.load.force));
+    array.markers.push_back(arrow);
+  }
+  array.markers.push_back(centres);
+}
+
 }  // namespace deformable_sim::ros_layer

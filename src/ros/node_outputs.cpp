@@ -99,7 +99,12 @@ void NodeOutputs::publishMarkers(const core::Session& session, const std_msgs::H
     }
   }
   if (markers_pub_.getNumSubscribers() > 0) {
-    markers_pub_.publish(interactionMarkers(bodies, session.commands(), header));
+    visualization_msgs::MarkerArray array = interactionMarkers(bodies, session.commands(), header);
+    if (session.simulation().contact()) {
+      core::touchingPairs(session.simulation(), contact_pairs_);
+      appendContactMarkers(contact_pairs_, header, array);
+    }
+    markers_pub_.publish(array);
   }
 }
 
@@ -134,6 +139,8 @@ void NodeOutputs::publishStats(const core::Session& session, const TickStatus& s
     s.inverted_elements = static_cast<uint32_t>(report.inverted_elements);
     s.fixed_nodes = static_cast<uint32_t>(body.numConstrained());
     s.contacts = static_cast<uint32_t>(report.contacts);
+    s.body_contacts = static_cast<uint32_t>(report.body_contacts);
+    s.self_contacts = static_cast<uint32_t>(report.self_contacts);
     s.recovered = report.recovered;
     s.recoveries = static_cast<uint32_t>(sim.recoveries(index));
     s.grasped_nodes = static_cast<uint32_t>(core::graspedNodes(session.commands(), index));

@@ -62,10 +62,12 @@ void readTiming(const ros::NodeHandle& node, NodeParameters& p) {
   param(node, "wrench_timeout", p.wrench_timeout_s);
   param(node, "stats_rate", p.stats_rate_hz);
   param(node, "marker_rate", p.marker_rate_hz);
+  param(node, "link_delay", p.link_delay_s);
   param(node, "max_steps_per_call", p.max_steps_per_call);
   require(p.wrench_timeout_s >= 0.0, "~wrench_timeout: must be >= 0 s");
   require(p.stats_rate_hz > 0.0, "~stats_rate: must be > 0 Hz");
   require(p.marker_rate_hz > 0.0, "~marker_rate: must be > 0 Hz");
+  require(p.link_delay_s >= 0.0 && p.link_delay_s <= 10.0, "~link_delay: must be in [0, 10] s");
   require(p.max_steps_per_call >= 1, "~max_steps_per_call: must be >= 1");
 }
 

@@ -21,6 +21,9 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
   scene_pub_ = private_node.advertise<Scene>("scene", 1, true);  // latched: a bag holds it
   publishScene();
   outputs_ = std::make_unique<NodeOutputs>(node, private_node, params_, *session_);
+  if (sim().contact()) {
+    contact_outputs_.emplace(private_node, params_.scene.urdf_links, params_.world_frame);
+  }
   auto apply = [this](const core::SessionCommand& c) { return this->apply(c); };
   grasps_ = std::make_unique<NodeGrasps>(private_node, frames_, robot_links_, apply);
   tuning_ = std::make_unique<LiveTuning>(
@@ -112,7 +115,7 @@ void SimNode::onTimer(const ros::TimerEvent&) {
     apply(core::ClearWrenchCommand{source});
   }
   // A body must not fall through an obstacle that tf has not delivered yet: wait for them all.
-  if (!updateObstacles()) {
+  if (!updateObstacles(now)) {
     ROS_INFO_THROTTLE(2.0, "waiting for tf to place the obstacle links before stepping");
   } else if (!status_.paused) {
     advance(params_.substeps);
@@ -147,12 +150,18 @@ void SimNode::advance(int steps) {
   status_.recoveries = recoveries;  // a reset starts the count again
 }
 
-bool SimNode::updateObstacles() {
+std::optional<Eigen::Isometry3d> SimNode::linkPose(const std::string& link, const ros::Time& now,
+                                                   std::string* error) const {
+  if (now.toSec() <= params_.link_delay_s) return frames_.lookup(link, error);
+  return frames_.lookupAt(link, now - ros::Duration(params_.link_delay_s), error);
+}
+
+bool SimNode::updateObstacles(const ros::Time& now) {
   if (!sim().contact()) return true;
   std::optional<std::vector<core::PlacedShape>> obstacles =
-      obstacles_.place([this](const std::string& link) {
+      obstacles_.place([this, &now](const std::string& link) {
         std::string error;
-        const std::optional<Eigen::Isometry3d> pose = frames_.lookup(link, &error);
+        const std::optional<Eigen::Isometry3d> pose = linkPose(link, now, &error);
         if (!pose)
           ROS_WARN_THROTTLE(5.0, "obstacle link '%s' is not in tf (%s)", link.c_str(),
                             error.c_str());
@@ -172,6 +181,11 @@ bool SimNode::updateObstacles() {
 
 void SimNode::publishState(const ros::Time& now) {
   const bool tf_sent = outputs_->publishState(*session_, now);
+  if (contact_outputs_) {
+    contact_outputs_->publish(
+        *session_, [this, &now](const std::string& link) { return linkPose(link, now, nullptr); },
+        now);
+  }
   grasps_->publish(*session_, now, tf_sent ? &outputs_->broadcaster() : nullptr);
 }
 
@@ -283,7 +297,7 @@ bool SimNode::onStep(Step::Request& request, Step::Response& response) {
     response.message = "refused " + std::to_string(request.steps) + " steps: at most " +
                        std::to_string(params_.max_steps_per_call) +
                        " a call (~max_steps_per_call); call again for more";
-  } else if (!updateObstacles()) {
+  } else if (!updateObstacles(ros::Time::now())) {
     response.message = "waiting for tf to place the obstacle links";
   } else {
     if (request.steps > 0) advance(static_cast<int>(request.steps));

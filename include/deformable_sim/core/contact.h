@@ -25,7 +25,7 @@ struct ContactSettings {
 };
 
 /// What a body felt from one obstacle in the last step.
-struct ObstacleContact {
+struct ContactLoad {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();   ///< on the body, world frame, N
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();  ///< on the body about the world origin, N m
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< mean of the touching nodes, m
@@ -54,7 +54,7 @@ class ContactState {
               const std::vector<Eigen::Isometry3d>& start_poses, const ContactSettings& settings,
               double dt);
   /// Per obstacle (as given to project()), what the body felt from it in the last step.
-  const std::vector<ObstacleContact>& obstacleContacts() const { return contacts_; }
+  const std::vector<ContactLoad>& obstacleContacts() const { return contacts_; }
   /// The obstacles were replaced by others: no node touches any.
   void forget();
 
@@ -83,7 +83,8 @@ class ContactState {
   std::vector<Eigen::Vector3d> normal_;  ///< outward normal there, in the obstacle's frame
   std::vector<std::uint8_t> sticking_;   ///< touching without sliding: held in the next step
   std::vector<int> held_;                ///< nodes held in the present step
-  std::vector<ObstacleContact> contacts_;
+  std::vector<std::uint8_t> held_flag_;  ///< the same, per node
+  std::vector<ContactLoad> contacts_;
   std::vector<Patch> patches_;
 };
 

@@ -52,7 +52,7 @@ class Simulation {
   const std::optional<ContactSettings>& contact() const { return contact_; }
   /// What bodies()[b] felt from each obstacle in the last step (empty without contact, or for a
   /// body contact does not act on).
-  const std::vector<ObstacleContact>& obstacleContacts(int b) const;
+  const std::vector<ContactLoad>& obstacleContacts(int b) const;
   /// Body steps that ran the contact effect (zero without it): its counter, as Body's.
   long contactSteps() const { return contact_steps_; }
   /// Steps that ran contact between bodies or of a body with itself (zero unless the scene turns

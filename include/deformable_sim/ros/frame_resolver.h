@@ -26,6 +26,9 @@ class FrameResolver {
   core::BodyFrame resolve(const core::Simulation& simulation, const std::string& frame_id) const;
   /// The latest pose of a tf frame in the world frame; nullopt, with `error` set, if there is none.
   std::optional<Eigen::Isometry3d> lookup(const std::string& frame, std::string* error) const;
+  /// Its pose at `time`, interpolated by tf; the latest while tf has nothing that recent or old.
+  std::optional<Eigen::Isometry3d> lookupAt(const std::string& frame, const ros::Time& time,
+                                            std::string* error) const;
 
   const std::string& worldFrame() const { return world_frame_; }
   const std::string& prefix() const { return prefix_; }

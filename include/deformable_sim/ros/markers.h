@@ -10,6 +10,7 @@
 
 #include "deformable_sim/core/body.h"
 #include "deformable_sim/core/commands.h"
+#include "deformable_sim/core/contact_pairs.h"
 #include "deformable_sim/core/mesh.h"
 
 namespace deformable_sim::ros_layer {
@@ -44,5 +45,10 @@ visualization_msgs::Marker deleteAllMarker(const std_msgs::Header& header = {});
 visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::Body>& bodies,
                                                    const core::CommandProcessor& commands,
                                                    const std_msgs::Header& header);
+
+/// For each touching pair, a sphere at the centre of its contact and an arrow of the force on
+/// the body there (0.1 m per N, as the wrenches'), in the namespace "contacts".
+void appendContactMarkers(const std::vector<core::ContactPair>& pairs,
+                          const std_msgs::Header& header, visualization_msgs::MarkerArray& array);
 
 }  // namespace deformable_sim::ros_layer

@@ -1,6 +1,6 @@
 // What the node publishes of a running session: ~state and tf every tick, ~mesh and ~markers at
-// ~marker_rate, ~stats at ~stats_rate, ~reactions/<body>, and /diagnostics. rviz is told to
-// forget old markers when the node starts and when it stops (DELETEALL).
+// ~marker_rate (with contact forces), ~stats at ~stats_rate, ~reactions/<body>, and /diagnostics.
+// rviz is told to forget old markers when the node starts and when it stops (DELETEALL).
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "deformable_sim/BodyState.h"
+#include "deformable_sim/core/contact_pairs.h"
 #include "deformable_sim/core/once_per_stamp.h"
 #include "deformable_sim/core/periodic_schedule.h"
 #include "deformable_sim/core/refusal_log.h"
@@ -54,6 +55,7 @@ class NodeOutputs {
   core::OncePerStamp tf_stamps_;
   bool mesh_cleared_ = false;  ///< the first publication on ~mesh was a DELETEALL
   SurfaceMarkers surfaces_;
+  std::vector<core::ContactPair> contact_pairs_;
   BodyState state_message_;
   const core::Session* session_ = nullptr;  ///< for the diagnostics callback
   const TickStatus* status_ = nullptr;

@@ -23,6 +23,10 @@ struct NodeParameters {
   double wrench_timeout_s = 0.0;  ///< 0: wrenches stay until replaced
   double stats_rate_hz = 10.0;
   double marker_rate_hz = 30.0;
+  /// Robot links are placed where tf had them this long ago, interpolated between its samples:
+  /// they move smoothly however their joint states arrive (a finger that jumps every other tick
+  /// would shake what it holds by friction).
+  double link_delay_s = 0.05;
   double strain_colour_scale = kDefaultStrainScale;
   int max_steps_per_call = 1000;  ///< the most ~step takes in one call
   core::CommandLimits limits;

@@ -24,6 +24,7 @@
 #include "deformable_sim/core/refusal_log.h"
 #include "deformable_sim/core/session.h"
 #include "deformable_sim/core/wrench_timeouts.h"
+#include "deformable_sim/ros/contact_outputs.h"
 #include "deformable_sim/ros/frame_resolver.h"
 #include "deformable_sim/ros/live_tuning.h"
 #include "deformable_sim/ros/node_grasps.h"
@@ -52,7 +53,10 @@ class SimNode {
   void onTimer(const ros::TimerEvent& event);
   void advance(int steps);
   /// Hands tf's poses of the obstacles to the simulation; false while tf has not placed them.
-  bool updateObstacles();
+  bool updateObstacles(const ros::Time& now);
+  /// Where tf had the robot links ~link_delay before `now` (the latest, early on).
+  std::optional<Eigen::Isometry3d> linkPose(const std::string& link, const ros::Time& now,
+                                            std::string* error) const;
   void publishState(const ros::Time& now);
   void refuse(const std::string& topic, const std::string& reason);
 
@@ -83,6 +87,7 @@ class SimNode {
   RobotLinks robot_links_;
   core::LinkedObstacles obstacles_;
   std::unique_ptr<NodeOutputs> outputs_;
+  std::optional<ContactOutputs> contact_outputs_;  ///< with the contact effect
   std::unique_ptr<NodeGrasps> grasps_;
   std::unique_ptr<LiveTuning> tuning_;
   ros::Timer timer_;

@@ -1,0 +1,86 @@
+#!/usr/bin/python3
+"""launch/grasp_demo.launch mode:=friction: fingers that are STL meshes in the URDF pick the block
+up by squeezing it, with no grasp attachment; it rises, swings and hangs still with them, and the
+fingers' contact wrenches (~contacts/<link>/wrench) then carry its weight within 2 %; put down, it
+rests on the table again. ~contacts names the pairs that touch."""
+import threading
+import time
+import unittest
+
+import numpy as np
+import rospy
+import rostest
+from geometry_msgs.msg import WrenchStamped
+
+from deformable_sim.msg import BodyState, ContactPair, Contacts
+
+MASS = 150.0 * 0.06 ** 3  # kg: the block of config/scenes/grasp_demo.yaml
+FINGERS = ('left_finger', 'right_finger')
+# scripts/grasp_demo_motion: the block hangs still (after the swing) from 11.5 s to 12.5 s.
+STILL = (11.9, 12.4)
+
+
+class FrictionGrasp(unittest.TestCase):
+    def setUp(self):
+        self.lock = threading.Lock()
+        self.states, self.wrenches, self.pairs = [], {f: [] for f in FINGERS}, set()
+        self.start = None
+        rospy.Subscriber('/deformable_sim/state', BodyState, self.on_state, queue_size=100)
+        rospy.Subscriber('/deformable_sim/contacts', Contacts, self.on_contacts, queue_size=100)
+        for finger in FINGERS:
+            rospy.Subscriber('/deformable_sim/contacts/%s/wrench' % finger, WrenchStamped,
+                             lambda m, f=finger: self.on_wrench(f, m), queue_size=100)
+
+    def on_state(self, message):
+        points = np.array([(p.x, p.y, p.z) for p in message.positions])
+        with self.lock:
+            self.states.append((message.header.stamp.to_sec(), points))
+
+    def on_contacts(self, message):
+        with self.lock:
+            for p in message.pairs:
+                self.pairs.add((p.body, p.kind, p.other))
+
+    def on_wrench(self, finger, message):
+        f = message.wrench.force
+        with self.lock:
+            self.wrenches[finger].append((message.header.stamp.to_sec(),
+                                          message.header.frame_id, np.array([f.x, f.y, f.z])))
+
+    def test_squeezing_fingers_lift_swing_and_put_down_the_block(self):
+        deadline = time.time() + 100.0
+        while rospy.get_param('/grasp_demo_motion/cycles', 0) < 1 and time.time() < deadline:
+            time.sleep(0.2)
+        self.assertGreaterEqual(rospy.get_param('/grasp_demo_motion/cycles', 0), 1,
+                                'the script did not finish')
+        with self.lock:
+            states, wrenches = list(self.states), {f: list(w) for f, w in self.wrenches.items()}
+            pairs = set(self.pairs)
+        t0 = states[0][0]  # the script starts with the node (both from the launch)
+        heights = np.array([points[:, 2].mean() for _, points in states])
+        times = np.array([t for t, _ in states]) - t0
+        for _, points in states:
+            self.assertTrue(np.all(np.isfinite(points)))
+        self.assertGreater(heights.max(), 0.2, 'the block was never lifted')
+        # Through the swing and the still hang it stays up with the fingers.
+        held = (times > 8.0) & (times < 12.4)
+        self.assertTrue(held.any())
+        self.assertGreater(heights[held].min(), 0.18, 'the block slipped out during the swing')
+        self.assertLess(abs(heights[-1] - 0.03), 0.005, 'not back on the table at the end')
+        # Hanging still, the fingers carry its weight: what it exerts on them sums to m g down.
+        total = np.zeros(3)
+        for finger in FINGERS:
+            self.assertTrue(all(frame == finger for _, frame, _ in wrenches[finger]))
+            still = [f for t, _, f in wrenches[finger] if STILL[0] < t - t0 < STILL[1]]
+            self.assertGreater(len(still), 10, 'no wrench from %s while it hung still' % finger)
+            total += np.mean(still, axis=0)
+        rospy.loginfo('fingers carry %s N; the block weighs %.4f N', total, MASS * 9.81)
+        self.assertAlmostEqual(total[2], -MASS * 9.81, delta=0.02 * MASS * 9.81)
+        for finger in FINGERS:
+            self.assertIn(('block', ContactPair.OBSTACLE, finger), pairs)
+        self.assertIn(('block', ContactPair.OBSTACLE, 'table'), pairs)
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_friction_grasp')
+    rostest.rosrun('deformable_sim', 'friction_grasp', FrictionGrasp)
