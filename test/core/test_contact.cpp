@@ -6,6 +6,7 @@
 
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/contact.h"
+#include "deformable_sim/core/contact_pairs.h"
 #include "deformable_sim/core/shape.h"
 #include "deformable_sim/core/simulation.h"
 #include "simulation_test_helpers.h"
@@ -93,4 +94,49 @@ TEST(Contact, ABlockDroppedOnATableComesToRestOnTop) {
     lowest = std::min(lowest, free_fall.bodies()[0].positions()[3 * i + 2]);
   }
   EXPECT_LT(lowest, -0.5);
+}
+
+// What a resting block feels from a table made of two boxes of one name (a URDF link's two
+// collision shapes): one pair, carrying its weight at the middle of its bottom face, and the
+// table feels the opposite.
+TEST(Contact, PairsMergeShapesOfOneNameAndCarryTheWeight) {
+  dc::SceneSpec spec;
+  spec.dt = 0.01;
+  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
+  spec.effects.warping = true;
+  spec.effects.damping = dc::RayleighDamping{2.0, 0.002};
+  spec.contact = dc::ContactSettings{0.5};
+  for (double x : {-0.245, 0.245}) {  // two boards overlapping by 1 cm, tops at z = 0
+    dc::PlacedShape half;
+    half.name = "table";
+    half.shape.size = {0.5, 1.0, 0.1};
+    half.pose.translation() = Eigen::Vector3d(x, 0.0, -0.05);
+    spec.obstacles.push_back(half);
+  }
+  dc::BodySpec block;
+  block.name = "block";
+  block.box_mesh = dc::BoxMeshSpec{{-0.05, -0.05, 0.0}, {0.05, 0.05, 0.1}, {4, 4, 4}};
+  block.material = {3.0e4, 0.3, 150.0};
+  spec.bodies.push_back(block);
+  dc::Simulation sim = boxMeshSimulation(spec);
+  std::vector<dc::StepReport> reports;
+  for (int s = 0; s < 300; ++s) sim.step(reports);
+  std::vector<dc::ContactPair> pairs;
+  dc::touchingPairs(sim, pairs);
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_EQ(pairs[0].kind, dc::ContactPair::Kind::kObstacle);
+  EXPECT_EQ(pairs[0].other, "table");
+  EXPECT_EQ(pairs[0].load.points, 25);
+  const double weight = 150.0 * 0.1 * 0.1 * 0.1 * 9.81;
+  EXPECT_NEAR(pairs[0].load.force.z(), weight, 1e-6 * weight);
+  EXPECT_NEAR(pairs[0].load.force.head<2>().norm(), 0.0, 1e-9);
+  EXPECT_NEAR(pairs[0].load.centre.head<2>().norm(), 0.0, 1e-9);
+  EXPECT_NEAR(pairs[0].load.centre.z(), 0.0, 1e-12);
+  // Its torque about the world origin is that of a force at the centre of the face.
+  EXPECT_NEAR((pairs[0].load.torque - pairs[0].load.centre.cross(pairs[0].load.force)).norm(), 0.0,
+              1e-9);
+  const dc::ContactLoad on_table = dc::loadOnObstacle(pairs, "table");
+  EXPECT_TRUE(on_table.force.isApprox(-pairs[0].load.force));
+  EXPECT_EQ(on_table.points, 25);
+  EXPECT_TRUE(dc::loadOnObstacle(pairs, "nothing").force.isZero(0.0));
 }

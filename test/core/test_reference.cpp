@@ -14,6 +14,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -160,6 +161,39 @@ TEST(RunCommand, RunsASceneWithAMeshObstacle) {
     lowest = std::min(lowest, (x0 + moved.at(node) - top).dot(normal));
   EXPECT_GT(lowest, -1e-9);
   EXPECT_LT(lowest, 1e-6);  // it landed
+  fs::remove(csv);
+}
+
+// A scene of several bodies that touch runs offline: its CSV has a body column first, every body's
+// nodes under its name, and the cube dropped on the slab ends on it, not in it.
+TEST(RunCommand, RunsASceneOfSeveralBodiesInContactWithABodyColumn) {
+  const fs::path csv = fs::temp_directory_path() / "deformable_sim_bodies_contact.csv";
+  const RunResult run = runCommand(std::string(DEFORMABLE_SIM_RUN) +
+                                   " " DEFORMABLE_SIM_SOURCE_DIR
+                                   "/test/data/scenes/bodies_contact.yaml --steps 100 --out " +
+                                   csv.string() + " 2>&1");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("with bodies"), std::string::npos) << run.output;
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "body,node,x0,y0,z0,ux,uy,uz");
+  std::map<std::string, int> rows;
+  double lowest_cube = INFINITY;
+  while (std::getline(in, line)) {
+    std::stringstream fields(line);
+    std::string body, field;
+    std::getline(fields, body, ',');
+    std::vector<double> values;
+    while (std::getline(fields, field, ',')) values.push_back(std::stod(field));
+    ASSERT_EQ(values.size(), 7u) << line;
+    ++rows[body];
+    if (body == "cube") lowest_cube = std::min(lowest_cube, values[3] + values[6]);
+  }
+  EXPECT_EQ(rows, (std::map<std::string, int>{{"slab", 18}, {"cube", 27}, {"cushion", 18}}));
+  // The slab's top is at z = 0.05 m at rest; the cube, 8 cm tall, fell 3 cm onto it.
+  EXPECT_GT(lowest_cube, 0.05 - 0.01 * std::sqrt(3.0) * 0.08);
+  EXPECT_LT(lowest_cube, 0.06);
   fs::remove(csv);
 }
 
