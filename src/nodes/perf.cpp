@@ -26,6 +26,11 @@
 //
 // ModelStep/<model>/<mesh>: a step of a free rigid (0) or pseudo-rigid (1) body of the cantilever's
 // mesh under gravity and the tip load, on 1.5k and 98k tetrahedra: the same cost for both.
+//
+// ContactCost/<bodies>/<contact>: a step of the whole scene of perf/blocks_on_floor.h, 1, 5 or 20
+// blocks of 1,536 tetrahedra side by side on a floor: 0, contact with the floor only; 1, and
+// between bodies; 2, and each block with itself (the cost of the search alone: a block resting
+// on a floor does not meet itself). Counters: node-triangle pairs between bodies per step.
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -38,6 +43,7 @@
 #include "deformable_sim/core/contact.h"
 #include "deformable_sim/core/loads.h"
 #include "deformable_sim/core/strain.h"
+#include "deformable_sim/perf/blocks_on_floor.h"
 #include "deformable_sim/perf/bullet_peer.h"
 #include "deformable_sim/perf/cantilever.h"
 
@@ -243,6 +249,20 @@ void ModelStep(benchmark::State& state) {
   benchmark::DoNotOptimize(body.reduced()->centre().data());
 }
 
+void ContactCost(benchmark::State& state) {
+  const int count = static_cast<int>(state.range(0)), contact = static_cast<int>(state.range(1));
+  core::Simulation sim = perf::makeBlocksOnFloor({count, contact >= 1, contact >= 2});
+  std::vector<core::StepReport> reports;
+  for (int k = 0; k < kWarmUpSteps; ++k) sim.step(reports);  // settled on the floor
+  double pairs = 0.0;
+  for (auto _ : state) {
+    sim.step(reports);
+    for (const core::StepReport& r : reports) pairs += r.body_contacts;
+  }
+  // Each pair is counted by both of its bodies.
+  state.counters["body_pairs"] = 0.5 * pairs / static_cast<double>(state.iterations());
+}
+
 void meshSizes(benchmark::internal::Benchmark* b, bool with_preconditioners) {
   for (int mesh = 0; mesh < static_cast<int>(kCells.size()); ++mesh) {
     if (!with_preconditioners) {
@@ -285,6 +305,13 @@ BENCHMARK(ModelStep)
     ->ArgNames({"model", "mesh"})
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
+BENCHMARK(ContactCost)
+    ->ArgsProduct({{1, 5, 20}, {0, 1, 2}})
+    ->ArgNames({"bodies", "contact"})
+    ->Iterations(kTimedSteps)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 BENCHMARK(MatVec)
     ->Apply([](benchmark::internal::Benchmark* b) { meshSizes(b, false); })
     ->ArgNames({"mesh"})
