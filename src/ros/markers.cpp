@@ -144,7 +144,7 @@ void appendContactMarkers(const std::vector<core::ContactPair>& pairs,
     arrow.scale.x = 0.005;  // shaft diameter
     arrow.scale.y = 0.01;   // head diameter
     arrow.points.push_back(toPoint(pair.load.centre));
-    arrow.points.push_back(toPoint(pair.load.centre + 0.1 * pair.load.force));
+    arrow.points.push_back(toPoint(pair.load.centre + 0.02 * pair.load.force));
     array.markers.push_back(arrow);
   }
   array.markers.push_back(centres);

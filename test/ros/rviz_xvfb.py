@@ -54,3 +54,18 @@ def count_pixels(png, is_wanted, area=RENDER_AREA):
     raw = subprocess.run(['/usr/bin/convert', png, '-crop', area, '+repage', '-depth', '8', 'rgb:-'],
                          capture_output=True, check=True).stdout
     return sum(1 for k in range(0, len(raw), 3) if is_wanted(raw[k], raw[k + 1], raw[k + 2]))
+
+
+# Colours of config/grasp_demo.rviz and grasp_friction.rviz, lit or in shade.
+def is_strain_coloured(r, g, b):
+    """A body's surface: strain colours (s, 0.2, 1 - s)."""
+    return max(r, b) > 70 and g < 0.45 * max(r, b)
+
+
+def is_reaction_cyan(r, g, b):
+    """The fingers' wrench arrows."""
+    return g > 90 and b > 90 and r < 0.45 * min(g, b)
+
+
+def is_gripper_grey(r, g, b):
+    return min(r, g, b) > 120 and max(r, g, b) - min(r, g, b) < 20

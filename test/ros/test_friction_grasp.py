@@ -2,18 +2,26 @@
 """launch/grasp_demo.launch mode:=friction: fingers that are STL meshes in the URDF pick the block
 up by squeezing it, with no grasp attachment; it rises, swings and hangs still with them, and the
 fingers' contact wrenches (~contacts/<link>/wrench) then carry its weight within 2 %; put down, it
-rests on the table again. ~contacts names the pairs that touch."""
+rests on the table again. ~contacts names the pairs that touch. rviz under Xvfb shows gripper,
+block and contact wrenches while it hangs (the screenshot, kept by ~screenshot, is the README's)."""
+import os
+import shutil
 import threading
 import time
 import unittest
 
 import numpy as np
+import rospkg
 import rospy
 import rostest
 from geometry_msgs.msg import WrenchStamped
 
 from deformable_sim.msg import BodyState, ContactPair, Contacts
+from rviz_xvfb import (RvizUnderXvfb, count_pixels, is_gripper_grey, is_reaction_cyan,
+                       is_strain_coloured)
 
+CONFIG = os.path.join(rospkg.RosPack().get_path('deformable_sim'), 'config',
+                      'grasp_friction.rviz')
 MASS = 150.0 * 0.06 ** 3  # kg: the block of config/scenes/grasp_demo.yaml
 FINGERS = ('left_finger', 'right_finger')
 # scripts/grasp_demo_motion: the block hangs still (after the swing) from 11.5 s to 12.5 s.
@@ -30,6 +38,25 @@ class FrictionGrasp(unittest.TestCase):
         for finger in FINGERS:
             rospy.Subscriber('/deformable_sim/contacts/%s/wrench' % finger, WrenchStamped,
                              lambda m, f=finger: self.on_wrench(f, m), queue_size=100)
+        self.rviz = RvizUnderXvfb(CONFIG)
+
+    def tearDown(self):
+        self.rviz.close()
+
+    def screenshot_while_held(self):
+        """A screenshot showing block, contact wrenches and gripper, once the block is high."""
+        with self.lock:
+            latest = self.states[-1][1] if self.states else None
+        if latest is None or latest[:, 2].mean() < 0.2:
+            return None
+        shot = self.rviz.screenshot()
+        if not shot or min(count_pixels(shot, f) for f in
+                           (is_strain_coloured, is_reaction_cyan, is_gripper_grey)) <= 50:
+            return None
+        keep = rospy.get_param('~screenshot', '')
+        if keep:
+            shutil.copy(shot, keep)
+        return shot
 
     def on_state(self, message):
         points = np.array([(p.x, p.y, p.z) for p in message.positions])
@@ -49,8 +76,10 @@ class FrictionGrasp(unittest.TestCase):
 
     def test_squeezing_fingers_lift_swing_and_put_down_the_block(self):
         deadline = time.time() + 100.0
+        shot = None
         while rospy.get_param('/grasp_demo_motion/cycles', 0) < 1 and time.time() < deadline:
-            time.sleep(0.2)
+            time.sleep(0.5)
+            shot = shot or self.screenshot_while_held()
         self.assertGreaterEqual(rospy.get_param('/grasp_demo_motion/cycles', 0), 1,
                                 'the script did not finish')
         with self.lock:
@@ -79,6 +108,7 @@ class FrictionGrasp(unittest.TestCase):
         for finger in FINGERS:
             self.assertIn(('block', ContactPair.OBSTACLE, finger), pairs)
         self.assertIn(('block', ContactPair.OBSTACLE, 'table'), pairs)
+        self.assertIsNotNone(shot, 'rviz never showed block, contact wrenches and gripper together')
 
 
 if __name__ == '__main__':

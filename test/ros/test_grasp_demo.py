@@ -16,24 +16,12 @@ import rostest
 from geometry_msgs.msg import WrenchStamped
 
 from deformable_sim.msg import BodyState
-from rviz_xvfb import RvizUnderXvfb, count_pixels
+from rviz_xvfb import (RvizUnderXvfb, count_pixels, is_gripper_grey, is_reaction_cyan,
+                       is_strain_coloured)
 
 CONFIG = os.path.join(rospkg.RosPack().get_path('deformable_sim'), 'config', 'grasp_demo.rviz')
 MASS = 150.0 * 0.06 ** 3  # kg: the block of config/scenes/grasp_demo.yaml
 TABLE_TOP = 0.0           # m: config/urdf/gripper_demo.urdf
-
-
-def is_strain_coloured(r, g, b):
-    """The block's surface: strain colours (s, 0.2, 1 - s), lit or in shade."""
-    return max(r, b) > 70 and g < 0.45 * max(r, b)
-
-
-def is_reaction_cyan(r, g, b):
-    return g > 90 and b > 90 and r < 0.45 * min(g, b)
-
-
-def is_gripper_grey(r, g, b):
-    return min(r, g, b) > 120 and max(r, g, b) - min(r, g, b) < 20
 
 
 class GraspDemo(unittest.TestCase):

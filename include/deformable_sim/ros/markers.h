@@ -47,7 +47,8 @@ visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::Body>
                                                    const std_msgs::Header& header);
 
 /// For each touching pair, a sphere at the centre of its contact and an arrow of the force on
-/// the body there (0.1 m per N, as the wrenches'), in the namespace "contacts".
+/// the body there (0.02 m per N: contact forces are larger than the loads they carry), in the
+/// namespace "contacts".
 void appendContactMarkers(const std::vector<core::ContactPair>& pairs,
                           const std_msgs::Header& header, visualization_msgs::MarkerArray& array);
 
