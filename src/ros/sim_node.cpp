@@ -13,9 +13,10 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
       wrench_timeouts_(params_.wrench_timeout_s),
       tf_listener_(tf_buffer_),
       frames_(tf_buffer_, params_.world_frame, params_.frame_prefix),
-      robot_links_(params_.scene.urdf_file),
-      obstacles_(sceneObstacles(params_.scene, robot_links_)) {
+      robot_links_(params_.scene.urdf_file) {
   startSession();
+  auto apply = [this](const core::SessionCommand& c) { return this->apply(c); };
+  obstacles_.emplace(params_.scene, robot_links_, frames_, params_.link_delay_s, apply);
   status_.paused = params_.start_paused;
   applied_pub_ = private_node.advertise<Applied>("applied", 1000);
   scene_pub_ = private_node.advertise<Scene>("scene", 1, true);  // latched: a bag holds it
@@ -24,7 +25,6 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
   if (sim().contact()) {
     contact_outputs_.emplace(private_node, params_.scene.urdf_links, params_.world_frame);
   }
-  auto apply = [this](const core::SessionCommand& c) { return this->apply(c); };
   grasps_ = std::make_unique<NodeGrasps>(private_node, frames_, robot_links_, apply);
   tuning_ = std::make_unique<LiveTuning>(
       private_node, *session_, params_.rate_hz, params_.substeps, apply,
@@ -115,7 +115,7 @@ void SimNode::onTimer(const ros::TimerEvent&) {
     apply(core::ClearWrenchCommand{source});
   }
   // A body must not fall through an obstacle that tf has not delivered yet: wait for them all.
-  if (!updateObstacles(now)) {
+  if (sim().contact() && !obstacles_->update(now)) {
     ROS_INFO_THROTTLE(2.0, "waiting for tf to place the obstacle links before stepping");
   } else if (!status_.paused) {
     advance(params_.substeps);
@@ -150,40 +150,12 @@ void SimNode::advance(int steps) {
   status_.recoveries = recoveries;  // a reset starts the count again
 }
 
-std::optional<Eigen::Isometry3d> SimNode::linkPose(const std::string& link, const ros::Time& now,
-                                                   std::string* error) const {
-  if (now.toSec() <= params_.link_delay_s) return frames_.lookup(link, error);
-  return frames_.lookupAt(link, now - ros::Duration(params_.link_delay_s), error);
-}
-
-bool SimNode::updateObstacles(const ros::Time& now) {
-  if (!sim().contact()) return true;
-  std::optional<std::vector<core::PlacedShape>> obstacles =
-      obstacles_.place([this, &now](const std::string& link) {
-        std::string error;
-        const std::optional<Eigen::Isometry3d> pose = linkPose(link, now, &error);
-        if (!pose)
-          ROS_WARN_THROTTLE(5.0, "obstacle link '%s' is not in tf (%s)", link.c_str(),
-                            error.c_str());
-        return pose;
-      });
-  if (!obstacles) return false;
-  if (*obstacles != requested_obstacles_) {  // recorded (and applied) only when tf moved one
-    try {
-      apply(core::SetObstaclesCommand{*obstacles});
-      requested_obstacles_ = std::move(*obstacles);
-    } catch (const core::CommandError& e) {
-      ROS_WARN_THROTTLE(1.0, "obstacles not moved: %s", e.what());
-    }
-  }
-  return true;
-}
-
 void SimNode::publishState(const ros::Time& now) {
   const bool tf_sent = outputs_->publishState(*session_, now);
   if (contact_outputs_) {
     contact_outputs_->publish(
-        *session_, [this, &now](const std::string& link) { return linkPose(link, now, nullptr); },
+        *session_,
+        [this, &now](const std::string& link) { return obstacles_->linkPose(link, now, nullptr); },
         now);
   }
   grasps_->publish(*session_, now, tf_sent ? &outputs_->broadcaster() : nullptr);
@@ -265,7 +237,7 @@ bool SimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& 
   grasps_->clear();
   real_time_factor_.clear();
   status_.reports.assign(sim().bodies().size(), core::StepReport{});
-  requested_obstacles_.clear();
+  obstacles_->forget();
   tuning_->reapply();  // keep what was tuned live
   publishState(ros::Time::now());
   response.success = true;
@@ -297,7 +269,7 @@ bool SimNode::onStep(Step::Request& request, Step::Response& response) {
     response.message = "refused " + std::to_string(request.steps) + " steps: at most " +
                        std::to_string(params_.max_steps_per_call) +
                        " a call (~max_steps_per_call); call again for more";
-  } else if (!updateObstacles(ros::Time::now())) {
+  } else if (sim().contact() && !obstacles_->update(ros::Time::now())) {
     response.message = "waiting for tf to place the obstacle links";
   } else {
     if (request.steps > 0) advance(static_cast<int>(request.steps));

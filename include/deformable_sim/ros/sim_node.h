@@ -28,6 +28,7 @@
 #include "deformable_sim/ros/frame_resolver.h"
 #include "deformable_sim/ros/live_tuning.h"
 #include "deformable_sim/ros/node_grasps.h"
+#include "deformable_sim/ros/node_obstacles.h"
 #include "deformable_sim/ros/node_outputs.h"
 #include "deformable_sim/ros/node_parameters.h"
 #include "deformable_sim/ros/obstacle_mesh_catalogue.h"
@@ -53,10 +54,6 @@ class SimNode {
   void onTimer(const ros::TimerEvent& event);
   void advance(int steps);
   /// Hands tf's poses of the obstacles to the simulation; false while tf has not placed them.
-  bool updateObstacles(const ros::Time& now);
-  /// Where tf had the robot links ~link_delay before `now` (the latest, early on).
-  std::optional<Eigen::Isometry3d> linkPose(const std::string& link, const ros::Time& now,
-                                            std::string* error) const;
   void publishState(const ros::Time& now);
   void refuse(const std::string& topic, const std::string& reason);
 
@@ -74,7 +71,6 @@ class SimNode {
   std::unique_ptr<core::Session> session_;
   Applied recording_;  ///< the message of the command being applied, published once it took effect
   ObstacleMeshCatalogue obstacle_meshes_;  ///< meshes recorded in ~scene and ~applied, by id
-  std::vector<core::PlacedShape> requested_obstacles_;  ///< as last applied
   TickStatus status_;
   core::RealTimeFactor real_time_factor_;
   core::WrenchTimeouts wrench_timeouts_;
@@ -85,7 +81,7 @@ class SimNode {
   tf2_ros::TransformListener tf_listener_;
   FrameResolver frames_;
   RobotLinks robot_links_;
-  core::LinkedObstacles obstacles_;
+  std::optional<NodeObstacles> obstacles_;  ///< once the session is up
   std::unique_ptr<NodeOutputs> outputs_;
   std::optional<ContactOutputs> contact_outputs_;  ///< with the contact effect
   std::unique_ptr<NodeGrasps> grasps_;
