@@ -575,6 +575,7 @@ void Body::solveVelocity(const SystemMatrix& a, double h, bool step_start, StepR
   const auto solve_start = Clock::now();
   const SolveReport solved = solve(a, rhs_, next_, step_start, load_impulse);
   report.times.solve += seconds(Clock::now() - solve_start);
+  report.times.preconditioner += solved.preconditioner_seconds;
   report.solve.iterations += solved.iterations;
   report.solve.relative_residual = solved.relative_residual;
   report.solve.converged = solved.converged;

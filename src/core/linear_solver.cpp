@@ -1,5 +1,7 @@
 #include "deformable_sim/core/linear_solver.h"
 
+#include <chrono>
+
 #if defined(_OPENMP)
 #include <omp.h>
 #endif
@@ -267,9 +269,12 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
   if (settings.preconditioner != SolverSettings::Preconditioner::kFactorization) {
     factorization_.reset();
   }
+  const auto refresh_start = std::chrono::steady_clock::now();
   refreshPreconditioner(a, constrained, settings);
-  const double free_norm = setFreeRightHandSide(a, constrained, b, x);
   SolveReport report;
+  report.preconditioner_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - refresh_start).count();
+  const double free_norm = setFreeRightHandSide(a, constrained, b, x);
   if (!std::isfinite(free_norm)) {
     // A non-finite right-hand side: nothing to solve; say so rather than return a "solution".
     report.converged = false;

@@ -66,10 +66,11 @@ struct StaticSettings {
 
 /// Wall time of a step's phases, s (steady clock; for benchmarks and the node's statistics).
 struct StepTimes {
-  double rotations = 0.0;  ///< element rotations (zero without warping)
-  double assembly = 0.0;   ///< K' and f0' (zero when nothing changed: linear FEM)
-  double solve = 0.0;      ///< the linear solve, preconditioner set-up included
-  double total = 0.0;      ///< the whole step
+  double rotations = 0.0;       ///< element rotations (zero without warping)
+  double assembly = 0.0;        ///< K' and f0' (zero when nothing changed: linear FEM)
+  double solve = 0.0;           ///< the linear solve, preconditioner set-up included
+  double preconditioner = 0.0;  ///< of `solve`: refreshing the preconditioner
+  double total = 0.0;           ///< the whole step
 };
 
 struct StepReport {

@@ -63,6 +63,8 @@ struct SolveReport {
   /// ||b - A x|| over the free rows / max(||b_free||, the solve's reference floor)
   double relative_residual = 0.0;
   bool converged = true;
+  /// Of the solve's time, what refreshing the preconditioner took (zero when it was kept), s.
+  double preconditioner_seconds = 0.0;
 };
 
 /// The matrix of one solve: A = mass_coefficient M + stiffness_coefficient K.
