@@ -3,11 +3,11 @@
 // stack, and its energy (kinetic, elastic and gravitational) must never grow.
 //
 // Disabled: it fails today within the first 50 steps (a cube 18 mm inside the one below, the
-// stack collapsing). Contact between bodies is resolved
-// after the bodies' implicit steps with node-level shifts and impulses, and a node's response
-// there is its lumped mass; in the step its neighbours hold it with dt^2 K, a hundred times
-// more for these cubes. So the correction compresses the contact layer instead of moving the
-// body, and a resting body is not carried (doc/physics.md, "Not handled").
+// stack collapsing). Contact between bodies is resolved after the bodies' implicit steps with
+// node-level shifts and impulses, and a node's response there is its lumped mass; in the step
+// its neighbours hold it with dt^2 K, a hundred times more for these cubes. So the correction
+// compresses the contact layer instead of moving the body, and a resting body is not carried
+// (doc/physics.md, "Not handled").
 #include <gtest/gtest.h>
 
 #include <algorithm>
