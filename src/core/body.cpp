@@ -393,6 +393,24 @@ void Body::releaseNode(int node) {
   reaction_.segment<3>(3 * node).setZero();
 }
 
+SolveReport Body::solveLastStep(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  const RayleighDamping damping = effects_.damping.value_or(RayleighDamping{});
+  const double h = history_dt_;
+  const SystemMatrix a = systemMatrix(1.0 + h * damping.mass, h * damping.stiffness + h * h);
+  x.setZero();
+  return solve(a, b, x, false, 0.0);
+}
+
+void Body::addConstraintForces(const Eigen::VectorXd& dv) {
+  if (!effects_.reactions || numConstrained() == 0) return;
+  const RayleighDamping damping = effects_.damping.value_or(RayleighDamping{});
+  const double h = history_dt_;
+  systemMatrix(1.0 + h * damping.mass, h * damping.stiffness + h * h).multiply(dv, scratch_);
+  for (int i = 0; i < numNodes(); ++i) {
+    if (constrained_[i]) reaction_.segment<3>(3 * i) += scratch_.segment<3>(3 * i) / h;
+  }
+}
+
 int Body::numConstrained() const {
   int count = 0;
   for (std::uint8_t c : constrained_) count += c;

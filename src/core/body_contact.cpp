@@ -1,6 +1,7 @@
 #include "deformable_sim/core/body_contact.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "deformable_sim/core/node_triangle.h"
@@ -60,7 +61,7 @@ void BodyContact::findContact(int a, int i) {
   SweptNode node{surfaces_[a]->start().segment<3>(3 * i), nodes.position(nodePoint(i))};
   Contact best;
   double best_depth = std::numeric_limits<double>::infinity();
-  bool best_crossed = false;
+  int best_rank = 3;
   for (int b = 0; b < static_cast<int>(surfaces_.size()); ++b) {
     if (!surfaces_[b] || !touches(a, b)) continue;
     const BodySurface& other = *surfaces_[b];
@@ -82,10 +83,12 @@ void BodyContact::findContact(int a, int i) {
       NodeTriangleHit hit;
       const double shallow = kShallowFraction * other.shortestEdge();
       if (!nodeHitsTriangle(node, swept, skin, shallow, &hit)) return;
-      // A triangle the node came through beats one it only ended near; then the shallowest.
-      if (hit.crossed != best_crossed ? !hit.crossed : !(hit.depth < best_depth)) return;
-      best_depth = hit.depth;
-      best_crossed = hit.crossed;
+      // A triangle the node came through beats one it only ended behind, which beats one it is
+      // only about to touch; among equals, the nearest.
+      const int rank = hit.crossed ? 0 : hit.depth > 0.0 ? 1 : 2;
+      if (rank != best_rank ? rank > best_rank : !(std::abs(hit.depth) < best_depth)) return;
+      best_rank = rank;
+      best_depth = std::abs(hit.depth);
       best.triangle_body = b;
       best.triangle.nodes = tri;
       best.triangle.weights = {hit.weights[0], hit.weights[1], hit.weights[2]};
@@ -105,8 +108,8 @@ double BodyContact::gap(const Contact& c) const {
 }
 
 void BodyContact::shift(Contact& c, const Eigen::Vector3d& amount) {
-  participants_[c.node_body]->displace(c.node, amount);
-  participants_[c.triangle_body]->displace(c.triangle, -amount);
+  participants_[c.node_body]->nudge(c.node, amount);
+  participants_[c.triangle_body]->nudge(c.triangle, -amount);
 }
 
 void BodyContact::separate(std::vector<StepReport>& reports) {
@@ -116,8 +119,8 @@ void BodyContact::separate(std::vector<StepReport>& reports) {
       const double depth = -gap(c);
       if (!(depth > 0.0)) continue;
       if (depth > kTarget * tolerance(c.node_body, c.triangle_body)) settled = false;
-      const double w = participants_[c.node_body]->inverseMass(c.node, c.normal) +
-                       participants_[c.triangle_body]->inverseMass(c.triangle, c.normal);
+      const double w = participants_[c.node_body]->nudgeCompliance(c.node, c.normal) +
+                       participants_[c.triangle_body]->nudgeCompliance(c.triangle, c.normal);
       if (!(w > 0.0)) continue;  // both held: nothing can move
       c.pushed += depth / w;
       shift(c, depth / w * c.normal);
@@ -132,69 +135,107 @@ void BodyContact::separate(std::vector<StepReport>& reports) {
   }
 }
 
-Eigen::Vector3d BodyContact::slip(const Contact& c) const {
-  const Eigen::Vector3d moved =
-      (participants_[c.node_body]->position(c.node) - startOf(*surfaces_[c.node_body], c.node)) -
-      (participants_[c.triangle_body]->position(c.triangle) -
-       startOf(*surfaces_[c.triangle_body], c.triangle));
-  return moved - moved.dot(c.normal) * c.normal;
+double BodyContact::startGap(const Contact& c) const {
+  return c.normal.dot(startOf(*surfaces_[c.node_body], c.node) -
+                      startOf(*surfaces_[c.triangle_body], c.triangle));
 }
 
-void BodyContact::holdBySlip() {
-  if (!(settings_.friction > 0.0)) return;
-  for (Contact& c : contacts_) {
-    const Eigen::Vector3d tangential = slip(c);
-    const double length = tangential.norm();
-    if (!(length > 0.0)) continue;
-    const Eigen::Vector3d direction = tangential / length;
-    const double w = participants_[c.node_body]->inverseMass(c.node, direction) +
-                     participants_[c.triangle_body]->inverseMass(c.triangle, direction);
-    if (!(w > 0.0)) continue;
-    // Sticks when the slip's shift is within the cone of the normal one; slides back by the
-    // cone's edge otherwise.
-    const double back = std::min(length / w, settings_.friction * c.pushed);
-    shift(c, -back * direction);
-  }
+void BodyContact::apply(Contact& c, const Eigen::Vector3d& impulse, double dt) {
+  // An impulse changes the step's velocities, and so its end positions by dt times as much:
+  // the step stays an implicit Euler step, x = x0 + dt v.
+  ContactParticipant& node = *participants_[c.node_body];
+  ContactParticipant& triangle = *participants_[c.triangle_body];
+  node.push(c.node, impulse, c.local);
+  node.displace(c.node, dt * impulse, c.local);
+  triangle.push(c.triangle, -impulse, c.local);
+  triangle.displace(c.triangle, -dt * impulse, c.local);
+}
+
+double BodyContact::compliance(const Contact& c, const Eigen::Vector3d& direction) const {
+  return direction.dot(c.compliance * direction);
+}
+
+void BodyContact::pushApart(Contact& c, double dt) {
+  const double w = compliance(c, c.normal);
+  if (!(w > 0.0)) return;  // both held: nothing can move
+  // Approaching no faster than closes the gap the pair had at the step's start, it ends the
+  // step touching; a pair that started inside only stops approaching (separate() does the rest).
+  const ContactParticipant& node = *participants_[c.node_body];
+  const ContactParticipant& triangle = *participants_[c.triangle_body];
+  const double target = -std::max(c.start_gap, 0.0) / dt;
+  const double separating = c.normal.dot(node.velocity(c.node) - triangle.velocity(c.triangle));
+  const double impulse = std::max(0.0, c.impulse + (target - separating) / w);
+  const double change = impulse - c.impulse;
+  c.impulse = impulse;
+  if (change != 0.0) apply(c, change * c.normal, dt);
+}
+
+void BodyContact::holdByFriction(Contact& c, double dt) {
+  const ContactParticipant& node = *participants_[c.node_body];
+  const ContactParticipant& triangle = *participants_[c.triangle_body];
+  Eigen::Vector3d sliding = node.velocity(c.node) - triangle.velocity(c.triangle);
+  sliding -= sliding.dot(c.normal) * c.normal;
+  const double speed = sliding.norm();
+  if (!(speed > 0.0)) return;
+  const Eigen::Vector3d direction = sliding / speed;
+  const double w = compliance(c, direction);
+  if (!(w > 0.0)) return;
+  // The pair's friction impulse so far and the change that stops the slip, kept in the cone of
+  // its normal impulse.
+  const Eigen::Vector3d wanted = c.friction - speed / w * direction;
+  const double cone = settings_.friction * c.impulse;
+  const Eigen::Vector3d friction =
+      wanted.norm() <= cone ? wanted : Eigen::Vector3d(cone / wanted.norm() * wanted);
+  const Eigen::Vector3d change = friction - c.friction;
+  c.friction = friction;
+  apply(c, change, dt);
 }
 
 void BodyContact::settleVelocities(double dt) {
+  for (Contact& c : contacts_) {
+    c.start_gap = startGap(c);
+    // On a body touching itself the node's and the triangle's answers to each other are left
+    // out: the passes then take smaller steps, which only slows them.
+    const ContactParticipant& node = *participants_[c.node_body];
+    const ContactParticipant& triangle = *participants_[c.triangle_body];
+    // Against a surface that cannot move (held all over: a plate driven as a whole) the free
+    // side answers node by node: its whole-body answer, pinned between such surfaces, makes
+    // the passes converge too slowly to keep it out of them.
+    c.local = node.compliance(c.node).isZero(0.0) || triangle.compliance(c.triangle).isZero(0.0);
+    c.compliance = node.compliance(c.node, c.local) + triangle.compliance(c.triangle, c.local);
+  }
   for (int pass = 0; pass < kVelocityPasses; ++pass) {
     for (Contact& c : contacts_) {
-      ContactParticipant& node = *participants_[c.node_body];
-      ContactParticipant& triangle = *participants_[c.triangle_body];
-      const double approach = -c.normal.dot(node.velocity(c.node) - triangle.velocity(c.triangle));
-      const double w =
-          node.inverseMass(c.node, c.normal) + triangle.inverseMass(c.triangle, c.normal);
-      if (!(approach > 0.0) || !(w > 0.0)) continue;
-      c.impulse += approach / w;
-      node.push(c.node, approach / w * c.normal);
-      triangle.push(c.triangle, -approach / w * c.normal);
+      pushApart(c, dt);
+      if (settings_.friction > 0.0) holdByFriction(c, dt);
     }
-  }
-  if (!(settings_.friction > 0.0)) return;
-  for (Contact& c : contacts_) {
-    ContactParticipant& node = *participants_[c.node_body];
-    ContactParticipant& triangle = *participants_[c.triangle_body];
-    Eigen::Vector3d sliding = node.velocity(c.node) - triangle.velocity(c.triangle);
-    sliding -= sliding.dot(c.normal) * c.normal;
-    const double speed = sliding.norm();
-    if (!(speed > 0.0)) continue;
-    const Eigen::Vector3d direction = sliding / speed;
-    const double w =
-        node.inverseMass(c.node, direction) + triangle.inverseMass(c.triangle, direction);
-    if (!(w > 0.0)) continue;
-    const double cone = settings_.friction * (c.impulse + c.pushed / dt);
-    const double stop = std::min(speed / w, cone);
-    node.push(c.node, -stop * direction);
-    triangle.push(c.triangle, stop * direction);
   }
 }
 
 void BodyContact::resolve(std::vector<Body>& bodies, double dt, std::vector<StepReport>& reports) {
+  // An impulse moves the whole body, so nodes that were clear when the contacts were found can
+  // be pressed into another surface by it (a cube's sides bulging as its top is pushed). A last
+  // round finds the contacts again and only puts back what is inside, node by node.
+  for (int round = 0; round < kRounds; ++round) {
+    const bool last = round == kRounds - 1;
+    findContacts(bodies, round == 0);
+    if (round == 0) countContacts(reports);
+    if (!last) settleVelocities(dt);
+    separate(reports);
+    for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
+      if (surfaces_[b]) participants_[b]->end(bodies[b]);
+    }
+  }
+  for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
+    if (surfaces_[b]) surfaces_[b]->setStart(bodies[b].positions());
+  }
+}
+
+void BodyContact::findContacts(std::vector<Body>& bodies, bool new_step) {
   const int n = static_cast<int>(bodies.size());
   for (int b = 0; b < n; ++b) {
     if (!surfaces_[b]) continue;
-    participants_[b]->begin(bodies[b]);
+    participants_[b]->begin(bodies[b], new_step);
     double skin = std::numeric_limits<double>::infinity();
     for (int o = 0; o < n; ++o) {
       if (surfaces_[o] && touches(b, o)) skin = std::min(skin, tolerance(b, o));
@@ -207,6 +248,9 @@ void BodyContact::resolve(std::vector<Body>& bodies, double dt, std::vector<Step
     if (!surfaces_[a]) continue;
     for (int i : surfaces_[a]->nodes()) findContact(a, i);
   }
+}
+
+void BodyContact::countContacts(std::vector<StepReport>& reports) const {
   for (const Contact& c : contacts_) {
     if (c.node_body == c.triangle_body) {
       ++reports[c.node_body].self_contacts;
@@ -214,14 +258,6 @@ void BodyContact::resolve(std::vector<Body>& bodies, double dt, std::vector<Step
       ++reports[c.node_body].body_contacts;
       ++reports[c.triangle_body].body_contacts;
     }
-  }
-  separate(reports);
-  holdBySlip();
-  settleVelocities(dt);
-  for (int b = 0; b < n; ++b) {
-    if (!surfaces_[b]) continue;
-    participants_[b]->end(bodies[b]);
-    surfaces_[b]->setStart(bodies[b].positions());
   }
 }
 

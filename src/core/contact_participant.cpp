@@ -15,9 +15,12 @@ Eigen::Matrix3d cross(const Eigen::Vector3d& w) {
 
 }  // namespace
 
-ContactParticipant::ContactParticipant(const Body& body)
-    : body_(&body), inverse_masses_(body.numNodes(), 0.0) {
-  if (!body.reduced()) return;
+ContactParticipant::ContactParticipant(const Body& body) : body_(&body) {
+  if (!body.reduced()) {
+    response_.emplace(body.numNodes());
+    velocity_change_of_nodes_ = Eigen::VectorXd::Zero(3 * body.numNodes());
+    return;
+  }
   base_x_.resize(3 * body.numNodes());
   base_v_.resize(3 * body.numNodes());
   const MassProperties& mass = body.reduced()->massProperties();
@@ -25,15 +28,14 @@ ContactParticipant::ContactParticipant(const Body& body)
   inverse_mass_ = 1.0 / mass.mass;
 }
 
-void ContactParticipant::begin(Body& body) {
+void ContactParticipant::begin(Body& body, bool new_step) {
   body_ = &body;
   const ReducedDynamics* reduced = body.reduced();
   if (!reduced) {
     x_ = &body.mutablePositions();
     v_ = &body.mutableVelocities();
-    for (int i = 0; i < body.numNodes(); ++i) {
-      inverse_masses_[i] = body.isConstrained(i) ? 0.0 : 1.0 / body.nodalMasses()[i];
-    }
+    if (new_step) response_->begin(body);
+    velocity_change_of_nodes_.setZero();
     return;
   }
   base_x_ = body.positions();
@@ -54,8 +56,11 @@ void ContactParticipant::begin(Body& body) {
   rate_change_.setZero();
 }
 
-void ContactParticipant::end(Body& body) const {
-  if (!body.reduced()) return;
+void ContactParticipant::end(Body& body) {
+  if (!body.reduced()) {
+    body.addConstraintForces(velocity_change_of_nodes_);
+    return;
+  }
   body.moveReducedBy(centre_change_, gradient_change_, velocity_change_, rate_change_);
 }
 
@@ -86,11 +91,13 @@ Eigen::Vector3d ContactParticipant::velocity(const SurfacePoint& point) const {
 double ContactParticipant::inverseMass(const SurfacePoint& point,
                                        const Eigen::Vector3d& normal) const {
   if (!body_->reduced()) {
-    double w = 0.0;
-    for (int k = 0; k < point.count; ++k) {
-      w += point.weights[k] * point.weights[k] * inverse_masses_[point.nodes[k]];
+    Eigen::Matrix3d w = Eigen::Matrix3d::Zero();
+    for (int a = 0; a < point.count; ++a) {
+      for (int b = 0; b < point.count; ++b) {
+        w += point.weights[a] * point.weights[b] * response_->block(point.nodes[a], point.nodes[b]);
+      }
     }
-    return w;
+    return normal.dot(w * normal);
   }
   const Eigen::Vector3d a = arm(point);
   if (body_->reduced()->model() == BodyModel::kRigid) {
@@ -98,6 +105,22 @@ double ContactParticipant::inverseMass(const SurfacePoint& point,
     return inverse_mass_ + lever.dot(inverse_moment_ * lever);
   }
   return inverse_mass_ + a.dot(inverse_moment_ * a);
+}
+
+Eigen::Matrix3d ContactParticipant::compliance(const SurfacePoint& point, bool local) const {
+  if (local && !body_->reduced()) {
+    return nudgeCompliance(point, Eigen::Vector3d::UnitX()) * Eigen::Matrix3d::Identity();
+  }
+  // The quadratic form n^T W n on the axes and their sums gives W (symmetric).
+  Eigen::Matrix3d w;
+  for (int a = 0; a < 3; ++a) w(a, a) = inverseMass(point, Eigen::Vector3d::Unit(a));
+  for (int a = 0; a < 3; ++a) {
+    for (int b = a + 1; b < 3; ++b) {
+      const Eigen::Vector3d both = Eigen::Vector3d::Unit(a) + Eigen::Vector3d::Unit(b);
+      w(a, b) = w(b, a) = 0.5 * (inverseMass(point, both) - w(a, a) - w(b, b));
+    }
+  }
+  return w;
 }
 
 Eigen::Matrix3d ContactParticipant::gradientChange(const Eigen::Vector3d& a,
@@ -109,28 +132,65 @@ Eigen::Matrix3d ContactParticipant::gradientChange(const Eigen::Vector3d& a,
   return amount * (inverse_moment_ * a).transpose();
 }
 
-void ContactParticipant::push(const SurfacePoint& point, const Eigen::Vector3d& impulse) {
+void ContactParticipant::push(const SurfacePoint& point, const Eigen::Vector3d& impulse,
+                              bool local) {
+  if (local && !body_->reduced()) {
+    addLumped(point, impulse, *v_);
+    return;
+  }
   if (!body_->reduced()) {
-    for (int k = 0; k < point.count; ++k) {
-      const int i = point.nodes[k];
-      v_->segment<3>(3 * i) += point.weights[k] * inverse_masses_[i] * impulse;
-    }
+    addAnswer(point, impulse, *v_);
+    addAnswer(point, impulse, velocity_change_of_nodes_);
     return;
   }
   velocity_change_ += inverse_mass_ * impulse;
   rate_change_ += gradientChange(arm(point), impulse);
 }
 
-void ContactParticipant::displace(const SurfacePoint& point, const Eigen::Vector3d& shift) {
+void ContactParticipant::displace(const SurfacePoint& point, const Eigen::Vector3d& shift,
+                                  bool local) {
+  if (local && !body_->reduced()) {
+    addLumped(point, shift, *x_);
+    return;
+  }
   if (!body_->reduced()) {
-    for (int k = 0; k < point.count; ++k) {
-      const int i = point.nodes[k];
-      x_->segment<3>(3 * i) += point.weights[k] * inverse_masses_[i] * shift;
-    }
+    addAnswer(point, shift, *x_);
     return;
   }
   centre_change_ += inverse_mass_ * shift;
   gradient_change_ += gradientChange(arm(point), shift);
+}
+
+void ContactParticipant::nudge(const SurfacePoint& point, const Eigen::Vector3d& shift) {
+  displace(point, shift, true);
+}
+
+void ContactParticipant::addLumped(const SurfacePoint& point, const Eigen::Vector3d& amount,
+                                   Eigen::VectorXd& state) const {
+  for (int k = 0; k < point.count; ++k) {
+    const int i = point.nodes[k];
+    if (body_->isConstrained(i)) continue;
+    state.segment<3>(3 * i) += point.weights[k] / body_->nodalMasses()[i] * amount;
+  }
+}
+
+double ContactParticipant::nudgeCompliance(const SurfacePoint& point,
+                                           const Eigen::Vector3d& normal) const {
+  if (body_->reduced()) return inverseMass(point, normal);
+  double w = 0.0;
+  for (int k = 0; k < point.count; ++k) {
+    const int i = point.nodes[k];
+    if (!body_->isConstrained(i))
+      w += point.weights[k] * point.weights[k] / body_->nodalMasses()[i];
+  }
+  return w;
+}
+
+void ContactParticipant::addAnswer(const SurfacePoint& point, const Eigen::Vector3d& amount,
+                                   Eigen::VectorXd& state) const {
+  for (int k = 0; k < point.count; ++k) {
+    response_->add(point.nodes[k], point.weights[k] * amount, state);
+  }
 }
 
 }  // namespace deformable_sim::core

@@ -50,14 +50,15 @@ bool nodeHitsTriangle(const SweptNode& node, const SweptTriangle& triangle, doub
                       double shallow, NodeTriangleHit* hit) {
   Eigen::Vector3d normal;
   double end_distance = 0.0;
-  if (!planeDistance(triangle.end, node.end, normal, end_distance) || !(end_distance < 0.0)) {
+  if (!planeDistance(triangle.end, node.end, normal, end_distance) || !(end_distance < skin)) {
     return false;
   }
   const Eigen::Vector3d weights = barycentric(triangle.end, node.end - end_distance * normal);
-  if (!(weights.minCoeff() >= -slackFor(triangle.end, -end_distance))) return false;
+  if (!(weights.minCoeff() >= -slackFor(triangle.end, std::max(-end_distance, 0.0)))) return false;
   Eigen::Vector3d start_normal;
   double start_distance = 0.0;
-  hit->crossed = planeDistance(triangle.start, node.start, start_normal, start_distance) &&
+  hit->crossed = end_distance < 0.0 &&
+                 planeDistance(triangle.start, node.start, start_normal, start_distance) &&
                  start_distance >= -skin;
   // Deep behind the plane from the start: inside the body, not through this triangle.
   if (!hit->crossed && -end_distance > shallow) return false;

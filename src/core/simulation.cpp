@@ -130,17 +130,6 @@ void Simulation::addBodyContact() {
   body_contact_.emplace(bodies_, *contact_, with_bodies, with_self);
 }
 
-void Simulation::resolveBodyContact(std::vector<StepReport>& reports) {
-  body_contact_->resolve(bodies_, dt_, reports);
-  ++body_contact_steps_;
-  // Contact between bodies may have pushed a node into an obstacle: obstacles have the last say.
-  for (size_t b = 0; b < bodies_.size(); ++b) {
-    if (!contact_states_[b] || !body_contact_->takesPart(static_cast<int>(b))) continue;
-    reports[b].contacts =
-        contact_states_[b]->project(bodies_[b], obstacles_, obstacle_starts_, *contact_, dt_);
-  }
-}
-
 void Simulation::addBody(const SceneSpec& spec, size_t b, Mesh mesh) {
   const BodySpec& body_spec = spec.bodies[b];
   const std::string key = "bodies[" + std::to_string(b) + "]";
@@ -206,16 +195,8 @@ void Simulation::step(std::vector<StepReport>& reports) {
   for (size_t b = 0; b < bodies_.size(); ++b) {
     Body& body = bodies_[b];
     body.rememberState();
-    if (!contact_states_[b]) {
-      reports[b] = body.step(dt_);
-    } else {
-      ContactState& contacts = *contact_states_[b];
-      contacts.hold(body, obstacles_);
-      reports[b] = body.step(dt_);
-      contacts.release(body, obstacles_, *contact_, dt_);
-      reports[b].contacts = contacts.project(body, obstacles_, obstacle_starts_, *contact_, dt_);
-      ++contact_steps_;
-    }
+    if (contact_states_[b]) contact_states_[b]->hold(body, obstacles_);
+    reports[b] = body.step(dt_);
     // Constraint forces too: a tiny dt (1e-320 s) divides a finite solve into infinite forces.
     if (!std::isfinite(reports[b].solve.relative_residual) || !body.stateIsFinite() ||
         !body.reactionForces().allFinite()) {
@@ -224,7 +205,19 @@ void Simulation::step(std::vector<StepReport>& reports) {
       ++recoveries_[b];
     }
   }
-  if (body_contact_) resolveBodyContact(reports);
+  // Between bodies while their nodes on obstacles are still held, so that what presses on a body
+  // goes through it to the obstacles under it; then the obstacles have the last say.
+  if (body_contact_) {
+    body_contact_->resolve(bodies_, dt_, reports);
+    ++body_contact_steps_;
+  }
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    if (!contact_states_[b]) continue;
+    contact_states_[b]->release(bodies_[b], obstacles_, *contact_, dt_);
+    reports[b].contacts =
+        contact_states_[b]->project(bodies_[b], obstacles_, obstacle_starts_, *contact_, dt_);
+    ++contact_steps_;
+  }
   for (size_t k = 0; k < obstacle_starts_.size(); ++k) obstacle_starts_[k] = obstacles_[k].pose;
   ++step_count_;
   time_ += dt_;

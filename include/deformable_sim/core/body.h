@@ -187,6 +187,13 @@ class Body {
   void holdNodeAt(int node, const Eigen::Vector3d& target);
   void releaseNode(int node);
   bool isConstrained(int node) const { return constrained_[node] != 0; }
+  /// After a step (finite elements): x = A^-1 b with the matrix A of its last solve and the
+  /// constrained nodes' rows held at zero: how the free nodes' velocities answer impulses b
+  /// within the step (contact between bodies). Allocates nothing once a step has run.
+  SolveReport solveLastStep(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// Adds to reactionForces() what a velocity change dv of the free nodes (an answer of
+  /// solveLastStep) asks of the constrained ones, (A dv) / h there.
+  void addConstraintForces(const Eigen::VectorXd& dv);
   int numConstrained() const;
 
   /// Applied nodal forces (3n, N); they persist from step to step until changed. Write them

@@ -1,14 +1,17 @@
 // Contact between bodies and of a body with itself (the `bodies` and `self` keys of the contact
-// effect), for every pair of models. After every body has taken its step, each surface node that
-// ended the step behind a surface triangle of another body (or of its own body, away from its own
-// elements) is found through the triangles' bounding-volume trees (core/body_surface.h) and the
-// swept test of core/node_triangle.h. It is then put back by equal and opposite position shifts
-// of the node and of the triangle's point (split by their inverse masses, barycentric among the
-// corners), so momentum is kept; friction undoes the pair's tangential slip within Coulomb's cone
-// of that push; and their velocities lose the approach along the normal and, within the cone of
-// the impulses, the slip. A velocity-level projection, after the implicit step: unlike the
-// obstacles' hold, nothing keeps a touching pair apart within the next solve, so a body resting
-// on a soft body is pushed back each step rather than carried (see doc/physics.md).
+// effect), for every pair of models. After every body has taken its step (its nodes on obstacles
+// still held), each surface node that ended the step behind a surface triangle of another body
+// (or of its own body, away from its own elements), or in front of it by less than the
+// tolerance, is found through the triangles' bounding-volume trees (core/body_surface.h) and the
+// swept test of core/node_triangle.h. Equal and opposite impulses on the node and the triangle's
+// point (barycentric among its corners), in Gauss-Seidel passes, then let each pair approach no
+// faster than closes the gap it had at the step's start, and friction stop its slip within
+// Coulomb's cone; each impulse moves the end positions with the velocities (x = x0 + dt v). A
+// finite-element body answers an impulse as its implicit step would have, through its own
+// matrix (core/implicit_response.h), so a body resting on a soft body is carried, and what presses
+// on a body goes through it to what holds it. Against a surface held all over the free side
+// answers node by node. A last round finds the contacts again and puts back, node by node, what
+// the impulses pressed in elsewhere. Momentum is kept (doc/physics.md).
 #pragma once
 
 #include <optional>
@@ -43,7 +46,9 @@ class BodyContact {
   static constexpr double kTarget = 0.01;
   /// Passes over the contacts to separate them (Gauss-Seidel) and to settle their velocities.
   static constexpr int kPositionPasses = 64;
-  static constexpr int kVelocityPasses = 8;
+  static constexpr int kVelocityPasses = 32;
+  /// Rounds of finding and resolving contacts a step.
+  static constexpr int kRounds = 2;
 
  private:
   struct Contact {
@@ -52,19 +57,32 @@ class BodyContact {
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< out of the triangle's body
     double pushed = 0.0;   ///< kg m: the normal shift of the position passes
     double impulse = 0.0;  ///< N s: the normal impulse of the velocity passes
+    Eigen::Vector3d friction = Eigen::Vector3d::Zero();  ///< N s: their friction impulse
+    double start_gap = 0.0;  ///< m: along the normal, node minus triangle point, at the start
+    /// m/s per N s: how the points part per unit impulse on the pair (both bodies' answers).
+    Eigen::Matrix3d compliance = Eigen::Matrix3d::Zero();
+    bool local = false;  ///< answered node by node (see settleVelocities)
   };
 
   bool touches(int a, int b) const;
+  /// Sweeps the surfaces from the step's start to the bodies' positions now and finds every
+  /// contact; `new_step`: the bodies have just stepped (else a later round of the same step).
+  void findContacts(std::vector<Body>& bodies, bool new_step);
+  void countContacts(std::vector<StepReport>& reports) const;
   /// The contact of surface node i of body a, if it ended the step behind some triangle.
   void findContact(int a, int i);
   /// Position passes until every contact is within kTarget of its tolerance; returns the
   /// largest depth left, per body into `left`.
   void separate(std::vector<StepReport>& reports);
-  /// Undoes each pair's tangential slip within the step, within μ times the normal shift.
-  void holdBySlip();
+  /// Velocity passes (Gauss-Seidel): each pair's normal impulse, then its friction.
   void settleVelocities(double dt);
-  /// The slip of the contact's two points within the step (positions now minus at the start).
-  Eigen::Vector3d slip(const Contact& c) const;
+  double startGap(const Contact& c) const;
+  /// How fast the pair's points part along `direction` per unit impulse there.
+  double compliance(const Contact& c, const Eigen::Vector3d& direction) const;
+  /// Equal and opposite impulses on the pair, their end positions moved with them.
+  void apply(Contact& c, const Eigen::Vector3d& impulse, double dt);
+  void pushApart(Contact& c, double dt);
+  void holdByFriction(Contact& c, double dt);
   double gap(const Contact& c) const;
   void shift(Contact& c, const Eigen::Vector3d& amount);
 

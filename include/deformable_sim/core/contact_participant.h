@@ -1,14 +1,16 @@
 // A body as contact between bodies sees it: where a point of its surface is, how fast it moves,
-// and how it answers an impulse there. A finite-element body's nodes move alone (their lumped
-// masses; constrained nodes not at all); a rigid or pseudo-rigid body answers with its whole
-// motion (its mass and inertia, or its mass and Euler tensor), gathered in increments of its
-// coordinates and handed to it once the contact is resolved.
+// and how it answers an impulse there. A finite-element body answers as its implicit step would
+// have (core/implicit_response.h; constrained nodes not at all), a rigid or pseudo-rigid body
+// with its whole motion (its mass and inertia, or its mass and Euler tensor), gathered in
+// increments of its coordinates and handed to it once the contact is resolved.
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
+#include <optional>
 
 #include "deformable_sim/core/body.h"
+#include "deformable_sim/core/implicit_response.h"
 
 namespace deformable_sim::core {
 
@@ -25,19 +27,31 @@ class ContactParticipant {
   explicit ContactParticipant(const Body& body);
 
   /// Takes the body's state after its step; a rigid or pseudo-rigid body starts with no change.
-  void begin(Body& body);
-  /// Gives a rigid or pseudo-rigid body the change of its coordinates (a finite-element body was
-  /// changed in place).
-  void end(Body& body) const;
+  /// `new_step`: false for a later round of the same step, whose answers are still good.
+  void begin(Body& body, bool new_step = true);
+  /// Gives a rigid or pseudo-rigid body the change of its coordinates; a finite-element body,
+  /// changed in place, the constraint forces its impulses asked of its held nodes.
+  void end(Body& body);
 
   Eigen::Vector3d position(const SurfacePoint& point) const;
   Eigen::Vector3d velocity(const SurfacePoint& point) const;
-  /// n^T W n: how far the point moves along the unit normal n per unit impulse along it.
+  /// n^T W n: how fast the point moves along the unit normal n per unit impulse along it.
   double inverseMass(const SurfacePoint& point, const Eigen::Vector3d& normal) const;
-  /// The point's body takes `impulse` (N s) there: its velocities change by W impulse.
-  void push(const SurfacePoint& point, const Eigen::Vector3d& impulse);
+  /// W itself: the point's velocity change per unit impulse there; `local`: a finite-element
+  /// body's nodes answering alone, by their lumped masses.
+  Eigen::Matrix3d compliance(const SurfacePoint& point, bool local = false) const;
+  /// Linear solves a finite-element body took in this step to answer impulses.
+  int solves() const { return response_ ? response_->solves() : 0; }
+  /// The point's body takes `impulse` (N s) there: its velocities change by W impulse (`local`:
+  /// see compliance()).
+  void push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool local = false);
   /// The same for the positions: they change by W `shift` (kg m), momentum untouched.
-  void displace(const SurfacePoint& point, const Eigen::Vector3d& shift);
+  void displace(const SurfacePoint& point, const Eigen::Vector3d& shift, bool local = false);
+  /// A small correction of positions only (what is left inside after the impulses): a
+  /// finite-element body's nodes move by their lumped inverse masses alone, so that the
+  /// correction stays where it is needed; other bodies as displace().
+  void nudge(const SurfacePoint& point, const Eigen::Vector3d& shift);
+  double nudgeCompliance(const SurfacePoint& point, const Eigen::Vector3d& normal) const;
 
  private:
   /// The rest arm X - Xc of the point (rigid and pseudo-rigid bodies).
@@ -46,10 +60,20 @@ class ContactParticipant {
   /// the gradient (or its rate) by the returned matrix.
   Eigen::Matrix3d gradientChange(const Eigen::Vector3d& arm, const Eigen::Vector3d& amount) const;
 
+  /// A finite-element body: `amount` at the point, answered by its nodes alone (lumped masses),
+  /// added to `state`.
+  void addLumped(const SurfacePoint& point, const Eigen::Vector3d& amount,
+                 Eigen::VectorXd& state) const;
+  /// A finite-element body: `amount` at the point, answered by the whole body, added to `state`.
+  void addAnswer(const SurfacePoint& point, const Eigen::Vector3d& amount,
+                 Eigen::VectorXd& state) const;
+
   const Body* body_ = nullptr;
   Eigen::VectorXd* x_ = nullptr;  ///< a finite-element body's own state, changed in place
   Eigen::VectorXd* v_ = nullptr;
-  std::vector<double> inverse_masses_;  ///< per node; zero where constrained
+  /// Finite elements: columns solved lazily, so `mutable`; and the velocity change so far.
+  mutable std::optional<ImplicitResponse> response_;
+  Eigen::VectorXd velocity_change_of_nodes_;
   Eigen::Vector3d rest_centre_ = Eigen::Vector3d::Zero();
   double inverse_mass_ = 0.0;  ///< of the whole body
   Eigen::Matrix3d gradient_ = Eigen::Matrix3d::Identity();

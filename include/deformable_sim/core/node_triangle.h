@@ -17,7 +17,8 @@ struct SweptTriangle {
 };
 
 struct NodeTriangleHit {
-  double depth = 0.0;  ///< how far the node is behind the triangle's plane at the end, m (> 0)
+  /// How far the node is behind the triangle's plane at the end, m (negative: in front of it).
+  double depth = 0.0;
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();   ///< the triangle's outward unit normal
   Eigen::Vector3d weights = Eigen::Vector3d::Zero();  ///< barycentric, of the node's foot point
   /// It was in front of the plane at the start: it came through this triangle. Such a hit tells
@@ -25,10 +26,10 @@ struct NodeTriangleHit {
   bool crossed = false;
 };
 
-/// A hit when the node ends behind the triangle's plane with its foot point on the triangle, and
-/// either was in front of the plane (within `skin`, m) at the start of the step (it crossed it)
-/// or is behind it by at most `shallow` (m: it was touching and sank in a little). A triangle of
-/// no area is never hit.
+/// A hit when the node ends behind the triangle's plane, or in front of it by less than `skin`
+/// (m: about to touch), with its foot point on the triangle, and either was in front of the plane
+/// (within `skin`) at the start of the step (it crossed it) or is behind it by at most `shallow`
+/// (m: it was touching and sank in a little). A triangle of no area is never hit.
 bool nodeHitsTriangle(const SweptNode& node, const SweptTriangle& triangle, double skin,
                       double shallow, NodeTriangleHit* hit);
 

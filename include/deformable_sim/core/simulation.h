@@ -70,8 +70,6 @@ class Simulation {
   void addBodyContact();
   /// Before a step: when the obstacles are others than in the last step, forgets their contacts.
   void followObstacles();
-  /// After the bodies' steps: contact between them, then their obstacles again.
-  void resolveBodyContact(std::vector<StepReport>& reports);
 
   double dt_;
   StaticSettings statics_;
