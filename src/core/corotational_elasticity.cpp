@@ -45,9 +45,11 @@ CorotationalElasticity::CorotationalElasticity(const Mesh& mesh,
   setRestForces();
   listIncidences(mesh.numNodes());
   cells_.reserve(mesh.cells.size());
-  for (const Cell& c : mesh.cells) {
+  for (size_t e = 0; e < mesh.cells.size(); ++e) {
+    const Cell& c = mesh.cells[e];
     CellElement cell;
     cell.cell = c;
+    cell.fraction = mesh.cellFraction(e);
     cell.rest = computeCellRest(c.type, cellCorners(c, mesh.positions));
     for (int i = 0; i < c.size(); ++i) {
       for (int j = 0; j < c.size(); ++j) {
@@ -68,7 +70,9 @@ void CorotationalElasticity::setCellStiffness() {
   for (CellElement& cell : cells_) {
     const int n = cell.cell.size();
     const CellVectors corners = currentCorners(cell.cell, rest_positions_);
-    cell.stiffness = cellStiffness(cell.cell.type, corners, lambda_, mu_);
+    // A partial cell: its material's stiffness, the whole cell's scaled by the fraction it fills.
+    cell.stiffness =
+        cellStiffness(cell.cell.type, corners, cell.fraction * lambda_, cell.fraction * mu_);
     Eigen::VectorXd x0(3 * n);
     for (int k = 0; k < n; ++k) x0.segment<3>(3 * k) = corners[k];
     cell.rest_forces = cell.stiffness * x0;

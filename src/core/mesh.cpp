@@ -41,8 +41,11 @@ std::vector<int> sliverTetrahedra(const Mesh& mesh, double min_quality) {
 double totalVolume(const Mesh& mesh) {
   double volume = 0.0;
   for (const Tetrahedron& t : mesh.tetrahedra) volume += signedVolume(mesh.positions, t);
-  for (const Cell& c : mesh.cells)
-    volume += computeCellRest(c.type, cellCorners(c, mesh.positions)).volume;
+  for (size_t c = 0; c < mesh.cells.size(); ++c) {
+    volume +=
+        mesh.cellFraction(c) *
+        computeCellRest(mesh.cells[c].type, cellCorners(mesh.cells[c], mesh.positions)).volume;
+  }
   return volume;
 }
 
@@ -111,9 +114,11 @@ std::vector<double> lumpedMasses(const Mesh& mesh, double density) {
     const double share = 0.25 * density * std::abs(signedVolume(mesh.positions, t));
     for (int i : t) mass[i] += share;
   }
-  for (const Cell& c : mesh.cells) {
+  for (size_t e = 0; e < mesh.cells.size(); ++e) {
+    const Cell& c = mesh.cells[e];
     const CellRest rest = computeCellRest(c.type, cellCorners(c, mesh.positions));
-    for (int k = 0; k < c.size(); ++k) mass[c.nodes[k]] += density * rest.shape_integrals[k];
+    const double cell_density = density * mesh.cellFraction(e);
+    for (int k = 0; k < c.size(); ++k) mass[c.nodes[k]] += cell_density * rest.shape_integrals[k];
   }
   return mass;
 }

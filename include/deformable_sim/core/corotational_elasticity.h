@@ -86,6 +86,7 @@ class CorotationalElasticity {
   /// A pyramid, wedge or hexahedron: its stiffness is integrated numerically, so it is stored.
   struct CellElement {
     Cell cell;
+    double fraction = 1.0;  ///< Mesh::cellFraction: scales its stiffness
     CellRest rest;
     Eigen::MatrixXd stiffness;                                     ///< Ke (3n x 3n), N/m
     Eigen::VectorXd rest_forces;                                   ///< Ke x0, N

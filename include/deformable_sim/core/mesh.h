@@ -40,6 +40,12 @@ struct Mesh {
   std::vector<Tetrahedron> tetrahedra;
   /// The other elements, kept apart from the tetrahedra, which have a closed-form fast path.
   std::vector<Cell> cells;
+  /// Per cell, the part of it that holds material, in (0, 1]: a cell of a grid cut by a surface
+  /// (core/voxelization.h) weighs and resists in proportion. Empty: every cell is full.
+  std::vector<double> cell_fractions;
+
+  /// The material fraction of cells[c]: 1 unless cell_fractions says otherwise.
+  double cellFraction(size_t c) const { return cell_fractions.empty() ? 1.0 : cell_fractions[c]; }
 
   int numNodes() const { return static_cast<int>(positions.size()); }
   int numTetrahedra() const { return static_cast<int>(tetrahedra.size()); }
@@ -66,7 +72,7 @@ constexpr double kSliverQuality = 0.01;
 /// readers report them as a warning; meshes built in code can be checked with it.
 std::vector<int> sliverTetrahedra(const Mesh& mesh, double min_quality = kSliverQuality);
 
-/// Sum of the element volumes at rest, m^3.
+/// Sum of the element volumes at rest, each cell's times its fraction, m^3.
 double totalVolume(const Mesh& mesh);
 
 /// The faces that belong to exactly one element, oriented with outward normals.
@@ -76,8 +82,8 @@ std::vector<Face> extractBoundary(const Mesh& mesh);
 std::vector<Triangle> extractSurface(const Mesh& mesh);
 
 /// Lumped (diagonal) nodal masses: each element gives node i density x the integral of its shape
-/// function N_i (a quarter of the volume for a tetrahedron). density in kg/m^3, result in kg per
-/// node.
+/// function N_i (a quarter of the volume for a tetrahedron), a cell's times its fraction. density
+/// in kg/m^3, result in kg per node.
 std::vector<double> lumpedMasses(const Mesh& mesh, double density);
 
 /// Index of each node given by its file number. Throws std::invalid_argument naming the first
