@@ -16,8 +16,9 @@ namespace deformable_sim::core {
 namespace {
 
 // An extent within this many cells of a whole number of them is that whole number: a box of
-// 1 m cut into cells of 0.1 m is ten cells, not eleven.
-constexpr double kWholeCellTolerance = 1e-9;
+// 1 m cut into cells of 0.1 m is ten cells, not eleven, also from an STL's single precision
+// (a relative error near 6e-8 of each coordinate).
+constexpr double kWholeCellTolerance = 1e-5;
 
 Eigen::AlignedBox3d boundingBox(const TriangleMesh& surface) {
   Eigen::AlignedBox3d box;

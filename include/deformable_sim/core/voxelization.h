@@ -38,7 +38,7 @@ struct VoxelSettings {
 };
 
 /// The grid that covers the bounding box of `surface` with whole cells, centred on it (an
-/// extent that is a whole number of cells, within 1e-9 of one, is covered exactly). Throws
+/// extent that is a whole number of cells, within 1e-5 of one, is covered exactly). Throws
 /// std::invalid_argument for settings that give no cell size or more than kMaxBoxMeshCells cells.
 VoxelGrid voxelGridFor(const TriangleMesh& surface, const VoxelSettings& settings);
 
