@@ -71,10 +71,16 @@ void validateCells(const std::string& where, const Mesh& mesh) {
                                     std::to_string(cell.nodes[k]) + " outside the mesh");
       }
     }
-    if (!mesh.cell_fractions.empty() &&
-        !(mesh.cell_fractions[c] > 0.0 && mesh.cell_fractions[c] <= 1.0)) {
-      throw std::invalid_argument(where + name + "material fraction " +
-                                  std::to_string(mesh.cell_fractions[c]) + " outside (0, 1]");
+    if (const OctantFractions* octants = mesh.cellOctants(c)) {
+      for (double f : *octants) {
+        if (!(f >= 0.0 && f <= 1.0)) {
+          throw std::invalid_argument(where + name + "octant fraction " + std::to_string(f) +
+                                      " outside [0, 1]");
+        }
+      }
+      if (!(mesh.cellFraction(c) > 0.0)) {
+        throw std::invalid_argument(where + name + "holds no material");
+      }
     }
     try {
       computeCellRest(cell.type, cellCorners(cell, mesh.positions));

@@ -33,14 +33,23 @@ bool triangleMayCrossCube(const TriangleMesh& surface, int t, const Eigen::Vecto
 double occupiedFraction(const TriangleMesh& surface, const WindingNumber& winding,
                         const std::vector<int>& candidates, const Eigen::Vector3d& min, double size,
                         int levels) {
-  const Eigen::Vector3d centre = min.array() + 0.5 * size;
-  if (candidates.empty() || levels == 0) return inside(winding, centre) ? 1.0 : 0.0;
+  if (candidates.empty() || levels == 0) {
+    return winding.at(min.array() + 0.5 * size) >= 0.5 ? 1.0 : 0.0;
+  }
+  double sum = 0.0;
+  for (double f : octantFractions(surface, winding, candidates, min, size, levels)) sum += f;
+  return sum / 8.0;
+}
+
+std::array<double, 8> octantFractions(const TriangleMesh& surface, const WindingNumber& winding,
+                                      const std::vector<int>& candidates,
+                                      const Eigen::Vector3d& min, double size, int levels) {
   const double half = 0.5 * size;
   // A triangle lying on a face between two parts crosses both; the margin keeps it in both lists.
   const double margin = 1e-9 * size;
   std::vector<int> crossing;
   crossing.reserve(candidates.size());
-  double sum = 0.0;
+  std::array<double, 8> fractions;
   for (int octant = 0; octant < 8; ++octant) {
     const Eigen::Vector3d part_min =
         min + half * Eigen::Vector3d(octant & 1, octant >> 1 & 1, octant >> 2 & 1);
@@ -48,9 +57,9 @@ double occupiedFraction(const TriangleMesh& surface, const WindingNumber& windin
     for (int t : candidates) {
       if (triangleMayCrossCube(surface, t, part_min, half, margin)) crossing.push_back(t);
     }
-    sum += occupiedFraction(surface, winding, crossing, part_min, half, levels - 1);
+    fractions[octant] = occupiedFraction(surface, winding, crossing, part_min, half, levels - 1);
   }
-  return sum / 8.0;
+  return fractions;
 }
 
 }  // namespace deformable_sim::core

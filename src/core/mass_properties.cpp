@@ -28,8 +28,6 @@ MassProperties massProperties(const Mesh& mesh, double density) {
   }
   for (size_t c = 0; c < mesh.cells.size(); ++c) {
     const Cell& cell = mesh.cells[c];
-    // A partial cell's material is taken as spread evenly over it.
-    const double fraction = mesh.cellFraction(c);
     for (const QuadraturePoint& q : quadrature(cell.type)) {
       const ShapeValues shape = shapeFunctions(cell.type, q.xi);
       Eigen::Vector3d x = Eigen::Vector3d::Zero();
@@ -39,7 +37,8 @@ MassProperties massProperties(const Mesh& mesh, double density) {
         x += shape.values[k] * corner;
         jacobian += corner * shape.gradients[k].transpose();
       }
-      const double dv = fraction * q.weight * jacobian.determinant();
+      const double dv =
+          pointFraction(cell.type, q.xi, mesh.cellOctants(c)) * q.weight * jacobian.determinant();
       volume += dv;
       first += dv * x;
       second += dv * x * x.transpose();

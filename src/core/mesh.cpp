@@ -38,13 +38,20 @@ std::vector<int> sliverTetrahedra(const Mesh& mesh, double min_quality) {
   return slivers;
 }
 
+double Mesh::cellFraction(size_t c) const {
+  if (cell_fractions.empty()) return 1.0;
+  double sum = 0.0;
+  for (double f : cell_fractions[c]) sum += f;
+  return sum / 8.0;
+}
+
 double totalVolume(const Mesh& mesh) {
   double volume = 0.0;
   for (const Tetrahedron& t : mesh.tetrahedra) volume += signedVolume(mesh.positions, t);
   for (size_t c = 0; c < mesh.cells.size(); ++c) {
+    const Cell& cell = mesh.cells[c];
     volume +=
-        mesh.cellFraction(c) *
-        computeCellRest(mesh.cells[c].type, cellCorners(mesh.cells[c], mesh.positions)).volume;
+        computeCellRest(cell.type, cellCorners(cell, mesh.positions), mesh.cellOctants(c)).volume;
   }
   return volume;
 }
@@ -116,9 +123,9 @@ std::vector<double> lumpedMasses(const Mesh& mesh, double density) {
   }
   for (size_t e = 0; e < mesh.cells.size(); ++e) {
     const Cell& c = mesh.cells[e];
-    const CellRest rest = computeCellRest(c.type, cellCorners(c, mesh.positions));
-    const double cell_density = density * mesh.cellFraction(e);
-    for (int k = 0; k < c.size(); ++k) mass[c.nodes[k]] += cell_density * rest.shape_integrals[k];
+    const CellRest rest =
+        computeCellRest(c.type, cellCorners(c, mesh.positions), mesh.cellOctants(e));
+    for (int k = 0; k < c.size(); ++k) mass[c.nodes[k]] += density * rest.shape_integrals[k];
   }
   return mass;
 }

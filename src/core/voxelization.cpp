@@ -61,9 +61,17 @@ std::vector<std::vector<int>> binTriangles(const TriangleMesh& surface, const Vo
   return bins;
 }
 
+bool holdsMaterial(const OctantFractions& octants) {
+  for (double f : octants) {
+    if (f > 0.0) return true;
+  }
+  return false;
+}
+
 // The hexahedra of the cells with a fraction > 0 and the grid nodes they use, both in x-fastest
 // order, as makeBoxMesh numbers them.
-void buildMesh(const VoxelGrid& grid, const std::vector<double>& fractions, Voxelization& result) {
+void buildMesh(const VoxelGrid& grid, const std::vector<OctantFractions>& fractions,
+               Voxelization& result) {
   const Eigen::Vector3i n = grid.cells.array() + 1;
   auto grid_node = [&](int i, int j, int k) {
     return i + static_cast<long>(n.x()) * (j + static_cast<long>(n.y()) * k);
@@ -75,13 +83,14 @@ void buildMesh(const VoxelGrid& grid, const std::vector<double>& fractions, Voxe
   for (int k = 0; k < grid.cells.z(); ++k) {
     for (int j = 0; j < grid.cells.y(); ++j) {
       for (int i = 0; i < grid.cells.x(); ++i) {
-        if (fractions[grid.cellIndex({i, j, k})] > 0.0) {
+        if (holdsMaterial(fractions[grid.cellIndex({i, j, k})])) {
           for (const auto& c : kCorners) node_of[grid_node(i + c[0], j + c[1], k + c[2])] = 0;
         }
       }
     }
   }
   Mesh& mesh = result.mesh;
+  mesh.incompatible_modes = true;
   for (int k = 0; k < n.z(); ++k) {
     for (int j = 0; j < n.y(); ++j) {
       for (int i = 0; i < n.x(); ++i) {
@@ -97,7 +106,7 @@ void buildMesh(const VoxelGrid& grid, const std::vector<double>& fractions, Voxe
     for (int j = 0; j < grid.cells.y(); ++j) {
       for (int i = 0; i < grid.cells.x(); ++i) {
         const long index = grid.cellIndex({i, j, k});
-        if (!(fractions[index] > 0.0)) continue;
+        if (!holdsMaterial(fractions[index])) continue;
         Cell cell{CellType::kHexahedron, {}};
         for (int c = 0; c < 8; ++c) {
           cell.nodes[c] =
@@ -150,13 +159,20 @@ VoxelGrid voxelGridFor(const TriangleMesh& surface, const VoxelSettings& setting
 Voxelization voxelize(const TriangleMesh& surface, const VoxelGrid& grid, int levels) {
   const WindingNumber winding(surface);
   const std::vector<std::vector<int>> bins = binTriangles(surface, grid);
-  std::vector<double> fractions(grid.numCells(), 0.0);
+  std::vector<OctantFractions> fractions(grid.numCells());
   for (int k = 0; k < grid.cells.z(); ++k) {
     for (int j = 0; j < grid.cells.y(); ++j) {
       for (int i = 0; i < grid.cells.x(); ++i) {
-        const long index = grid.cellIndex({i, j, k});
-        fractions[index] = occupiedFraction(surface, winding, bins[index], grid.cellMin({i, j, k}),
-                                            grid.cell_size, levels);
+        const Eigen::Vector3i cell(i, j, k);
+        const long index = grid.cellIndex(cell);
+        // A cell no triangle crosses is all in or all out: one query decides.
+        if (bins[index].empty()) {
+          fractions[index].fill(winding.at(grid.cellMin(cell).array() + 0.5 * grid.cell_size) >=
+                                0.5);
+        } else {
+          fractions[index] = octantFractions(surface, winding, bins[index], grid.cellMin(cell),
+                                             grid.cell_size, std::max(levels, 1));
+        }
       }
     }
   }

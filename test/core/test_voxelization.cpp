@@ -7,7 +7,9 @@
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/corotational_elasticity.h"
 #include "deformable_sim/core/embedded_surface.h"
+#include "deformable_sim/core/incompatible_modes.h"
 #include "deformable_sim/core/mass_properties.h"
+#include "deformable_sim/core/simulation.h"
 #include "deformable_sim/core/voxelization.h"
 #include "deformable_sim/core/winding_number.h"
 #include "surface_test_helpers.h"
@@ -108,7 +110,7 @@ TEST(Voxelization, AlignedBoxGivesTheHexahedralBoxMesh) {
   }
   for (size_t c = 0; c < box.cells.size(); ++c) {
     EXPECT_EQ(voxels.mesh.cells[c].nodes, box.cells[c].nodes) << c;
-    EXPECT_EQ(voxels.mesh.cell_fractions[c], 1.0) << c;
+    EXPECT_EQ(voxels.mesh.cellFraction(c), 1.0) << c;
   }
 }
 
@@ -159,7 +161,9 @@ TEST(CellFractions, ScaleLumpedMassAndStiffness) {
   const dc::LinearElasticMaterial material{1e6, 0.3, kDensity};
   dc::CorotationalElasticity full_elasticity(mesh, material);
   full_elasticity.update(Eigen::VectorXd::Zero(3 * mesh.numNodes()), false);
-  mesh.cell_fractions = {1.0, 0.25};
+  dc::OctantFractions quarter;
+  quarter.fill(0.25);
+  mesh.cell_fractions = {dc::OctantFractions{1, 1, 1, 1, 1, 1, 1, 1}, quarter};
   const std::vector<double> partial = dc::lumpedMasses(mesh, kDensity);
   dc::CorotationalElasticity partial_elasticity(mesh, material);
   partial_elasticity.update(Eigen::VectorXd::Zero(3 * mesh.numNodes()), false);
@@ -169,8 +173,117 @@ TEST(CellFractions, ScaleLumpedMassAndStiffness) {
   EXPECT_NEAR(dc::totalVolume(mesh), 0.001 + 0.25 * 0.001, 1e-15);
   const dc::BlockSparseMatrix& k_full = full_elasticity.stiffness();
   const dc::BlockSparseMatrix& k_partial = partial_elasticity.stiffness();
-  const Eigen::Matrix3d corner_full = k_full.blocks()[k_full.blockIndex(2, 2)];
-  EXPECT_TRUE(k_partial.blocks()[k_partial.blockIndex(2, 2)].isApprox(0.25 * corner_full, 1e-12));
-  EXPECT_TRUE(k_partial.blocks()[k_partial.blockIndex(0, 0)].isApprox(
-      k_full.blocks()[k_full.blockIndex(0, 0)], 1e-12));
+  auto block = [](const dc::BlockSparseMatrix& k, int i, int j) {
+    return k.blocks()[k.blockIndex(i, j)];
+  };
+  EXPECT_TRUE(block(k_partial, 2, 2).isApprox(0.25 * block(k_full, 2, 2), 1e-12));
+  EXPECT_TRUE(block(k_partial, 2, 5).isApprox(0.25 * block(k_full, 2, 5), 1e-12));
+  EXPECT_TRUE(block(k_partial, 0, 0).isApprox(block(k_full, 0, 0), 1e-12));
+}
+
+TEST(CellFractions, AHalfFilledCellWeighsAndResistsOnItsFilledSide) {
+  dc::Mesh mesh = dc::makeBoxMesh(Eigen::Vector3d::Zero(), Eigen::Vector3d::Constant(0.1),
+                                  {1, 1, 1}, dc::BoxElement::kHexahedron);
+  // Material in the octants with xi1 < 0: the half x < 0.05.
+  mesh.cell_fractions = {dc::OctantFractions{1, 0, 1, 0, 1, 0, 1, 0}};
+  const std::vector<double> mass = dc::lumpedMasses(mesh, kDensity);
+  double sum = 0.0;
+  for (double m : mass) sum += m;
+  EXPECT_NEAR(sum, 0.5 * kDensity * 1e-3, 1e-15);
+  EXPECT_NEAR(dc::massProperties(mesh, kDensity).mass, 0.5 * kDensity * 1e-3, 1e-15);
+  EXPECT_LT(dc::massProperties(mesh, kDensity).centre.x(), 0.05);
+  for (int low : {0, 2, 4, 6}) EXPECT_GT(mass[low], mass[low + 1]);  // x = 0 against x = 0.1
+  dc::CorotationalElasticity elasticity(mesh, {1e6, 0.3, kDensity});
+  elasticity.update(Eigen::VectorXd::Zero(3 * mesh.numNodes()), false);
+  const dc::BlockSparseMatrix& k = elasticity.stiffness();
+  EXPECT_GT(k.blocks()[k.blockIndex(0, 0)].trace(), k.blocks()[k.blockIndex(1, 1)].trace());
+}
+
+namespace {
+
+// The energy 1/2 u^T K u of corner displacements u(x) at the corners of `cell`.
+template <typename Field>
+double energyOf(const Eigen::MatrixXd& k, const dc::CellVectors& corners, Field u) {
+  Eigen::VectorXd d(24);
+  for (int a = 0; a < 8; ++a) d.segment<3>(3 * a) = u(corners[a]);
+  return 0.5 * d.dot(k * d);
+}
+
+dc::CellVectors unitCubeCorners(const Eigen::Matrix3d& shape) {
+  dc::CellVectors corners;
+  for (int a = 0; a < 8; ++a) corners[a] = shape * dc::naturalNode(dc::CellType::kHexahedron, a);
+  return corners;
+}
+
+}  // namespace
+
+TEST(IncompatibleModes, SymmetricRigidModesFreeAndConstantStrainAsFullIntegration) {
+  Eigen::Matrix3d shape;  // a sheared, stretched cube
+  shape << 0.05, 0.01, 0.0, 0.0, 0.04, 0.005, 0.002, 0.0, 0.06;
+  const dc::CellVectors corners = unitCubeCorners(shape);
+  const double lambda = 5.8e5, mu = 3.8e5;
+  const Eigen::MatrixXd k = dc::incompatibleModesStiffness(corners, lambda, mu);
+  const Eigen::MatrixXd full = dc::cellStiffness(dc::CellType::kHexahedron, corners, lambda, mu);
+  EXPECT_LT((k - k.transpose()).norm(), 1e-12 * k.norm());
+  const Eigen::Vector3d shift(0.1, -0.2, 0.3), axis(0.3, 0.5, -0.2);
+  EXPECT_NEAR(energyOf(k, corners, [&](const Eigen::Vector3d&) { return shift; }), 0.0,
+              1e-12 * k.norm());
+  EXPECT_NEAR(energyOf(k, corners, [&](const Eigen::Vector3d& x) { return axis.cross(x); }), 0.0,
+              1e-12 * k.norm());
+  // A homogeneous strain leaves the modes at rest (the patch test): the same energy.
+  Eigen::Matrix3d gradient;
+  gradient << 0.01, 0.002, -0.003, 0.004, -0.02, 0.001, 0.0, 0.003, 0.015;
+  auto affine = [&](const Eigen::Vector3d& x) -> Eigen::Vector3d { return gradient * x; };
+  EXPECT_NEAR(energyOf(k, corners, affine), energyOf(full, corners, affine),
+              1e-9 * energyOf(full, corners, affine));
+  // Bending (u_x = x z): the modes take out the spurious shear of full integration.
+  auto bending = [](const Eigen::Vector3d& x) -> Eigen::Vector3d {
+    return {x.x() * x.z(), -0.5 * x.x() * x.x(), 0.0};
+  };
+  EXPECT_LT(energyOf(k, corners, bending), 0.8 * energyOf(full, corners, bending));
+  EXPECT_GT(energyOf(k, corners, bending), 0.0);
+}
+
+TEST(IncompatibleModes, OnlyWhereEveryOctantHoldsEnoughMaterial) {
+  dc::OctantFractions fractions;
+  fractions.fill(1.0);
+  EXPECT_TRUE(dc::incompatibleModesApply(fractions));
+  fractions[5] = dc::kModesMinOctantFraction;
+  EXPECT_TRUE(dc::incompatibleModesApply(fractions));
+  fractions[5] = 0.5 * dc::kModesMinOctantFraction;
+  EXPECT_FALSE(dc::incompatibleModesApply(fractions));
+}
+
+// The grid of an aligned box surface and makeBoxMesh's hexahedra (with the same element) are
+// one body: the same displacement under the same load.
+TEST(Voxelization, AlignedBoxHasTheBoxMeshStaticAnswer) {
+  const Eigen::Vector3d min(0.0, -0.05, -0.05), max(1.0, 0.05, 0.05);
+  dc::Mesh box = dc::makeBoxMesh(min, max, {20, 2, 2}, dc::BoxElement::kHexahedron);
+  box.incompatible_modes = true;
+  dc::Voxelization voxels = voxelizeAt(dt::boxSurface(min, max), 0.05);
+  dc::SceneSpec spec;
+  dc::BodySpec body;
+  body.name = "beam";
+  body.material = {1e6, 0.3, 1000.0};
+  dc::NodeSelection clamp, tip;
+  clamp.kind = tip.kind = dc::NodeSelection::Kind::kBox;
+  clamp.box = {Eigen::Vector3d(-0.001, -1, -1), Eigen::Vector3d(0.001, 1, 1)};
+  tip.box = {Eigen::Vector3d(0.999, -1, -1), Eigen::Vector3d(1.001, 1, 1)};
+  body.fixed = {clamp};
+  dc::LoadSpec load;
+  load.where = tip;
+  load.kind = dc::LoadSpec::Kind::kTotalForce;
+  load.value = Eigen::Vector3d(0.0, 0.0, -0.025);
+  body.loads = {load};
+  spec.bodies = {body};
+  dc::Simulation from_box(spec, {box});
+  dc::Simulation from_surface(spec, {voxels.mesh});
+  ASSERT_TRUE(from_box.solveStatic().front().converged);
+  ASSERT_TRUE(from_surface.solveStatic().front().converged);
+  const Eigen::VectorXd& x_box = from_box.bodies().front().positions();
+  const Eigen::VectorXd& x_surface = from_surface.bodies().front().positions();
+  ASSERT_EQ(x_box.size(), x_surface.size());
+  EXPECT_LT((x_box - x_surface).cwiseAbs().maxCoeff(), 1e-9);
+  // And the beam bends: the tip moves down by about P L^3 / 3 E I.
+  EXPECT_LT(x_surface.minCoeff(), -0.05 - 0.5e-3);
 }

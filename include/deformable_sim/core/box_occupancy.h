@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "deformable_sim/core/triangle_mesh.h"
@@ -24,5 +25,11 @@ bool triangleMayCrossCube(const TriangleMesh& surface, int t, const Eigen::Vecto
 double occupiedFraction(const TriangleMesh& surface, const WindingNumber& winding,
                         const std::vector<int>& candidates, const Eigen::Vector3d& min, double size,
                         int levels);
+
+/// The same for each octant of the cube (octant o at min + size / 2 (o & 1, o >> 1 & 1,
+/// o >> 2 & 1)), to a resolution of size / 2^levels (levels >= 1).
+std::array<double, 8> octantFractions(const TriangleMesh& surface, const WindingNumber& winding,
+                                      const std::vector<int>& candidates,
+                                      const Eigen::Vector3d& min, double size, int levels);
 
 }  // namespace deformable_sim::core
