@@ -3,6 +3,8 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <fstream>
+#include <string>
 
 #include "deformable_sim/core/triangle_mesh.h"
 
@@ -79,6 +81,24 @@ inline core::TriangleMesh boxSurface(
   addQuad(mesh, 0, 4, 6, 2);  // x = min
   addQuad(mesh, 1, 3, 7, 5);  // x = max
   return mesh;
+}
+
+/// Writes `mesh` as an ASCII STL (each triangle with its own three vertices, as STL has it).
+inline void writeAsciiStl(const core::TriangleMesh& mesh, const std::string& path) {
+  std::ofstream out(path);
+  out.precision(17);
+  out << "solid test\n";
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    const Eigen::Vector3d& a = mesh.vertices[t[0]];
+    const Eigen::Vector3d n = (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a).normalized();
+    out << "facet normal " << n.x() << " " << n.y() << " " << n.z() << "\nouter loop\n";
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d& v = mesh.vertices[t[c]];
+      out << "vertex " << v.x() << " " << v.y() << " " << v.z() << "\n";
+    }
+    out << "endloop\nendfacet\n";
+  }
+  out << "endsolid test\n";
 }
 
 }  // namespace deformable_sim::test
