@@ -61,6 +61,16 @@ std::vector<std::vector<int>> binTriangles(const TriangleMesh& surface, const Vo
   return bins;
 }
 
+// f(i, j, k) for every (i, j, k) of a grid of `size`, x fastest.
+template <typename Function>
+void forEachPoint(const Eigen::Vector3i& size, Function f) {
+  for (int k = 0; k < size.z(); ++k) {
+    for (int j = 0; j < size.y(); ++j) {
+      for (int i = 0; i < size.x(); ++i) f(i, j, k);
+    }
+  }
+}
+
 bool holdsMaterial(const OctantFractions& octants) {
   for (double f : octants) {
     if (f > 0.0) return true;
@@ -80,44 +90,31 @@ void buildMesh(const VoxelGrid& grid, const std::vector<OctantFractions>& fracti
   result.cell_at.assign(grid.numCells(), -1);
   static constexpr int kCorners[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                                          {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-  for (int k = 0; k < grid.cells.z(); ++k) {
-    for (int j = 0; j < grid.cells.y(); ++j) {
-      for (int i = 0; i < grid.cells.x(); ++i) {
-        if (holdsMaterial(fractions[grid.cellIndex({i, j, k})])) {
-          for (const auto& c : kCorners) node_of[grid_node(i + c[0], j + c[1], k + c[2])] = 0;
-        }
-      }
-    }
-  }
+  forEachPoint(grid.cells, [&](int i, int j, int k) {
+    if (!holdsMaterial(fractions[grid.cellIndex({i, j, k})])) return;
+    for (const auto& c : kCorners) node_of[grid_node(i + c[0], j + c[1], k + c[2])] = 0;
+  });
   Mesh& mesh = result.mesh;
   mesh.incompatible_modes = true;
-  for (int k = 0; k < n.z(); ++k) {
-    for (int j = 0; j < n.y(); ++j) {
-      for (int i = 0; i < n.x(); ++i) {
-        int& node = node_of[grid_node(i, j, k)];
-        if (node < 0) continue;
-        node = mesh.numNodes();
-        mesh.positions.push_back(grid.origin + grid.cell_size * Eigen::Vector3d(i, j, k));
-        mesh.node_numbers.push_back(mesh.numNodes());
-      }
+  forEachPoint(n, [&](int i, int j, int k) {
+    int& node = node_of[grid_node(i, j, k)];
+    if (node < 0) return;
+    node = mesh.numNodes();
+    mesh.positions.push_back(grid.origin + grid.cell_size * Eigen::Vector3d(i, j, k));
+    mesh.node_numbers.push_back(mesh.numNodes());  // from 1
+  });
+  forEachPoint(grid.cells, [&](int i, int j, int k) {
+    const long index = grid.cellIndex({i, j, k});
+    if (!holdsMaterial(fractions[index])) return;
+    Cell cell{CellType::kHexahedron, {}};
+    for (int c = 0; c < 8; ++c) {
+      cell.nodes[c] =
+          node_of[grid_node(i + kCorners[c][0], j + kCorners[c][1], k + kCorners[c][2])];
     }
-  }
-  for (int k = 0; k < grid.cells.z(); ++k) {
-    for (int j = 0; j < grid.cells.y(); ++j) {
-      for (int i = 0; i < grid.cells.x(); ++i) {
-        const long index = grid.cellIndex({i, j, k});
-        if (!holdsMaterial(fractions[index])) continue;
-        Cell cell{CellType::kHexahedron, {}};
-        for (int c = 0; c < 8; ++c) {
-          cell.nodes[c] =
-              node_of[grid_node(i + kCorners[c][0], j + kCorners[c][1], k + kCorners[c][2])];
-        }
-        result.cell_at[index] = static_cast<int>(mesh.cells.size());
-        mesh.cells.push_back(cell);
-        mesh.cell_fractions.push_back(fractions[index]);
-      }
-    }
-  }
+    result.cell_at[index] = static_cast<int>(mesh.cells.size());
+    mesh.cells.push_back(cell);
+    mesh.cell_fractions.push_back(fractions[index]);
+  });
 }
 
 std::vector<int> pieceSizes(const Mesh& mesh) {
@@ -160,22 +157,17 @@ Voxelization voxelize(const TriangleMesh& surface, const VoxelGrid& grid, int le
   const WindingNumber winding(surface);
   const std::vector<std::vector<int>> bins = binTriangles(surface, grid);
   std::vector<OctantFractions> fractions(grid.numCells());
-  for (int k = 0; k < grid.cells.z(); ++k) {
-    for (int j = 0; j < grid.cells.y(); ++j) {
-      for (int i = 0; i < grid.cells.x(); ++i) {
-        const Eigen::Vector3i cell(i, j, k);
-        const long index = grid.cellIndex(cell);
-        // A cell no triangle crosses is all in or all out: one query decides.
-        if (bins[index].empty()) {
-          fractions[index].fill(winding.at(grid.cellMin(cell).array() + 0.5 * grid.cell_size) >=
-                                0.5);
-        } else {
-          fractions[index] = octantFractions(surface, winding, bins[index], grid.cellMin(cell),
-                                             grid.cell_size, std::max(levels, 1));
-        }
-      }
+  forEachPoint(grid.cells, [&](int i, int j, int k) {
+    const Eigen::Vector3i cell(i, j, k);
+    const long index = grid.cellIndex(cell);
+    // A cell no triangle crosses is all in or all out: one query decides.
+    if (bins[index].empty()) {
+      fractions[index].fill(winding.at(grid.cellMin(cell).array() + 0.5 * grid.cell_size) >= 0.5);
+    } else {
+      fractions[index] = octantFractions(surface, winding, bins[index], grid.cellMin(cell),
+                                         grid.cell_size, std::max(levels, 1));
     }
-  }
+  });
   Voxelization result;
   result.grid = grid;
   buildMesh(grid, fractions, result);

@@ -745,21 +745,25 @@ namespace {
 // The surface of a body from `mesh: {surface: ..}` or `{urdf_link: ..}`, voxelized and embedded.
 // Throws TriangleMeshError, UrdfError or std::runtime_error.
 core::SurfaceBody readSurfaceBodyOf(const core::SceneSpec& spec, const core::SurfaceMeshSpec& body,
-                                    const PackageResolver& resolver,
+                                    const SurfaceSources& sources,
                                     std::vector<std::string>* warnings) {
   if (body.urdf_link.empty()) {
-    return readSurfaceBody(resolveMeshUri(body.file, resolver), body.voxels, warnings);
+    return readSurfaceBody(resolveMeshUri(body.file, sources.resolver), body.voxels, warnings);
   }
-  if (spec.urdf_file.empty()) {
-    throw UrdfError("urdf_link '" + body.urdf_link +
-                    "' needs the robot description: give urdf: {file: robot.urdf} in the scene");
+  std::string xml = sources.robot_description, directory;
+  if (xml.empty()) {
+    if (spec.urdf_file.empty()) {
+      throw UrdfError("urdf_link '" + body.urdf_link +
+                      "' needs the robot description: give urdf: {file: robot.urdf} in the scene");
+    }
+    std::ifstream in(spec.urdf_file);
+    if (!in) throw UrdfError("cannot read the robot description '" + spec.urdf_file + "'");
+    std::stringstream text;
+    text << in.rdbuf();
+    xml = text.str();
+    directory = std::filesystem::path(spec.urdf_file).parent_path().string();
   }
-  std::ifstream in(spec.urdf_file);
-  if (!in) throw UrdfError("cannot read the robot description '" + spec.urdf_file + "'");
-  std::stringstream xml;
-  xml << in.rdbuf();
-  const std::string directory = std::filesystem::path(spec.urdf_file).parent_path().string();
-  core::TriangleMesh surface = readVisualMesh(xml.str(), body.urdf_link, resolver, directory);
+  core::TriangleMesh surface = readVisualMesh(xml, body.urdf_link, sources.resolver, directory);
   try {
     return core::bodyFromSurface(std::move(surface), body.voxels, warnings);
   } catch (const std::invalid_argument& e) {
@@ -771,7 +775,7 @@ core::SurfaceBody readSurfaceBodyOf(const core::SceneSpec& spec, const core::Sur
 
 std::vector<core::Mesh> readMeshes(const core::SceneSpec& spec, std::vector<std::string>* warnings,
                                    std::vector<std::optional<core::EmbeddedSurface>>* surfaces,
-                                   const PackageResolver& resolver) {
+                                   const SurfaceSources& sources) {
   std::vector<core::Mesh> meshes;
   if (surfaces) surfaces->assign(spec.bodies.size(), std::nullopt);
   for (size_t b = 0; b < spec.bodies.size(); ++b) {
@@ -785,7 +789,7 @@ std::vector<core::Mesh> readMeshes(const core::SceneSpec& spec, std::vector<std:
     MeshReadResult read;
     try {
       if (body.surface_mesh) {
-        core::SurfaceBody made = readSurfaceBodyOf(spec, *body.surface_mesh, resolver, warnings);
+        core::SurfaceBody made = readSurfaceBodyOf(spec, *body.surface_mesh, sources, warnings);
         meshes.push_back(std::move(made.voxels.mesh));
         if (surfaces) (*surfaces)[b] = std::move(made.surface);
         continue;

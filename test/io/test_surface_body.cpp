@@ -180,6 +180,16 @@ TEST_F(SurfaceBodyTest, ABodyFromALinksVisualMesh) {
     EXPECT_NE(std::string(e.what()).find("needs the robot description"), std::string::npos)
         << e.what();
   }
+  // The ROS node passes the robot description it has.
+  dio::SurfaceSources sources;
+  sources.robot_description =
+      "<robot name=\"r\"><link name=\"pad\"><visual><geometry><mesh filename=\"file://" +
+      path("gripper_pad.stl") + "\"/></geometry></visual></link></robot>";
+  std::vector<std::optional<dc::EmbeddedSurface>> surfaces;
+  const std::vector<dc::Mesh> meshes = dio::readMeshes(alone, nullptr, &surfaces, sources);
+  EXPECT_EQ(meshes[0].cells.size(), 4u * 2u * 2u);  // 4 cells along the longest side
+  ASSERT_TRUE(surfaces[0]);
+  EXPECT_EQ(surfaces[0]->numVertices(), 8);
   EXPECT_THROW(dio::readVisualMesh(R"(<robot name="r"><link name="base"/></robot>)", "base"),
                dio::UrdfError);
 }

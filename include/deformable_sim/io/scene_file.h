@@ -59,16 +59,23 @@ core::SceneSpec parseScene(const std::string& yaml_text, const std::string& sour
 /// Reads and parses a scene file.
 core::SceneSpec readSceneFile(const std::string& path);
 
+/// Where bodies made from surfaces find what a scene file does not hold: the ROS node can resolve
+/// packages and has the robot description; the offline tools have neither.
+struct SurfaceSources {
+  PackageResolver resolver;       ///< for package:// surfaces and URDF mesh URIs
+  std::string robot_description;  ///< URDF text for urdf_link bodies; empty: the scene's urdf file
+};
+
 /// Reads (or generates) every body's mesh, in the order of spec.bodies. Mesh repairs are appended
 /// to `warnings`. Throws MeshError for bad or missing mesh files, naming the scene file, line and
 /// key first ("scene.yaml:9: bodies[0].mesh: cannot open mesh file 'beam.msh': ...").
-/// A body from a surface (`mesh: {surface: ..}` or `{urdf_link: ..}`, its links read from the
-/// scene's urdf file) gets the grid the surface is voxelized into, and `surfaces` (resized to one
-/// per body) the embedded surface to draw it with; `package://` surfaces through `resolver`.
+/// A body from a surface (`mesh: {surface: ..}` or `{urdf_link: ..}`) gets the grid the surface
+/// is voxelized into, and `surfaces` (resized to one per body) the embedded surface to draw it
+/// with; `sources` resolve package:// URIs and give the robot description.
 std::vector<core::Mesh> readMeshes(
     const core::SceneSpec& spec, std::vector<std::string>* warnings,
     std::vector<std::optional<core::EmbeddedSurface>>* surfaces = nullptr,
-    const PackageResolver& resolver = {});
+    const SurfaceSources& sources = {});
 
 /// Reads every body's mesh and builds the simulation, with the embedded surfaces of bodies made
 /// from surfaces (Simulation::embeddedSurface). Mesh repairs are appended to `warnings`.
