@@ -287,3 +287,30 @@ TEST(Voxelization, AlignedBoxHasTheBoxMeshStaticAnswer) {
   // And the beam bends: the tip moves down by about P L^3 / 3 E I.
   EXPECT_LT(x_surface.minCoeff(), -0.05 - 0.5e-3);
 }
+
+// Real meshes have holes and parts that overlap: the winding number's threshold keeps the inside.
+TEST(Voxelization, AHoleOrAnOverlapChangesTheMassLittle) {
+  const double r = 0.1;
+  const dc::TriangleMesh closed = dt::sphereSurface(r, Eigen::Vector3d::Zero(), 32, 64);
+  const double closed_mass = meshMass(voxelizeAt(closed, 0.02).mesh);
+  dc::TriangleMesh open = closed;
+  open.triangles.clear();
+  for (const Eigen::Vector3i& t : closed.triangles) {
+    // Leave out the cap above z = 0.95 r: a hole about a third of the radius across.
+    if (closed.vertices[t[0]].z() < 0.95 * r || closed.vertices[t[1]].z() < 0.95 * r) {
+      open.triangles.push_back(t);
+    }
+  }
+  ASSERT_LT(open.triangles.size(), closed.triangles.size());
+  EXPECT_NEAR(meshMass(voxelizeAt(open, 0.02).mesh) / closed_mass, 1.0, 0.005);
+  // Two spheres whose centres are a radius apart, one triangle soup: the union, counted once
+  // (two spheres minus the lens where they overlap, 5/12 pi r^3).
+  dc::TriangleMesh both = closed;
+  const dc::TriangleMesh other = dt::sphereSurface(r, Eigen::Vector3d(r, 0, 0), 32, 64);
+  const int offset = static_cast<int>(both.vertices.size());
+  both.vertices.insert(both.vertices.end(), other.vertices.begin(), other.vertices.end());
+  for (const Eigen::Vector3i& t : other.triangles) both.triangles.push_back(t.array() + offset);
+  const double polygon_ratio = dc::enclosedVolume(closed) / (4.0 / 3.0 * M_PI * r * r * r);
+  const double union_volume = polygon_ratio * (8.0 / 3.0 - 5.0 / 12.0) * M_PI * r * r * r;
+  EXPECT_NEAR(meshMass(voxelizeAt(both, 0.02).mesh) / (kDensity * union_volume), 1.0, 0.005);
+}
