@@ -21,6 +21,8 @@ using Clock = std::chrono::steady_clock;
 
 double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
+void validateCells(const std::string& where, const Mesh& mesh);
+
 // The readers validate files; this guards meshes built in code. Throws naming the element/node.
 void validateMesh(const std::string& body, const Mesh& mesh) {
   const std::string where = "body '" + body + "': ";
@@ -50,6 +52,16 @@ void validateMesh(const std::string& body, const Mesh& mesh) {
                                   " has non-positive volume");
     }
   }
+  validateCells(where, mesh);
+}
+
+// The cells' node indices, shapes and material fractions.
+void validateCells(const std::string& where, const Mesh& mesh) {
+  if (!mesh.cell_fractions.empty() && mesh.cell_fractions.size() != mesh.cells.size()) {
+    throw std::invalid_argument(where + "mesh has " + std::to_string(mesh.cells.size()) +
+                                " cells but " + std::to_string(mesh.cell_fractions.size()) +
+                                " cell fractions");
+  }
   for (size_t c = 0; c < mesh.cells.size(); ++c) {
     const Cell& cell = mesh.cells[c];
     const std::string name = "cell " + std::to_string(c) + ": ";
@@ -57,6 +69,17 @@ void validateMesh(const std::string& body, const Mesh& mesh) {
       if (cell.nodes[k] < 0 || cell.nodes[k] >= mesh.numNodes()) {
         throw std::invalid_argument(where + name + "refers to node index " +
                                     std::to_string(cell.nodes[k]) + " outside the mesh");
+      }
+    }
+    if (const OctantFractions* octants = mesh.cellOctants(c)) {
+      for (double f : *octants) {
+        if (!(f >= 0.0 && f <= 1.0)) {
+          throw std::invalid_argument(where + name + "octant fraction " + std::to_string(f) +
+                                      " outside [0, 1]");
+        }
+      }
+      if (!(mesh.cellFraction(c) > 0.0)) {
+        throw std::invalid_argument(where + name + "holds no material");
       }
     }
     try {

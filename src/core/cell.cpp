@@ -175,7 +175,18 @@ CellVectors cellCorners(const Cell& cell, const std::vector<Eigen::Vector3d>& po
   return corners;
 }
 
-CellRest computeCellRest(CellType type, const CellVectors& corners) {
+double pointFraction(CellType type, const Eigen::Vector3d& xi, const OctantFractions* fractions) {
+  if (!fractions) return 1.0;
+  if (type == CellType::kHexahedron) {
+    return (*fractions)[(xi.x() > 0.0) + 2 * (xi.y() > 0.0) + 4 * (xi.z() > 0.0)];
+  }
+  double sum = 0.0;
+  for (double f : *fractions) sum += f;
+  return sum / 8.0;
+}
+
+CellRest computeCellRest(CellType type, const CellVectors& corners,
+                         const OctantFractions* fractions) {
   const int size = static_cast<int>(type);
   CellRest rest;
   double det = 0.0;
@@ -184,8 +195,9 @@ CellRest computeCellRest(CellType type, const CellVectors& corners) {
   for (const QuadraturePoint& q : quadrature(type)) {
     spatialGradients(type, corners, q.xi, "an integration point", unused, det);
     const ShapeValues shape = shapeFunctions(type, q.xi);
-    rest.volume += q.weight * det;
-    for (int k = 0; k < size; ++k) rest.shape_integrals[k] += q.weight * det * shape.values[k];
+    const double volume = pointFraction(type, q.xi, fractions) * q.weight * det;
+    rest.volume += volume;
+    for (int k = 0; k < size; ++k) rest.shape_integrals[k] += volume * shape.values[k];
   }
   return rest;
 }
@@ -221,14 +233,15 @@ Cell mirrored(const Cell& cell) {
   return m;
 }
 
-Eigen::MatrixXd cellStiffness(CellType type, const CellVectors& corners, double lambda, double mu) {
+Eigen::MatrixXd cellStiffness(CellType type, const CellVectors& corners, double lambda, double mu,
+                              const OctantFractions* fractions) {
   const int size = static_cast<int>(type);
   Eigen::MatrixXd k = Eigen::MatrixXd::Zero(3 * size, 3 * size);
   CellVectors g;
   double det = 0.0;
   for (const QuadraturePoint& q : quadrature(type)) {
     spatialGradients(type, corners, q.xi, "an integration point", g, det);
-    const double volume = q.weight * det;
+    const double volume = pointFraction(type, q.xi, fractions) * q.weight * det;
     for (int i = 0; i < size; ++i) {
       for (int j = 0; j < size; ++j) {
         k.block<3, 3>(3 * i, 3 * j) += stiffnessBlock(lambda * volume, mu * volume, g[i], g[j]);

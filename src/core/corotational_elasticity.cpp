@@ -10,6 +10,7 @@
 #endif
 
 #include "deformable_sim/core/cpu_features.h"
+#include "deformable_sim/core/incompatible_modes.h"
 #include "deformable_sim/core/parallel_for.h"
 #include "deformable_sim/core/rotation.h"
 
@@ -44,10 +45,13 @@ CorotationalElasticity::CorotationalElasticity(const Mesh& mesh,
   mu_ = lameMu(material);
   setRestForces();
   listIncidences(mesh.numNodes());
+  incompatible_modes_ = mesh.incompatible_modes;
   cells_.reserve(mesh.cells.size());
-  for (const Cell& c : mesh.cells) {
+  for (size_t e = 0; e < mesh.cells.size(); ++e) {
+    const Cell& c = mesh.cells[e];
     CellElement cell;
     cell.cell = c;
+    if (const OctantFractions* fractions = mesh.cellOctants(e)) cell.fractions = *fractions;
     cell.rest = computeCellRest(c.type, cellCorners(c, mesh.positions));
     for (int i = 0; i < c.size(); ++i) {
       for (int j = 0; j < c.size(); ++j) {
@@ -68,7 +72,11 @@ void CorotationalElasticity::setCellStiffness() {
   for (CellElement& cell : cells_) {
     const int n = cell.cell.size();
     const CellVectors corners = currentCorners(cell.cell, rest_positions_);
-    cell.stiffness = cellStiffness(cell.cell.type, corners, lambda_, mu_);
+    // A partial cell: the stiffness of its material, where it is.
+    cell.stiffness = incompatible_modes_ && cell.cell.type == CellType::kHexahedron &&
+                             incompatibleModesApply(cell.fractions)
+                         ? incompatibleModesStiffness(corners, lambda_, mu_, &cell.fractions)
+                         : cellStiffness(cell.cell.type, corners, lambda_, mu_, &cell.fractions);
     Eigen::VectorXd x0(3 * n);
     for (int k = 0; k < n; ++k) x0.segment<3>(3 * k) = corners[k];
     cell.rest_forces = cell.stiffness * x0;

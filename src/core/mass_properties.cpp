@@ -26,7 +26,8 @@ MassProperties massProperties(const Mesh& mesh, double density) {
     first += v / 4.0 * sum;
     second += v / 20.0 * outer;
   }
-  for (const Cell& cell : mesh.cells) {
+  for (size_t c = 0; c < mesh.cells.size(); ++c) {
+    const Cell& cell = mesh.cells[c];
     for (const QuadraturePoint& q : quadrature(cell.type)) {
       const ShapeValues shape = shapeFunctions(cell.type, q.xi);
       Eigen::Vector3d x = Eigen::Vector3d::Zero();
@@ -36,7 +37,8 @@ MassProperties massProperties(const Mesh& mesh, double density) {
         x += shape.values[k] * corner;
         jacobian += corner * shape.gradients[k].transpose();
       }
-      const double dv = q.weight * jacobian.determinant();
+      const double dv =
+          pointFraction(cell.type, q.xi, mesh.cellOctants(c)) * q.weight * jacobian.determinant();
       volume += dv;
       first += dv * x;
       second += dv * x * x.transpose();

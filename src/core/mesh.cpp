@@ -38,11 +38,21 @@ std::vector<int> sliverTetrahedra(const Mesh& mesh, double min_quality) {
   return slivers;
 }
 
+double Mesh::cellFraction(size_t c) const {
+  if (cell_fractions.empty()) return 1.0;
+  double sum = 0.0;
+  for (double f : cell_fractions[c]) sum += f;
+  return sum / 8.0;
+}
+
 double totalVolume(const Mesh& mesh) {
   double volume = 0.0;
   for (const Tetrahedron& t : mesh.tetrahedra) volume += signedVolume(mesh.positions, t);
-  for (const Cell& c : mesh.cells)
-    volume += computeCellRest(c.type, cellCorners(c, mesh.positions)).volume;
+  for (size_t c = 0; c < mesh.cells.size(); ++c) {
+    const Cell& cell = mesh.cells[c];
+    volume +=
+        computeCellRest(cell.type, cellCorners(cell, mesh.positions), mesh.cellOctants(c)).volume;
+  }
   return volume;
 }
 
@@ -111,8 +121,10 @@ std::vector<double> lumpedMasses(const Mesh& mesh, double density) {
     const double share = 0.25 * density * std::abs(signedVolume(mesh.positions, t));
     for (int i : t) mass[i] += share;
   }
-  for (const Cell& c : mesh.cells) {
-    const CellRest rest = computeCellRest(c.type, cellCorners(c, mesh.positions));
+  for (size_t e = 0; e < mesh.cells.size(); ++e) {
+    const Cell& c = mesh.cells[e];
+    const CellRest rest =
+        computeCellRest(c.type, cellCorners(c, mesh.positions), mesh.cellOctants(e));
     for (int k = 0; k < c.size(); ++k) mass[c.nodes[k]] += density * rest.shape_integrals[k];
   }
   return mass;

@@ -17,6 +17,10 @@ MeshArrays toArrays(const Mesh& mesh) {
     arrays.cell_types.push_back(static_cast<uint8_t>(c.size()));
     for (int k = 0; k < c.size(); ++k) arrays.cells.push_back(static_cast<uint32_t>(c.nodes[k]));
   }
+  for (const OctantFractions& f : mesh.cell_fractions) {
+    arrays.cell_fractions.insert(arrays.cell_fractions.end(), f.begin(), f.end());
+  }
+  arrays.incompatible_modes = mesh.incompatible_modes;
   return arrays;
 }
 
@@ -66,6 +70,14 @@ Mesh fromArrays(const MeshArrays& arrays, const std::string& what) {
     mesh.tetrahedra.push_back(t);
   }
   readCells(arrays, what, mesh);
+  if (!arrays.cell_fractions.empty() && arrays.cell_fractions.size() != 8 * mesh.cells.size()) {
+    throw std::invalid_argument(what + " has arrays of inconsistent sizes");
+  }
+  mesh.cell_fractions.resize(arrays.cell_fractions.size() / 8);
+  for (size_t c = 0; c < mesh.cell_fractions.size(); ++c) {
+    for (int k = 0; k < 8; ++k) mesh.cell_fractions[c][k] = arrays.cell_fractions[8 * c + k];
+  }
+  mesh.incompatible_modes = arrays.incompatible_modes;
   return mesh;
 }
 

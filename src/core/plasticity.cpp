@@ -73,7 +73,8 @@ void Plasticity::step(const Mesh& mesh, const CorotationalElasticity& elasticity
     const Eigen::Matrix3d stress = flow(e, cellDeformationGradient(cell_rest, cell.size(), corners),
                                         rotations[e], lambda, mu, dt);
     if (stress.isZero(0.0)) continue;
-    const Eigen::Matrix3d rotated_stress = cell_rest.volume * rotations[e] * stress;
+    const Eigen::Matrix3d rotated_stress =
+        mesh.cellFraction(c) * cell_rest.volume * rotations[e] * stress;
     for (int k = 0; k < cell.size(); ++k) {
       forces.segment<3>(3 * cell.nodes[k]) += rotated_stress * cell_rest.centre_gradients[k];
     }

@@ -28,8 +28,9 @@ bool isReset(const AppliedCommand& applied) {
 }  // namespace
 
 Resimulation::Resimulation(SceneSpec spec, std::vector<Mesh> meshes, Recording recording,
-                           SolverOverride solver)
-    : session_(std::move(spec), std::move(meshes), unlimited()),
+                           SolverOverride solver,
+                           std::vector<std::optional<EmbeddedSurface>> surfaces)
+    : session_(std::move(spec), std::move(meshes), unlimited(), std::move(surfaces)),
       recording_(std::move(recording)),
       solver_(solver) {
   findStart();

@@ -5,14 +5,21 @@
 
 namespace deformable_sim::core {
 
-Session::Session(SceneSpec spec, std::vector<Mesh> meshes, CommandLimits limits)
-    : spec_(std::move(spec)), meshes_(std::move(meshes)), limits_(limits) {
+Session::Session(SceneSpec spec, std::vector<Mesh> meshes, CommandLimits limits,
+                 std::vector<std::optional<EmbeddedSurface>> surfaces)
+    : spec_(std::move(spec)),
+      meshes_(std::move(meshes)),
+      limits_(limits),
+      surfaces_(std::move(surfaces)) {
   rebuild();
 }
 
 void Session::rebuild() {
   commands_.reset();  // it refers to the simulation it replaces
   simulation_ = std::make_unique<Simulation>(spec_, meshes_);
+  for (size_t b = 0; b < surfaces_.size(); ++b) {
+    if (surfaces_[b]) simulation_->setEmbeddedSurface(static_cast<int>(b), *surfaces_[b]);
+  }
   commands_ = std::make_unique<CommandProcessor>(*simulation_, limits_);
 }
 

@@ -234,4 +234,27 @@ std::vector<StaticReport> Simulation::solveStatic() {
   return reports;
 }
 
+const EmbeddedSurface* Simulation::embeddedSurface(int b) const {
+  if (b < 0 || b >= static_cast<int>(embedded_surfaces_.size())) return nullptr;
+  return embedded_surfaces_[b] ? &*embedded_surfaces_[b] : nullptr;
+}
+
+EmbeddedSurface* Simulation::embeddedSurface(int b) {
+  if (b < 0 || b >= static_cast<int>(embedded_surfaces_.size())) return nullptr;
+  return embedded_surfaces_[b] ? &*embedded_surfaces_[b] : nullptr;
+}
+
+void Simulation::setEmbeddedSurface(int b, EmbeddedSurface surface) {
+  if (b < 0 || b >= static_cast<int>(bodies_.size())) {
+    throw std::invalid_argument("embedded surface: no body " + std::to_string(b));
+  }
+  if (surface.largestNode() >= bodies_[b].mesh().numNodes()) {
+    throw std::invalid_argument("body '" + bodies_[b].name() +
+                                "': the embedded surface refers to nodes its mesh does not have");
+  }
+  embedded_surfaces_.resize(bodies_.size());
+  surface.update(bodies_[b].positions());
+  embedded_surfaces_[b] = std::move(surface);
+}
+
 }  // namespace deformable_sim::core

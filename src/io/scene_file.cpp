@@ -14,7 +14,9 @@
 
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/io/mesh_reader.h"
+#include "deformable_sim/io/surface_body_reader.h"
 #include "deformable_sim/io/triangle_mesh_reader.h"
+#include "deformable_sim/io/urdf_visual_mesh.h"
 
 namespace deformable_sim::io {
 
@@ -434,15 +436,24 @@ class SceneParser {
 
   void parseMesh(const YAML::Node& node, const YAML::Node& parent, const std::string& key,
                  core::BodySpec& body) const {
-    if (!node) fail(parent, key, "missing: a mesh file or {box: {min, max, cells}}");
+    if (!node) {
+      fail(parent, key, "missing: a mesh file, {box: {min, max, cells}} or {surface: file, ..}");
+    }
     if (node.IsScalar()) {
       body.mesh = resolvedPath(node, key);
       return;
     }
     expectMap(node, key);
-    checkKeys(node, key, {"box"});
+    checkKeys(node, key, {"box", "surface", "urdf_link", "cell_size", "cells", "position", "rpy"});
+    if (node["surface"] || node["urdf_link"]) {
+      body.surface_mesh = parseSurfaceMesh(node, key);
+      return;
+    }
     const YAML::Node box = node["box"];
-    if (!box) fail(node, key + ".box", "missing");
+    if (!box) fail(node, key + ".box", "missing (or give surface: file or urdf_link: name)");
+    for (const char* other : {"cell_size", "cells", "position", "rpy"}) {
+      if (node[other]) fail(node[other], key + "." + other, "only with surface or urdf_link");
+    }
     expectMap(box, key + ".box");
     checkKeys(box, key + ".box", {"min", "max", "cells", "element"});
     for (const char* required : {"min", "max", "cells"}) {
@@ -472,6 +483,43 @@ class SceneParser {
                                                {"pyramid", core::BoxElement::kPyramid}});
     }
     body.box_mesh = spec;
+  }
+
+  // A package:// URI as it is (readMeshes resolves it, given a resolver); a path or file:// URI
+  // relative to the scene file's directory unless absolute.
+  std::string surfacePath(const YAML::Node& node, const std::string& key) const {
+    const std::string uri = text(node, key);
+    if (uri.rfind("package://", 0) == 0) return uri;
+    std::filesystem::path path;
+    try {
+      path = resolveMeshUri(uri);
+    } catch (const TriangleMeshError& e) {
+      fail(node, key, e.what());
+    }
+    if (path.is_relative()) path = std::filesystem::path(base_directory_) / path;
+    return path.lexically_normal().string();
+  }
+
+  // {surface: part.stl, cell_size: 0.01} or {urdf_link: name, cells: 20}: the body's grid is
+  // made from the surface when the meshes are read.
+  core::SurfaceMeshSpec parseSurfaceMesh(const YAML::Node& node, const std::string& key) const {
+    if (node["box"]) fail(node, key, "give one of box, surface and urdf_link");
+    if (node["surface"] && node["urdf_link"]) fail(node, key, "give one of surface and urdf_link");
+    if (!node["cell_size"] == !node["cells"]) {
+      fail(node, key, "give one of cell_size (m) and cells (along the longest side)");
+    }
+    core::SurfaceMeshSpec spec;
+    if (node["surface"]) {
+      spec.file = surfacePath(node["surface"], key + ".surface");
+    } else {
+      spec.urdf_link = text(node["urdf_link"], key + ".urdf_link");
+    }
+    if (node["cell_size"]) spec.voxels.cell_size = positive(node["cell_size"], key + ".cell_size");
+    if (node["cells"]) {
+      spec.voxels.longest_side_cells = atLeast(node["cells"], key + ".cells", 1);
+    }
+    spec.pose = pose(node, key);
+    return spec;
   }
 
   void parseMaterial(const YAML::Node& node, const std::string& key,
@@ -541,16 +589,22 @@ class SceneParser {
     } catch (const std::invalid_argument& e) {
       fail(node, key, e.what());
     }
-    if (node["position"])
-      obstacle.pose.translation() = vector3(node["position"], key + ".position");
+    obstacle.pose = pose(node, key);
+    return obstacle;
+  }
+
+  // The optional keys position (m) and rpy (rad, roll-pitch-yaw about fixed x, y, z) of a map.
+  Eigen::Isometry3d pose(const YAML::Node& node, const std::string& key) const {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    if (node["position"]) pose.translation() = vector3(node["position"], key + ".position");
     if (node["rpy"]) {
       const Eigen::Vector3d rpy = vector3(node["rpy"], key + ".rpy");
-      obstacle.pose.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
-                                Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
-                                Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
-                                   .toRotationMatrix();
+      pose.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
+                       Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+                       Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
+                          .toRotationMatrix();
     }
-    return obstacle;
+    return pose;
   }
 
   // The box, sphere or cylinder of an obstacle entry.
@@ -693,9 +747,46 @@ std::string locatedMessage(const core::SceneSpec& spec, const core::SpecError& e
   return whereInScene(spec.source, error.key()) + error.what();
 }
 
-std::vector<core::Mesh> readMeshes(const core::SceneSpec& spec,
-                                   std::vector<std::string>* warnings) {
+namespace {
+
+// The surface of a body from `mesh: {surface: ..}` or `{urdf_link: ..}`, voxelized and embedded.
+// Throws TriangleMeshError, UrdfError or std::runtime_error.
+core::SurfaceBody readSurfaceBodyOf(const core::SceneSpec& spec, const core::SurfaceMeshSpec& body,
+                                    const SurfaceSources& sources,
+                                    std::vector<std::string>* warnings) {
+  if (body.urdf_link.empty()) {
+    return readSurfaceBody(resolveMeshUri(body.file, sources.resolver), body.voxels, warnings,
+                           body.pose);
+  }
+  std::string xml = sources.robot_description, directory;
+  if (xml.empty()) {
+    if (spec.urdf_file.empty()) {
+      throw UrdfError("urdf_link '" + body.urdf_link +
+                      "' needs the robot description: give urdf: {file: robot.urdf} in the scene");
+    }
+    std::ifstream in(spec.urdf_file);
+    if (!in) throw UrdfError("cannot read the robot description '" + spec.urdf_file + "'");
+    std::stringstream text;
+    text << in.rdbuf();
+    xml = text.str();
+    directory = std::filesystem::path(spec.urdf_file).parent_path().string();
+  }
+  core::TriangleMesh surface = readVisualMesh(xml, body.urdf_link, sources.resolver, directory);
+  for (Eigen::Vector3d& v : surface.vertices) v = body.pose * v;
+  try {
+    return core::bodyFromSurface(std::move(surface), body.voxels, warnings);
+  } catch (const std::invalid_argument& e) {
+    throw UrdfError("link '" + body.urdf_link + "': " + e.what());
+  }
+}
+
+}  // namespace
+
+std::vector<core::Mesh> readMeshes(const core::SceneSpec& spec, std::vector<std::string>* warnings,
+                                   std::vector<std::optional<core::EmbeddedSurface>>* surfaces,
+                                   const SurfaceSources& sources) {
   std::vector<core::Mesh> meshes;
+  if (surfaces) surfaces->assign(spec.bodies.size(), std::nullopt);
   for (size_t b = 0; b < spec.bodies.size(); ++b) {
     const core::BodySpec& body = spec.bodies[b];
     if (body.box_mesh) {
@@ -703,11 +794,17 @@ std::vector<core::Mesh> readMeshes(const core::SceneSpec& spec,
                                          body.box_mesh->cells, body.box_mesh->element));
       continue;
     }
+    const std::string key = "bodies[" + std::to_string(b) + "].mesh";
     MeshReadResult read;
     try {
+      if (body.surface_mesh) {
+        core::SurfaceBody made = readSurfaceBodyOf(spec, *body.surface_mesh, sources, warnings);
+        meshes.push_back(std::move(made.voxels.mesh));
+        if (surfaces) (*surfaces)[b] = std::move(made.surface);
+        continue;
+      }
       read = readMesh(body.mesh);
-    } catch (const MeshError& e) {
-      const std::string key = "bodies[" + std::to_string(b) + "].mesh";
+    } catch (const std::runtime_error& e) {  // MeshError, TriangleMeshError, UrdfError
       throw MeshError(whereInScene(spec.source, key) + key + ": " + e.what());
     }
     if (warnings) warnings->insert(warnings->end(), read.warnings.begin(), read.warnings.end());
@@ -717,9 +814,14 @@ std::vector<core::Mesh> readMeshes(const core::SceneSpec& spec,
 }
 
 core::Simulation buildSimulation(const core::SceneSpec& spec, std::vector<std::string>* warnings) {
-  std::vector<core::Mesh> meshes = readMeshes(spec, warnings);
+  std::vector<std::optional<core::EmbeddedSurface>> surfaces;
+  std::vector<core::Mesh> meshes = readMeshes(spec, warnings, &surfaces);
   try {
-    return core::Simulation(spec, std::move(meshes));
+    core::Simulation simulation(spec, std::move(meshes));
+    for (size_t b = 0; b < surfaces.size(); ++b) {
+      if (surfaces[b]) simulation.setEmbeddedSurface(static_cast<int>(b), std::move(*surfaces[b]));
+    }
+    return simulation;
   } catch (const core::SpecError& e) {
     throw SceneError(locatedMessage(spec, e));
   } catch (const std::invalid_argument& e) {

@@ -14,10 +14,15 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: deformable_sim_run SCENE.yaml [--static | --steps N] [--out FILE.csv] [--quiet]\n"
+    "usage: deformable_sim_run SCENE.yaml [--static | --steps N] [--out FILE.csv]\n"
+    "                          [--surface-out FILE.csv] [--quiet]\n"
     "  --static     solve for equilibrium under the scene's loads (quasi-static)\n"
     "  --steps N    take N dynamic steps of the scene's dt (default 1)\n"
     "  --out FILE   write node,x0,y0,z0,ux,uy,uz per node (mesh file numbers) to FILE\n"
+    "  --surface-out FILE\n"
+    "               write body,vertex,x0,y0,z0,ux,uy,uz per vertex of the surfaces that bodies\n"
+    "               were made from (mesh: {surface: ..}); vertices numbered from 1 in the\n"
+    "               file's order, an STL's repeated vertices once\n"
     "  --quiet      print only the summary, not every step\n"
     "  --help, -h   print this usage and exit\n";
 
@@ -26,6 +31,7 @@ struct Options {
   bool quasi_static = false;
   long steps = 1;
   std::string out;
+  std::string surface_out;
   bool quiet = false;
 };
 
@@ -43,6 +49,8 @@ Parsed parseArguments(int argc, char** argv, Options& options) {
       if (*end != '\0' || options.steps < 0) return Parsed::kBad;
     } else if (arg == "--out" && i + 1 < argc) {
       options.out = argv[++i];
+    } else if (arg == "--surface-out" && i + 1 < argc) {
+      options.surface_out = argv[++i];
     } else if (arg == "--quiet") {
       options.quiet = true;
     } else if (!arg.empty() && arg[0] != '-' && options.scene.empty()) {
@@ -65,6 +73,25 @@ void writeDisplacements(const deformable_sim::core::Simulation& sim, std::ostrea
       out << body.mesh().node_numbers[i];
       for (int c = 0; c < 3; ++c) out << "," << body.restPositions()[3 * i + c];
       for (int c = 0; c < 3; ++c) out << "," << u[3 * i + c];
+      out << "\n";
+    }
+  }
+}
+
+// The embedded surfaces, moved to the bodies' positions: one row per vertex.
+void writeSurfaceDisplacements(deformable_sim::core::Simulation& sim, std::ostream& out) {
+  out << "body,vertex,x0,y0,z0,ux,uy,uz\n";
+  out.precision(17);
+  for (int b = 0; b < static_cast<int>(sim.bodies().size()); ++b) {
+    deformable_sim::core::EmbeddedSurface* surface = sim.embeddedSurface(b);
+    if (!surface) continue;
+    surface->update(sim.bodies()[b].positions());
+    for (int v = 0; v < surface->numVertices(); ++v) {
+      const Eigen::Vector3d& x0 = surface->restPositions()[v];
+      const Eigen::Vector3d u = surface->positions()[v] - x0;
+      out << sim.bodies()[b].name() << "," << v + 1;
+      for (int c = 0; c < 3; ++c) out << "," << x0[c];
+      for (int c = 0; c < 3; ++c) out << "," << u[c];
       out << "\n";
     }
   }
@@ -158,6 +185,11 @@ int run(const Options& options) {
     std::ofstream out(options.out);
     if (!out) throw std::runtime_error(options.out + ": cannot write");
     writeDisplacements(sim, out);
+  }
+  if (!options.surface_out.empty()) {
+    std::ofstream out(options.surface_out);
+    if (!out) throw std::runtime_error(options.surface_out + ": cannot write");
+    writeSurfaceDisplacements(sim, out);
   }
   if (!converged) {
     std::fprintf(stderr, "warning: a solve did not reach its tolerance\n");

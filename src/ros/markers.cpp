@@ -34,9 +34,37 @@ visualization_msgs::Marker marker(const std_msgs::Header& header, const std::str
 
 }  // namespace
 
-SurfaceMarkers::SurfaceMarkers(const std::vector<core::Body>& bodies, double strain_scale)
+SurfaceMarkers::SurfaceMarkers(const core::Simulation& simulation, double strain_scale)
     : strain_scale_(strain_scale) {
-  for (const core::Body& body : bodies) surfaces_.push_back(core::extractSurface(body.mesh()));
+  for (size_t b = 0; b < simulation.bodies().size(); ++b) {
+    const core::EmbeddedSurface* embedded = simulation.embeddedSurface(static_cast<int>(b));
+    embedded_.push_back(embedded ? std::optional<core::EmbeddedSurface>(*embedded) : std::nullopt);
+    // A body drawn with its own surface needs no boundary of its grid.
+    surfaces_.push_back(embedded ? std::vector<core::Triangle>{}
+                                 : core::extractSurface(simulation.bodies()[b].mesh()));
+  }
+}
+
+void SurfaceMarkers::drawEmbedded(core::EmbeddedSurface& surface, const core::Body& body,
+                                  bool colour) {
+  surface.update(body.positions());
+  const std::vector<Eigen::Vector3i>& triangles = surface.triangles();
+  visualization_msgs::Marker& m = marker_;
+  m.points.resize(3 * triangles.size());
+  m.colors.resize(colour ? 3 * triangles.size() : 0);
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int v = triangles[t][k];
+      m.points[3 * t + k] = toPoint(surface.positions()[v]);
+      if (!colour) continue;
+      // The strain of the cell's nodes, weighted as the vertex's position is.
+      const auto& nodes = surface.nodes(v);
+      double strain = 0.0;
+      for (int n = 0; n < 8; ++n) strain += surface.weights(v)[n] * strain_[nodes[n]];
+      const float s = static_cast<float>(std::clamp(strain / strain_scale_, 0.0, 1.0));
+      m.colors[3 * t + k] = rgba(s, 0.2f, 1.0f - s);
+    }
+  }
 }
 
 const visualization_msgs::Marker& SurfaceMarkers::marker(const core::Body& body, int index,
@@ -53,6 +81,10 @@ const visualization_msgs::Marker& SurfaceMarkers::marker(const core::Body& body,
   m.pose.orientation.w = 1.0;
   m.scale.x = m.scale.y = m.scale.z = 1.0;
   m.color = rgba(1.0f, 0.55f, 0.1f);
+  if (embedded_[index]) {
+    drawEmbedded(*embedded_[index], body, colour);
+    return m;
+  }
   m.points.resize(3 * surface.size());
   m.colors.resize(colour ? 3 * surface.size() : 0);
   const Eigen::VectorXd& x = body.positions();

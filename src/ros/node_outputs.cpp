@@ -25,7 +25,7 @@ NodeOutputs::NodeOutputs(ros::NodeHandle& node, ros::NodeHandle& private_node,
       diagnostics_(node, private_node),
       marker_schedule_(1.0 / params.marker_rate_hz),
       stats_schedule_(1.0 / params.stats_rate_hz),
-      surfaces_(session.simulation().bodies(), params.strain_colour_scale) {
+      surfaces_(session.simulation(), params.strain_colour_scale) {
   state_pub_ = private_node.advertise<BodyState>("state", 10);
   stats_pub_ = private_node.advertise<Stats>("stats", 10);
   mesh_pub_ = private_node.advertise<visualization_msgs::Marker>("mesh", 2);

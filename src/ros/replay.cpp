@@ -61,15 +61,17 @@ Replay::Replay(ReplayOptions options)
       recorded_(
           std::make_unique<RecordedSession>(readRecordedSession(options_.input, options_.node))) {
   std::vector<core::Mesh> meshes;
+  std::vector<std::optional<core::EmbeddedSurface>> surfaces;
   try {
-    meshes = meshesFromMessage(recorded_->scene);
+    meshes = meshesFromMessage(recorded_->scene, &surfaces);
   } catch (const std::invalid_argument& e) {
     throw ReplayError(e.what());
   }
   const core::SolverOverride solver{options_.solver_tolerance, options_.solver_max_iterations};
   try {
     resimulation_ = std::make_unique<core::Resimulation>(sceneSpec(), std::move(meshes),
-                                                         std::move(recorded_->recording), solver);
+                                                         std::move(recorded_->recording), solver,
+                                                         std::move(surfaces));
   } catch (const core::ResimulationError& e) {
     throw ReplayError(options_.input + ": " + e.what());
   } catch (const std::invalid_argument& e) {
@@ -106,7 +108,7 @@ core::ResimulationReport Replay::resimulate(std::FILE* progress) {
   std::unique_ptr<ResimulatedBag> out;
   if (!options_.output.empty()) {
     out = std::make_unique<ResimulatedBag>(options_.output, recorded_->node, recorded_->scene,
-                                           resimulation_->session().simulation().bodies(),
+                                           resimulation_->session().simulation(),
                                            recorded_->state_headers, options_.marker_rate);
   }
   std::optional<core::ProgressBar> bar;

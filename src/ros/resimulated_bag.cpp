@@ -18,7 +18,7 @@ ros::Time bagTime(const ros::Time& stamp) { return stamp.isZero() ? ros::TIME_MI
 }  // namespace
 
 ResimulatedBag::ResimulatedBag(const std::string& path, const std::string& node, const Scene& scene,
-                               const std::vector<core::Body>& bodies,
+                               const core::Simulation& simulation,
                                const std::vector<std_msgs::Header>& state_headers,
                                double marker_rate)
     : node_(node),
@@ -26,7 +26,7 @@ ResimulatedBag::ResimulatedBag(const std::string& path, const std::string& node,
       state_headers_(state_headers),
       marker_period_(1.0 / marker_rate),
       marker_schedule_(marker_period_),
-      surfaces_(bodies, kDefaultStrainScale) {
+      surfaces_(simulation, kDefaultStrainScale) {
   try {
     bag_.open(path, rosbag::bagmode::Write);
   } catch (const rosbag::BagException& e) {

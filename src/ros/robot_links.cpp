@@ -25,6 +25,14 @@ std::string packagePath(const std::string& uri) {
 
 }  // namespace
 
+io::SurfaceSources surfaceSources(const core::SceneSpec& scene) {
+  io::SurfaceSources sources;
+  sources.resolver = packagePath;
+  if (scene.urdf_file.empty())
+    ros::NodeHandle().getParam("robot_description", sources.robot_description);
+  return sources;
+}
+
 const std::vector<core::PlacedShape>& RobotLinks::shapes(const std::string& link) {
   load();
   try {

@@ -10,6 +10,37 @@ namespace deformable_sim::ros_layer {
 
 namespace {
 
+// The rest surface a body was made from, into its mesh's message.
+void addSurface(const core::EmbeddedSurface& surface, MeshData& data) {
+  for (const Eigen::Vector3d& v : surface.restPositions()) {
+    data.surface_vertices.insert(data.surface_vertices.end(), {v.x(), v.y(), v.z()});
+  }
+  for (const Eigen::Vector3i& t : surface.triangles()) {
+    for (int k = 0; k < 3; ++k) data.surface_triangles.push_back(static_cast<uint32_t>(t[k]));
+  }
+}
+
+core::TriangleMesh surfaceOf(const MeshData& data, const std::string& what) {
+  const size_t vertices = data.surface_vertices.size() / 3;
+  if (data.surface_vertices.size() % 3 != 0 || data.surface_triangles.size() % 3 != 0) {
+    throw std::invalid_argument(what + ": its surface has arrays of inconsistent sizes");
+  }
+  core::TriangleMesh surface;
+  for (size_t v = 0; v < vertices; ++v) {
+    surface.vertices.emplace_back(data.surface_vertices[3 * v], data.surface_vertices[3 * v + 1],
+                                  data.surface_vertices[3 * v + 2]);
+  }
+  for (size_t t = 0; t < data.surface_triangles.size(); t += 3) {
+    const Eigen::Vector3i tri(data.surface_triangles[t], data.surface_triangles[t + 1],
+                              data.surface_triangles[t + 2]);
+    if (tri.maxCoeff() >= static_cast<int>(vertices)) {
+      throw std::invalid_argument(what + ": its surface refers to a vertex it does not have");
+    }
+    surface.triangles.push_back(tri);
+  }
+  return surface;
+}
+
 Obstacle toMessage(const core::PlacedShape& placed, ObstacleMeshCatalogue& catalogue,
                    std::vector<ObstacleMesh>& unrecorded) {
   Obstacle m;
@@ -248,6 +279,7 @@ core::SessionCommand fromMessage(const Applied& m, ObstacleMeshCatalogue& catalo
 
 Scene toSceneMessage(const std::string& path, const std::string& yaml, double dt, int substeps,
                      const std::vector<core::Mesh>& meshes,
+                     const std::vector<std::optional<core::EmbeddedSurface>>& surfaces,
                      const std::vector<std::string>& body_names,
                      const std::vector<core::PlacedShape>& obstacles,
                      const std::vector<core::PlacedShape>& link_shapes,
@@ -278,18 +310,28 @@ Scene toSceneMessage(const std::string& path, const std::string& yaml, double dt
     data.tetrahedra = std::move(arrays.tetrahedra);
     data.cell_types = std::move(arrays.cell_types);
     data.cells = std::move(arrays.cells);
+    data.cell_fractions = std::move(arrays.cell_fractions);
+    data.incompatible_modes = arrays.incompatible_modes;
+    if (b < surfaces.size() && surfaces[b]) addSurface(*surfaces[b], data);
     m.meshes.push_back(std::move(data));
   }
   return m;
 }
 
-std::vector<core::Mesh> meshesFromMessage(const Scene& message) {
+std::vector<core::Mesh> meshesFromMessage(
+    const Scene& message, std::vector<std::optional<core::EmbeddedSurface>>* surfaces) {
   std::vector<core::Mesh> meshes;
-  for (const MeshData& data : message.meshes) {
-    const core::MeshArrays arrays{data.node_ids, data.rest_positions, data.tetrahedra,
-                                  data.cell_types, data.cells};
-    meshes.push_back(
-        core::fromArrays(arrays, "scene message: the mesh of body '" + data.body + "'"));
+  if (surfaces) surfaces->assign(message.meshes.size(), std::nullopt);
+  for (size_t b = 0; b < message.meshes.size(); ++b) {
+    const MeshData& data = message.meshes[b];
+    const core::MeshArrays arrays{data.node_ids,          data.rest_positions, data.tetrahedra,
+                                  data.cell_types,        data.cells,          data.cell_fractions,
+                                  data.incompatible_modes};
+    const std::string what = "scene message: the mesh of body '" + data.body + "'";
+    meshes.push_back(core::fromArrays(arrays, what));
+    if (surfaces && !data.surface_triangles.empty()) {
+      (*surfaces)[b] = core::embedInGrid(surfaceOf(data, what), meshes.back(), what);
+    }
   }
   return meshes;
 }

@@ -49,8 +49,11 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
 void SimNode::startSession() {
   std::vector<std::string> warnings;
   try {
-    session_ = std::make_unique<core::Session>(
-        params_.scene, io::readMeshes(params_.scene, &warnings), params_.limits);
+    std::vector<std::optional<core::EmbeddedSurface>> surfaces;
+    std::vector<core::Mesh> meshes =
+        io::readMeshes(params_.scene, &warnings, &surfaces, surfaceSources(params_.scene));
+    session_ = std::make_unique<core::Session>(params_.scene, std::move(meshes), params_.limits,
+                                               std::move(surfaces));
   } catch (const core::SpecError& e) {
     throw std::runtime_error("~scene: " + io::locatedMessage(params_.scene, e));
   } catch (const std::exception& e) {
@@ -100,7 +103,7 @@ void SimNode::publishScene() {
   for (const core::BodySpec& body : params_.scene.bodies) names.push_back(body.name);
   Scene message =
       toSceneMessage(params_.scene_path, params_.scene_text, sim().dt(), params_.substeps,
-                     session_->meshes(), names, params_.scene.obstacles,
+                     session_->meshes(), session_->surfaces(), names, params_.scene.obstacles,
                      robot_links_.shapes(params_.scene.urdf_links), obstacle_meshes_);
   message.header.stamp = ros::Time::now();
   message.header.frame_id = params_.world_frame;

@@ -13,8 +13,10 @@
 #include "deformable_sim/core/selection.h"
 #include "deformable_sim/core/shape.h"
 #include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/surface_body.h"
 #include "deformable_sim/core/triangle_mesh_shape.h"
 #include "simulation_test_helpers.h"
+#include "surface_test_helpers.h"
 
 // Every heap allocation of the process goes through malloc (operator new and Eigen both call it):
 // interpose it and count the calls, forwarding to glibc's own implementation.
@@ -88,6 +90,34 @@ TEST(Allocations, NoneInAStepAfterTheFirst) {
         << "warping " << warping << ", threads " << threads << ", " << body.numNodes() << " nodes";
     EXPECT_GT(iterations, 0);  // the steps really solved something
   }
+}
+
+// A body made from a surface: partial and incompatible-mode hexahedra step like any cells, and
+// its embedded surface follows without allocating.
+TEST(Allocations, NoneInStepsOfABodyFromASurfaceNorInItsEmbeddedSurface) {
+  dc::VoxelSettings settings;
+  settings.longest_side_cells = 6;
+  dc::SurfaceBody made = dc::bodyFromSurface(
+      deformable_sim::test::sphereSurface(0.05, Eigen::Vector3d::Zero(), 12, 24), settings,
+      nullptr);
+  dc::BodyEffects effects;
+  effects.warping = true;
+  effects.gravity = Eigen::Vector3d(0, 0, -9.81);
+  dc::Body body("ball", made.voxels.mesh, {1e5, 0.3, 1000}, effects, dc::SolverSettings{});
+  dc::NodeSelection bottom;
+  bottom.kind = dc::NodeSelection::Kind::kBox;
+  bottom.box = {{-1, -1, -1}, {1, 1, -0.04}};
+  body.fixNodes(dc::selectNodes(body.mesh(), bottom));
+  body.step(0.01);
+  made.surface.update(body.positions());
+  const long before = g_allocations.load();
+  int iterations = 0;
+  for (int s = 0; s < 10; ++s) {
+    iterations += body.step(0.01).solve.iterations;
+    made.surface.update(body.positions());
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_GT(iterations, 0);
 }
 
 // The direct solver refactorizes every step (the warped matrix changes), and the factorization

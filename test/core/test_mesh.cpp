@@ -126,3 +126,17 @@ TEST(MeshArrays, RoundTripEveryElementTypeAndRefuseWhatDoesNotFit) {
   bad.cells.pop_back();
   EXPECT_EQ(refusal(bad), "the mesh of body 'b' has arrays of inconsistent sizes");
 }
+
+TEST(MeshArrays, RoundTripTheCellFractionsOfAGrid) {
+  dc::Mesh mesh =
+      dc::makeBoxMesh({0, 0, 0}, {0.2, 0.1, 0.1}, {2, 1, 1}, dc::BoxElement::kHexahedron);
+  mesh.cell_fractions = {dc::OctantFractions{1, 1, 1, 1, 1, 1, 1, 1},
+                         dc::OctantFractions{0.5, 0, 0.25, 1, 0.125, 0, 0, 0.75}};
+  mesh.incompatible_modes = true;
+  const dc::Mesh back = dc::fromArrays(dc::toArrays(mesh), "test");
+  EXPECT_EQ(back.cell_fractions, mesh.cell_fractions);
+  EXPECT_TRUE(back.incompatible_modes);
+  dc::MeshArrays bad = dc::toArrays(mesh);
+  bad.cell_fractions.pop_back();
+  EXPECT_THROW(dc::fromArrays(bad, "test"), std::invalid_argument);
+}

@@ -47,6 +47,10 @@ const std::vector<QuadraturePoint>& quadrature(CellType type);
 /// The cell's corner positions, in its node order.
 CellVectors cellCorners(const Cell& cell, const std::vector<Eigen::Vector3d>& positions);
 
+/// The material fraction that integration point xi of a cell stands for: a hexahedron's point
+/// that of the octant it lies in, other cells' the mean of the octants; 1 for null fractions.
+double pointFraction(CellType type, const Eigen::Vector3d& xi, const OctantFractions* fractions);
+
 /// Rest data of one cell.
 struct CellRest {
   double volume = 0.0;           ///< m^3
@@ -55,8 +59,10 @@ struct CellRest {
 };
 
 /// Throws std::invalid_argument when the isoparametric map is not orientation-preserving
-/// (det J <= 0) at an integration point or the centre: an inverted, flat or tangled cell.
-CellRest computeCellRest(CellType type, const CellVectors& corners);
+/// (det J <= 0) at an integration point or the centre: an inverted, flat or tangled cell. With
+/// `fractions`, the volume and shape integrals are those of the cell's material.
+CellRest computeCellRest(CellType type, const CellVectors& corners,
+                         const OctantFractions* fractions = nullptr);
 
 /// The smallest and largest det J over the centre and the integration points: both positive for
 /// a valid cell, both negative for one listed in mirrored order, mixed for a tangled one.
@@ -66,8 +72,10 @@ std::pair<double, double> jacobianRange(CellType type, const CellVectors& corner
 /// reversed): turns a mirrored cell into a valid one.
 Cell mirrored(const Cell& cell);
 
-/// The rest stiffness (3n x 3n, node-major) for Lame parameters lambda and mu, Pa.
-Eigen::MatrixXd cellStiffness(CellType type, const CellVectors& corners, double lambda, double mu);
+/// The rest stiffness (3n x 3n, node-major) for Lame parameters lambda and mu, Pa; of the cell's
+/// material with `fractions` (each integration point's share scaled by pointFraction).
+Eigen::MatrixXd cellStiffness(CellType type, const CellVectors& corners, double lambda, double mu,
+                              const OctantFractions* fractions = nullptr);
 
 /// The deformation gradient at the centre from current corner positions.
 Eigen::Matrix3d cellDeformationGradient(const CellRest& rest, int size, const CellVectors& x);

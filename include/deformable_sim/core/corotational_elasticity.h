@@ -86,12 +86,14 @@ class CorotationalElasticity {
   /// A pyramid, wedge or hexahedron: its stiffness is integrated numerically, so it is stored.
   struct CellElement {
     Cell cell;
+    OctantFractions fractions = {1, 1, 1, 1, 1, 1, 1, 1};  ///< Mesh::cell_fractions
     CellRest rest;
     Eigen::MatrixXd stiffness;                                     ///< Ke (3n x 3n), N/m
     Eigen::VectorXd rest_forces;                                   ///< Ke x0, N
     std::array<int, kMaxCellNodes * kMaxCellNodes> block_index{};  ///< slot of (i, j) at n i + j
   };
   std::vector<CellElement> cells_;
+  bool incompatible_modes_ = false;  ///< Mesh::incompatible_modes
 
   std::vector<Tetrahedron> tetrahedra_;
   Eigen::VectorXd rest_positions_;

@@ -34,12 +34,31 @@ struct Face {
   int size() const { return nodes[3] >= 0 ? 4 : 3; }
 };
 
+/// The material fractions of a cell's eight octants, each in [0, 1]: the parts of the natural
+/// cube with xi_k below or above 0, octant (xi1 > 0) + 2 (xi2 > 0) + 4 (xi3 > 0). A hexahedron of
+/// a grid cut by a surface (core/voxelization.h) weighs and resists where its material is; other
+/// cell types take the mean throughout.
+using OctantFractions = std::array<double, 8>;
+
 struct Mesh {
   std::vector<Eigen::Vector3d> positions;  ///< rest positions, m
   std::vector<long> node_numbers;          ///< the file's number of each node (same order)
   std::vector<Tetrahedron> tetrahedra;
   /// The other elements, kept apart from the tetrahedra, which have a closed-form fast path.
   std::vector<Cell> cells;
+  /// Hexahedra with incompatible modes (core/incompatible_modes.h) instead of plain full
+  /// integration, where their material allows (incompatibleModesApply): a voxel grid's, a few
+  /// cells through a part, which would lock in bending.
+  bool incompatible_modes = false;
+  /// Per cell, the part of each octant that holds material. Empty: every cell is full.
+  std::vector<OctantFractions> cell_fractions;
+
+  /// The material fraction of cells[c], the mean of its octants': 1 without cell_fractions.
+  double cellFraction(size_t c) const;
+  /// Its octants' fractions, or null without cell_fractions (all full).
+  const OctantFractions* cellOctants(size_t c) const {
+    return cell_fractions.empty() ? nullptr : &cell_fractions[c];
+  }
 
   int numNodes() const { return static_cast<int>(positions.size()); }
   int numTetrahedra() const { return static_cast<int>(tetrahedra.size()); }
@@ -66,7 +85,7 @@ constexpr double kSliverQuality = 0.01;
 /// readers report them as a warning; meshes built in code can be checked with it.
 std::vector<int> sliverTetrahedra(const Mesh& mesh, double min_quality = kSliverQuality);
 
-/// Sum of the element volumes at rest, m^3.
+/// Sum of the element volumes at rest (of a cell, of its material), m^3.
 double totalVolume(const Mesh& mesh);
 
 /// The faces that belong to exactly one element, oriented with outward normals.
@@ -76,8 +95,8 @@ std::vector<Face> extractBoundary(const Mesh& mesh);
 std::vector<Triangle> extractSurface(const Mesh& mesh);
 
 /// Lumped (diagonal) nodal masses: each element gives node i density x the integral of its shape
-/// function N_i (a quarter of the volume for a tetrahedron). density in kg/m^3, result in kg per
-/// node.
+/// function N_i (a quarter of the volume for a tetrahedron) over the element's material. density
+/// in kg/m^3, result in kg per node.
 std::vector<double> lumpedMasses(const Mesh& mesh, double density);
 
 /// Index of each node given by its file number. Throws std::invalid_argument naming the first

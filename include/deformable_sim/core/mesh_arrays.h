@@ -16,6 +16,9 @@ struct MeshArrays {
   std::vector<uint32_t> tetrahedra;    ///< 4 node indices per tetrahedron
   std::vector<uint8_t> cell_types;     ///< per other element: its node count (5, 6 or 8)
   std::vector<uint32_t> cells;         ///< their node indices, cell_types[k] of them per cell
+  /// Mesh::cell_fractions: 8 per cell (its octants), or empty for full cells.
+  std::vector<double> cell_fractions;
+  bool incompatible_modes = false;  ///< Mesh::incompatible_modes
 };
 
 MeshArrays toArrays(const Mesh& mesh);

@@ -84,8 +84,10 @@ class Resimulation {
   /// session's start (its first state is step 0 of episode 0) or at its first reset; commands
   /// before that reset are skipped. Throws ResimulationError when the recording starts later and
   /// holds no reset, std::invalid_argument for a scene that cannot be built (like Session).
+  /// `surfaces`: those bodies were made from, as for Session.
   Resimulation(SceneSpec spec, std::vector<Mesh> meshes, Recording recording,
-               SolverOverride solver = {});
+               SolverOverride solver = {},
+               std::vector<std::optional<EmbeddedSurface>> surfaces = {});
 
   /// Steps the run will take (each episode up to its last command or recorded state).
   long plannedSteps() const { return planned_steps_; }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <map>
 #include <optional>
 #include <string>
@@ -16,6 +17,7 @@
 #include "deformable_sim/core/material.h"
 #include "deformable_sim/core/selection.h"
 #include "deformable_sim/core/shape.h"
+#include "deformable_sim/core/voxelization.h"
 
 namespace deformable_sim::core {
 
@@ -40,13 +42,24 @@ struct BoxMeshSpec {
   BoxElement element = BoxElement::kTetrahedron;  ///< what each cube is cut into
 };
 
+/// A body made from a surface (core/surface_body.h) instead of a volume mesh.
+struct SurfaceMeshSpec {
+  std::string file;       ///< path or package:// URI of the surface (STL, DAE, OBJ); or empty
+  std::string urdf_link;  ///< or the link of the robot description whose visual mesh it is
+  VoxelSettings voxels;   ///< the grid's cell size or cells along the longest side
+  /// Where the surface is placed in the scene (keys position, rpy) before it is voxelized on a
+  /// grid along the scene's axes.
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+
 struct BodySpec {
   std::string name;
   BodyModel model = BodyModel::kFiniteElement;
   /// The body's own effects instead of the scene's (key `effects` of the body).
   std::optional<BodyEffects> effects;
-  std::string mesh;                     ///< path of the mesh file, or empty with box_mesh
-  std::optional<BoxMeshSpec> box_mesh;  ///< generated mesh, when there is no mesh file
+  std::string mesh;                             ///< path of the mesh file, or empty with box_mesh
+  std::optional<BoxMeshSpec> box_mesh;          ///< generated mesh, when there is no mesh file
+  std::optional<SurfaceMeshSpec> surface_mesh;  ///< or a grid made from a surface
   LinearElasticMaterial material;
   std::vector<NodeSelection> fixed;
   std::vector<LoadSpec> loads;

@@ -63,7 +63,9 @@ class Session {
  public:
   /// meshes[i] belongs to spec.bodies[i]; both are kept for resets. Throws std::invalid_argument
   /// like Simulation.
-  Session(SceneSpec spec, std::vector<Mesh> meshes, CommandLimits limits = {});
+  /// surfaces[i], when given, is the surface body i was made from (Simulation::embeddedSurface).
+  Session(SceneSpec spec, std::vector<Mesh> meshes, CommandLimits limits = {},
+          std::vector<std::optional<EmbeddedSurface>> surfaces = {});
 
   /// Applies a command; throws CommandError (naming the problem) and changes nothing when it is
   /// refused. On success the listener hears of it; returns the number of nodes acted on.
@@ -83,6 +85,7 @@ class Session {
   CommandProcessor& commands() { return *commands_; }
   const SceneSpec& scene() const { return spec_; }
   const std::vector<Mesh>& meshes() const { return meshes_; }
+  const std::vector<std::optional<EmbeddedSurface>>& surfaces() const { return surfaces_; }
 
  private:
   int applyTune(const TuneCommand& command);
@@ -91,6 +94,7 @@ class Session {
   SceneSpec spec_;
   std::vector<Mesh> meshes_;
   CommandLimits limits_;
+  std::vector<std::optional<EmbeddedSurface>> surfaces_;
   std::unique_ptr<Simulation> simulation_;
   std::unique_ptr<CommandProcessor> commands_;
   long episode_ = 0;

@@ -8,6 +8,7 @@
 
 #include "deformable_sim/core/body.h"
 #include "deformable_sim/core/body_contact.h"
+#include "deformable_sim/core/embedded_surface.h"
 #include "deformable_sim/core/mesh.h"
 #include "deformable_sim/core/scene.h"
 #include "deformable_sim/core/spec_error.h"
@@ -63,6 +64,15 @@ class Simulation {
   /// Quasi-static equilibrium of every body.
   std::vector<StaticReport> solveStatic();
 
+  /// The surface that bodies()[b] was made from (a body from `mesh: {surface: ..}`), carried by
+  /// its grid, or null. Its positions are those of its last update(bodies()[b].positions()):
+  /// whoever draws it updates it, the step does not.
+  const EmbeddedSurface* embeddedSurface(int b) const;
+  EmbeddedSurface* embeddedSurface(int b);
+  /// Gives bodies()[b] the surface it was made from. Throws std::invalid_argument when the
+  /// surface refers to nodes that the body's mesh does not have.
+  void setEmbeddedSurface(int b, EmbeddedSurface surface);
+
  private:
   /// Builds bodies()[b] from spec.bodies[b] and its mesh: groups, fixed nodes and loads.
   void addBody(const SceneSpec& spec, size_t b, Mesh mesh);
@@ -86,6 +96,8 @@ class Simulation {
   std::vector<PlacedShape> obstacles_;
   std::vector<Eigen::Isometry3d> obstacle_starts_;  ///< their poses at the step's start
   std::vector<long> recoveries_;                    ///< per body: steps the watchdog undid
+  /// Per body (sized by setEmbeddedSurface only), its embedded surface if it has one.
+  std::vector<std::optional<EmbeddedSurface>> embedded_surfaces_;
 };
 
 }  // namespace deformable_sim::core

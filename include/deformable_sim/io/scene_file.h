@@ -6,7 +6,8 @@
 //   static: {load_steps: 1, max_iterations: 200, tolerance: 1.0e-8}
 //   bodies:
 //     - name: beam
-//       mesh: meshes/beam.msh      # relative to the scene file; or {box: {min, max, cells}}
+//       mesh: meshes/beam.msh      # relative to the scene file; or {box: {min, max, cells}},
+//                                  # or {surface: part.stl, cell_size: 0.01} (or cells: N)
 //       model: fem
 //       material: {youngs_modulus: 1.0e6, poisson_ratio: 0.3, density: 1000.0}
 //       fixed: [{box: {min: [...], max: [...]}}, {nodes: [12, 40]}, {sphere: {center, radius}}]
@@ -22,6 +23,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -29,6 +31,7 @@
 #include "deformable_sim/core/scene.h"
 #include "deformable_sim/core/simulation.h"
 #include "deformable_sim/core/spec_error.h"
+#include "deformable_sim/io/triangle_mesh_reader.h"
 
 namespace deformable_sim::io {
 
@@ -56,12 +59,26 @@ core::SceneSpec parseScene(const std::string& yaml_text, const std::string& sour
 /// Reads and parses a scene file.
 core::SceneSpec readSceneFile(const std::string& path);
 
+/// Where bodies made from surfaces find what a scene file does not hold: the ROS node can resolve
+/// packages and has the robot description; the offline tools have neither.
+struct SurfaceSources {
+  PackageResolver resolver;       ///< for package:// surfaces and URDF mesh URIs
+  std::string robot_description;  ///< URDF text for urdf_link bodies; empty: the scene's urdf file
+};
+
 /// Reads (or generates) every body's mesh, in the order of spec.bodies. Mesh repairs are appended
 /// to `warnings`. Throws MeshError for bad or missing mesh files, naming the scene file, line and
 /// key first ("scene.yaml:9: bodies[0].mesh: cannot open mesh file 'beam.msh': ...").
-std::vector<core::Mesh> readMeshes(const core::SceneSpec& spec, std::vector<std::string>* warnings);
+/// A body from a surface (`mesh: {surface: ..}` or `{urdf_link: ..}`) gets the grid the surface
+/// is voxelized into, and `surfaces` (resized to one per body) the embedded surface to draw it
+/// with; `sources` resolve package:// URIs and give the robot description.
+std::vector<core::Mesh> readMeshes(
+    const core::SceneSpec& spec, std::vector<std::string>* warnings,
+    std::vector<std::optional<core::EmbeddedSurface>>* surfaces = nullptr,
+    const SurfaceSources& sources = {});
 
-/// Reads every body's mesh and builds the simulation. Mesh repairs are appended to `warnings`.
+/// Reads every body's mesh and builds the simulation, with the embedded surfaces of bodies made
+/// from surfaces (Simulation::embeddedSurface). Mesh repairs are appended to `warnings`.
 /// Throws SceneError (bad selections, loads; with the scene file and line of the entry) or
 /// MeshError (bad mesh files).
 core::Simulation buildSimulation(const core::SceneSpec& spec, std::vector<std::string>* warnings);

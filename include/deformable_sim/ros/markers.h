@@ -5,6 +5,7 @@
 #include <visualization_msgs/Marker.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "deformable_sim/core/commands.h"
 #include "deformable_sim/core/contact_pairs.h"
 #include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/simulation.h"
 
 namespace deformable_sim::ros_layer {
 
@@ -19,18 +21,23 @@ namespace deformable_sim::ros_layer {
 constexpr double kDefaultStrainScale = 0.1;
 
 /// The bodies' surfaces as rviz markers, for the node's ~mesh and the replay's output bag: a
-/// TRIANGLE_LIST a body, three points per triangle in the mesh's outward order, namespace = the
-/// body's name. A body with stress_colouring has its vertices coloured by their strain, from blue
-/// (0) to red (>= strain_scale).
+/// TRIANGLE_LIST a body, three points per triangle in outward order, namespace = the body's name.
+/// A body made from a surface is drawn with that surface, carried by its grid
+/// (Simulation::embeddedSurface); any other with its mesh's boundary. A body with
+/// stress_colouring has its vertices coloured by their strain, from blue (0) to red
+/// (>= strain_scale).
 class SurfaceMarkers {
  public:
-  SurfaceMarkers(const std::vector<core::Body>& bodies, double strain_scale);
+  SurfaceMarkers(const core::Simulation& simulation, double strain_scale);
   /// The marker of `body`, the `index`th of the bodies, as it is now (reused between calls).
   const visualization_msgs::Marker& marker(const core::Body& body, int index,
                                            const std_msgs::Header& header);
 
  private:
-  std::vector<std::vector<core::Triangle>> surfaces_;  ///< per body
+  void drawEmbedded(core::EmbeddedSurface& surface, const core::Body& body, bool colour);
+
+  std::vector<std::vector<core::Triangle>> surfaces_;           ///< per body
+  std::vector<std::optional<core::EmbeddedSurface>> embedded_;  ///< per body
   double strain_scale_;
   std::vector<double> strain_;
   visualization_msgs::Marker marker_;

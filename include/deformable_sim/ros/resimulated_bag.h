@@ -21,11 +21,11 @@ namespace deformable_sim::ros_layer {
 
 class ResimulatedBag {
  public:
-  /// `bodies` give the surfaces of the meshes; `state_headers` are the recorded states' headers
+  /// `simulation` gives the bodies' surfaces; `state_headers` are the recorded states' headers
   /// (a compared state's `source` indexes them); both are read, not kept. `marker_rate` is in Hz
   /// of simulated time. Throws ReplayError when the file cannot be written.
   ResimulatedBag(const std::string& path, const std::string& node, const Scene& scene,
-                 const std::vector<core::Body>& bodies,
+                 const core::Simulation& simulation,
                  const std::vector<std_msgs::Header>& state_headers, double marker_rate);
 
   /// The re-simulated state (with the recorded one's header), the bodies' frames with the first

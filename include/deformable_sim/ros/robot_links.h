@@ -11,6 +11,7 @@
 #include "deformable_sim/core/linked_obstacles.h"
 #include "deformable_sim/core/scene.h"
 #include "deformable_sim/core/shape.h"
+#include "deformable_sim/io/scene_file.h"
 
 namespace deformable_sim::ros_layer {
 
@@ -32,6 +33,11 @@ class RobotLinks {
   bool loaded_ = false;
   std::map<std::string, std::vector<core::PlacedShape>> shapes_;  ///< link -> shapes
 };
+
+/// Where the scene's bodies made from surfaces find package:// files (ROS's package paths) and
+/// a urdf_link's robot description (the scene's urdf.file, else the robot_description
+/// parameter).
+io::SurfaceSources surfaceSources(const core::SceneSpec& scene);
 
 /// The scene's obstacles with those of the robot links it names (urdf.links), in their links'
 /// frames. Throws std::runtime_error (urdf.links: ...) when a link's shapes cannot be had.

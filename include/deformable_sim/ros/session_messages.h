@@ -25,16 +25,20 @@ Applied toMessage(const core::SessionCommand& command, ObstacleMeshCatalogue& ca
 core::SessionCommand fromMessage(const Applied& message, ObstacleMeshCatalogue& catalogue);
 
 /// The scene (its file's text and path, or empty for the built-in one), the node's step, every
-/// body's mesh, and the triangles of the meshes among the scene's `obstacles` (recorded in
-/// `catalogue` under io::sceneObstacleKey(k)) and its obstacle links' `link_shapes` (so that a
-/// bag whose recording starts late still holds them).
+/// body's mesh (with the surface it was made from, if any: `surfaces` may be shorter), and the
+/// triangles of the meshes among the scene's `obstacles` (recorded in `catalogue` under
+/// io::sceneObstacleKey(k)) and its obstacle links' `link_shapes` (so that a bag whose recording
+/// starts late still holds them).
 Scene toSceneMessage(const std::string& path, const std::string& yaml, double dt, int substeps,
                      const std::vector<core::Mesh>& meshes,
+                     const std::vector<std::optional<core::EmbeddedSurface>>& surfaces,
                      const std::vector<std::string>& body_names,
                      const std::vector<core::PlacedShape>& obstacles,
                      const std::vector<core::PlacedShape>& link_shapes,
                      ObstacleMeshCatalogue& catalogue);
-/// The meshes of a ~scene message. Throws std::invalid_argument when the arrays do not fit.
-std::vector<core::Mesh> meshesFromMessage(const Scene& message);
+/// The meshes of a ~scene message and, in `surfaces` (one per mesh) if given, the surfaces bodies
+/// were made from. Throws std::invalid_argument when the arrays do not fit.
+std::vector<core::Mesh> meshesFromMessage(
+    const Scene& message, std::vector<std::optional<core::EmbeddedSurface>>* surfaces = nullptr);
 
 }  // namespace deformable_sim::ros_layer
