@@ -46,6 +46,7 @@ BodyContact::BodyContact(const std::vector<Body>& bodies, const ContactSettings&
     surface_nodes += surfaces_.back()->nodes().size();
   }
   contacts_.reserve(surface_nodes);
+  loads_.resize(bodies.size() * bodies.size());
 }
 
 double BodyContact::tolerance(int a, int b) const {
@@ -219,8 +220,12 @@ void BodyContact::resolve(std::vector<Body>& bodies, double dt, std::vector<Step
   for (int round = 0; round < kRounds; ++round) {
     const bool last = round == kRounds - 1;
     findContacts(bodies, round == 0);
-    if (round == 0) countContacts(reports);
+    if (round == 0) {
+      countContacts(reports);
+      startLoads();
+    }
     if (!last) settleVelocities(dt);
+    if (round == 0) addContactForces(dt);
     separate(reports);
     for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
       if (surfaces_[b]) participants_[b]->end(bodies[b]);
@@ -258,6 +263,40 @@ void BodyContact::countContacts(std::vector<StepReport>& reports) const {
       ++reports[c.node_body].body_contacts;
       ++reports[c.triangle_body].body_contacts;
     }
+  }
+}
+
+void BodyContact::startLoads() {
+  for (ContactLoad& load : loads_) load = ContactLoad{};
+  const size_t n = surfaces_.size();
+  const auto addPoint = [](ContactLoad& load, const Eigen::Vector3d& p, double depth) {
+    load.centre = (load.points * load.centre + p) / (load.points + 1);
+    ++load.points;
+    load.penetration = std::max(load.penetration, depth);
+  };
+  for (const Contact& c : contacts_) {
+    const double depth = std::max(0.0, -gap(c));
+    addPoint(loads_[c.node_body * n + c.triangle_body],
+             participants_[c.node_body]->position(c.node), depth);
+    // A body touching itself counts the node alone.
+    if (c.node_body == c.triangle_body) continue;
+    addPoint(loads_[c.triangle_body * n + c.node_body],
+             participants_[c.triangle_body]->position(c.triangle), depth);
+  }
+}
+
+void BodyContact::addContactForces(double dt) {
+  const size_t n = surfaces_.size();
+  for (const Contact& c : contacts_) {
+    const Eigen::Vector3d force = (c.impulse * c.normal + c.friction) / dt;  // on the node
+    const Eigen::Vector3d at_node = participants_[c.node_body]->position(c.node);
+    const Eigen::Vector3d at_triangle = participants_[c.triangle_body]->position(c.triangle);
+    ContactLoad& on_node = loads_[c.node_body * n + c.triangle_body];
+    on_node.force += force;
+    on_node.torque += at_node.cross(force);
+    ContactLoad& on_triangle = loads_[c.triangle_body * n + c.node_body];
+    on_triangle.force -= force;
+    on_triangle.torque -= at_triangle.cross(force);
   }
 }
 

@@ -36,6 +36,14 @@ void touchingPairs(const Simulation& sim, std::vector<ContactPair>& pairs) {
         merge(same->load, loads[k]);
       }
     }
+    const BodyContact* between = sim.bodyContact();
+    if (!between) continue;
+    for (int o = 0; o < static_cast<int>(sim.bodies().size()); ++o) {
+      const ContactLoad& load = between->load(b, o);
+      if (load.points == 0) continue;
+      pairs.push_back({b, o == b ? ContactPair::Kind::kSelf : ContactPair::Kind::kBody,
+                       sim.bodies()[o].name(), load});
+    }
   }
 }
 

@@ -40,6 +40,10 @@ class BodyContact {
   double tolerance(int a, int b) const;
   /// Whether body b takes part (its surface is built).
   bool takesPart(int b) const { return surfaces_[b].has_value(); }
+  /// What body a felt from body b in the last step (a == b: from itself, which nets to zero
+  /// force): the contact impulses over dt, the torque about the world origin, the points found
+  /// touching and the deepest of them inside before being put back. Zero when they did not touch.
+  const ContactLoad& load(int a, int b) const { return loads_[a * surfaces_.size() + b]; }
   const BodySurface& surface(int b) const { return *surfaces_[b]; }
 
   /// Fraction of a pair's tolerance to which the position passes bring every contact.
@@ -69,6 +73,10 @@ class BodyContact {
   /// contact; `new_step`: the bodies have just stepped (else a later round of the same step).
   void findContacts(std::vector<Body>& bodies, bool new_step);
   void countContacts(std::vector<StepReport>& reports) const;
+  /// Starts the step's loads: the contacts just found, where and how deep.
+  void startLoads();
+  /// Adds the velocity passes' impulses over dt to the loads.
+  void addContactForces(double dt);
   /// The contact of surface node i of body a, if it ended the step behind some triangle.
   void findContact(int a, int i);
   /// Position passes until every contact is within kTarget of its tolerance; returns the
@@ -90,7 +98,8 @@ class BodyContact {
   std::vector<bool> with_bodies_, with_self_;
   std::vector<std::optional<BodySurface>> surfaces_;
   std::vector<std::optional<ContactParticipant>> participants_;
-  std::vector<Contact> contacts_;  ///< at most one per surface node: reserved once
+  std::vector<Contact> contacts_;   ///< at most one per surface node: reserved once
+  std::vector<ContactLoad> loads_;  ///< per pair of bodies (see load()), sized once
 };
 
 }  // namespace deformable_sim::core
