@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "deformable_sim/core/loads.h"
+#include "deformable_sim/core/parallel_for.h"
 #include "deformable_sim/core/selection.h"
 #include "deformable_sim/core/spec_error.h"
 #include "deformable_sim/core/wrench.h"
@@ -91,7 +92,11 @@ void addLoads(Body& body, const BodySpec& body_spec, const std::string& key) {
 }  // namespace
 
 Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
-    : dt_(spec.dt), statics_(spec.statics), contact_(spec.contact), obstacles_(spec.obstacles) {
+    : dt_(spec.dt),
+      threads_(std::max(1, spec.solver.threads)),
+      statics_(spec.statics),
+      contact_(spec.contact),
+      obstacles_(spec.obstacles) {
   if (contact_ && !(contact_->friction >= 0.0 && std::isfinite(contact_->friction))) {
     throw SpecError("effects.contact.friction", "must be finite and >= 0");
   }
@@ -192,35 +197,43 @@ void Simulation::followObstacles() {
 void Simulation::step(std::vector<StepReport>& reports) {
   reports.resize(bodies_.size());
   if (contact_) followObstacles();
-  for (size_t b = 0; b < bodies_.size(); ++b) {
-    Body& body = bodies_[b];
-    body.rememberState();
-    if (contact_states_[b]) contact_states_[b]->hold(body, obstacles_);
-    reports[b] = body.step(dt_);
-    // Constraint forces too: a tiny dt (1e-320 s) divides a finite solve into infinite forces.
-    if (!std::isfinite(reports[b].solve.relative_residual) || !body.stateIsFinite() ||
-        !body.reactionForces().allFinite()) {
-      body.returnToRememberedState();
-      reports[b].recovered = true;
-      ++recoveries_[b];
-    }
-  }
+  // Bodies step apart until they meet: on the solver's threads, a body each (a body's own loops
+  // then run on one thread; its result is the same bits on any number).
+  const int threads = bodies_.size() > 1 ? threads_ : 1;
+  parallelFor(threads, 0, static_cast<int>(bodies_.size()),
+              [&](int b) { stepBody(b, reports[b]); });
   // Between bodies while their nodes on obstacles are still held, so that what presses on a body
   // goes through it to the obstacles under it; then the obstacles have the last say.
   if (body_contact_) {
     body_contact_->resolve(bodies_, dt_, reports);
     ++body_contact_steps_;
   }
-  for (size_t b = 0; b < bodies_.size(); ++b) {
-    if (!contact_states_[b]) continue;
+  parallelFor(threads, 0, static_cast<int>(bodies_.size()), [&](int b) {
+    if (!contact_states_[b]) return;
     contact_states_[b]->release(bodies_[b], obstacles_, *contact_, dt_);
     reports[b].contacts =
         contact_states_[b]->project(bodies_[b], obstacles_, obstacle_starts_, *contact_, dt_);
-    ++contact_steps_;
+  });
+  for (const std::optional<ContactState>& state : contact_states_) {
+    if (state) ++contact_steps_;
   }
   for (size_t k = 0; k < obstacle_starts_.size(); ++k) obstacle_starts_[k] = obstacles_[k].pose;
   ++step_count_;
   time_ += dt_;
+}
+
+void Simulation::stepBody(int b, StepReport& report) {
+  Body& body = bodies_[b];
+  body.rememberState();
+  if (contact_states_[b]) contact_states_[b]->hold(body, obstacles_);
+  report = body.step(dt_);
+  // Constraint forces too: a tiny dt (1e-320 s) divides a finite solve into infinite forces.
+  if (!std::isfinite(report.solve.relative_residual) || !body.stateIsFinite() ||
+      !body.reactionForces().allFinite()) {
+    body.returnToRememberedState();
+    report.recovered = true;
+    ++recoveries_[b];
+  }
 }
 
 const std::vector<ContactLoad>& Simulation::obstacleContacts(int b) const {

@@ -268,6 +268,19 @@ void ContactCost(benchmark::State& state) {
   state.counters["body_pairs"] = 0.5 * pairs / static_cast<double>(state.iterations());
 }
 
+// ManyBodies/<bodies>/<threads>: a step of 1, 5 or 20 blocks of 1,536 tetrahedra hanging apart
+// (perf/blocks_on_floor.h without the floor), on 1 or 2 threads: the bodies step side by side.
+void ManyBodies(benchmark::State& state) {
+  perf::BlocksOnFloor scene;
+  scene.count = static_cast<int>(state.range(0));
+  scene.threads = static_cast<int>(state.range(1));
+  scene.floor = false;
+  core::Simulation sim = perf::makeBlocksOnFloor(scene);
+  std::vector<core::StepReport> reports;
+  for (int k = 0; k < kWarmUpSteps; ++k) sim.step(reports);
+  for (auto _ : state) sim.step(reports);
+}
+
 void meshSizes(benchmark::internal::Benchmark* b, bool with_preconditioners) {
   for (int mesh = 0; mesh < static_cast<int>(kCells.size()); ++mesh) {
     if (!with_preconditioners) {
@@ -310,6 +323,13 @@ BENCHMARK(ModelStep)
     ->ArgNames({"model", "mesh"})
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
+BENCHMARK(ManyBodies)
+    ->ArgsProduct({{1, 5, 20}, {1, 2}})
+    ->ArgNames({"bodies", "threads"})
+    ->Iterations(kTimedSteps)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 BENCHMARK(ContactCost)
     ->ArgsProduct({{1, 5, 20}, {0, 1, 2}})
     ->ArgNames({"bodies", "contact"})

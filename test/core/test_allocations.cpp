@@ -265,12 +265,16 @@ TEST(Allocations, NoneInContactBetweenBodies) {
     body.material = {1e5, 0.3, 100};
     spec.bodies.push_back(body);
   }
-  dc::Simulation simulation = deformable_sim::test::boxMeshSimulation(spec);
-  std::vector<dc::StepReport> reports;
-  for (int s = 0; s < 20; ++s) simulation.step(reports);
-  ASSERT_GT(reports[1].body_contacts, 0);
-  const long before = g_allocations.load();
-  for (int s = 0; s < 20; ++s) simulation.step(reports);
-  EXPECT_EQ(g_allocations.load() - before, 0);
-  EXPECT_GT(reports[1].body_contacts, 0);
+  for (int threads : {1, 2}) {  // on two, the bodies step side by side
+    SCOPED_TRACE(threads);
+    spec.solver.threads = threads;
+    dc::Simulation simulation = deformable_sim::test::boxMeshSimulation(spec);
+    std::vector<dc::StepReport> reports;
+    for (int s = 0; s < 20; ++s) simulation.step(reports);
+    ASSERT_GT(reports[1].body_contacts, 0);
+    const long before = g_allocations.load();
+    for (int s = 0; s < 20; ++s) simulation.step(reports);
+    EXPECT_EQ(g_allocations.load() - before, 0);
+    EXPECT_GT(reports[1].body_contacts, 0);
+  }
 }

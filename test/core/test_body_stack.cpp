@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "contact_test_helpers.h"
+#include "deformable_sim/core/contact_pairs.h"
 #include "deformable_sim/core/simulation.h"
 #include "simulation_test_helpers.h"
 
@@ -39,7 +40,8 @@ Eigen::Vector3d centreOf(const dc::Body& body) {
   return body.positions().reshaped(3, body.numNodes()).rowwise().mean();
 }
 
-dc::Simulation stackOfCubes(const dc::LinearElasticMaterial& material, int cells) {
+dc::Simulation stackOfCubes(const dc::LinearElasticMaterial& material, int cells,
+                            int count = kCubes, int threads = 1) {
   dc::SceneSpec spec;
   spec.dt = 0.01;
   spec.effects.gravity = Eigen::Vector3d(0, 0, -kGravity);
@@ -47,12 +49,13 @@ dc::Simulation stackOfCubes(const dc::LinearElasticMaterial& material, int cells
   spec.effects.damping = dc::RayleighDamping{1.0, 0.005};
   spec.contact = dc::ContactSettings{0.5, true, false};
   spec.solver.method = dc::SolverSettings::Method::kDirect;  // the answers' solves, quickly
+  spec.solver.threads = threads;
   dc::PlacedShape floor;
   floor.name = "floor";
   floor.shape.size = {1.0, 1.0, 0.1};
   floor.pose.translation() = Eigen::Vector3d(0, 0, -0.05);  // top at z = 0
   spec.obstacles.push_back(floor);
-  for (int k = 0; k < kCubes; ++k) {
+  for (int k = 0; k < count; ++k) {
     dc::BodySpec cube;
     cube.name = "cube" + std::to_string(k);
     const Eigen::Vector3d min(-0.5 * kSide, -0.5 * kSide, k * kSide);
@@ -96,4 +99,51 @@ TEST(BodyStack, FiveSoftCubesStandForAMinute) {
     EXPECT_LT(c.head<2>().norm(), 0.01 * kSide) << "cube " << k;
     EXPECT_NEAR(c.z(), (k + 0.5) * kSide, 0.02 * kSide) << "cube " << k;  // each sags a little
   }
+}
+
+TEST(BodyStack, ContactPairsCarryTheWeightOfWhatRestsOnThem) {
+  // Two cubes at rest on the floor: the upper one feels its weight from the lower one, which
+  // feels it back, and the floor carries both.
+  dc::Simulation sim = stackOfCubes({1.0e5, 0.3, 100.0}, 2, 2);
+  std::vector<dc::StepReport> reports;
+  for (int s = 0; s < 300; ++s) sim.step(reports);
+  std::vector<dc::ContactPair> pairs;
+  dc::touchingPairs(sim, pairs);
+  const double weight = 100.0 * kSide * kSide * kSide * kGravity;  // of one cube, N
+  const auto find = [&](int body, const std::string& other) -> const dc::ContactLoad& {
+    for (const dc::ContactPair& p : pairs) {
+      if (p.body == body && p.other == other) return p.load;
+    }
+    ADD_FAILURE() << "no pair of body " << body << " with " << other;
+    static const dc::ContactLoad none;
+    return none;
+  };
+  const dc::ContactLoad& upper = find(1, "cube0");
+  const dc::ContactLoad& lower = find(0, "cube1");
+  const dc::ContactLoad& floor = find(0, "floor");
+  EXPECT_NEAR(upper.force.z(), weight, 0.02 * weight);
+  EXPECT_LT(upper.force.head<2>().norm(), 0.02 * weight);
+  EXPECT_LT((lower.force + upper.force).norm(), 1e-9 * weight);  // equal and opposite
+  EXPECT_NEAR(floor.force.z(), 2.0 * weight, 0.02 * weight);
+  EXPECT_GT(upper.points, 0);
+  EXPECT_NEAR(upper.centre.z(), kSide, 0.05 * kSide);  // where they meet
+  for (const dc::ContactPair& p : pairs) EXPECT_NE(p.kind, dc::ContactPair::Kind::kSelf);
+}
+
+TEST(BodyStack, BodiesSteppedSideBySideOnTwoThreadsGiveTheSameBits) {
+  // Bodies step in parallel until contact couples them; each one's step is the same sum in the
+  // same order whatever the thread count.
+  dc::Simulation one = stackOfCubes({1.0e5, 0.3, 100.0}, 2, 3, 1);
+  dc::Simulation two = stackOfCubes({1.0e5, 0.3, 100.0}, 2, 3, 2);
+  std::vector<dc::StepReport> reports_one, reports_two;
+  for (int s = 0; s < 50; ++s) {
+    one.step(reports_one);
+    two.step(reports_two);
+  }
+  for (int b = 0; b < 3; ++b) {
+    EXPECT_EQ(one.bodies()[b].positions(), two.bodies()[b].positions()) << "cube " << b;
+    EXPECT_EQ(one.bodies()[b].velocities(), two.bodies()[b].velocities()) << "cube " << b;
+    EXPECT_EQ(reports_one[b].body_contacts, reports_two[b].body_contacts);
+  }
+  EXPECT_GT(reports_two[1].body_contacts, 0);
 }

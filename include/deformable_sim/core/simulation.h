@@ -80,8 +80,11 @@ class Simulation {
   void addBodyContact();
   /// Before a step: when the obstacles are others than in the last step, forgets their contacts.
   void followObstacles();
+  /// Body b's own step, undone by the watchdog when it leaves a non-finite value.
+  void stepBody(int b, StepReport& report);
 
   double dt_;
+  int threads_ = 1;  ///< the scene's solver threads: bodies step side by side on them
   StaticSettings statics_;
   long step_count_ = 0;
   double time_ = 0.0;
