@@ -29,11 +29,13 @@ export PATH=/usr/bin:/bin:$PATH
 cxx=clang++-14
 command -v "$cxx" > /dev/null || { echo "$cxx not found (apt-get install clang-14 libclang-rt-14-dev)" >&2; exit 1; }
 
-# The ROS-free libraries: deformable_sim_core and the readers of deformable_sim_io (not URDF).
+# The ROS-free libraries: deformable_sim_core and the readers of deformable_sim_io (of URDF only
+# the visual meshes a scene's surface body may take).
 # Paths are relative to the repository (the glob too: expanded after the cd).
 cd "$repo"
 sources=(src/core/*.cpp src/io/mesh_reader.cpp src/io/gmsh_reader.cpp src/io/tetgen_reader.cpp
-  src/io/scene_file.cpp src/io/triangle_mesh_reader.cpp)
+  src/io/scene_file.cpp src/io/triangle_mesh_reader.cpp src/io/surface_body_reader.cpp
+  src/io/urdf_visual_mesh.cpp)
 # No OpenMP: the solver's loops run on one thread (bit-identical results, documented). Eigen's
 # index checks are off as in a release build: traced by libFuzzer they took half of all time, and
 # AddressSanitizer still catches an index past a vector's end.
@@ -123,7 +125,7 @@ ar rcs "$build/libdeformable_sim_fuzz.a" "${objects[@]}" || build_failed
 for target in "${targets[@]}"; do
   mkdir -p "$build/$target"
   "$cxx" "${flags[@]}" -fsanitize=fuzzer "$build/obj/test_fuzz_$target.o" \
-    "$build/libdeformable_sim_fuzz.a" -lyaml-cpp -lassimp -o "$build/$target/$target" || build_failed
+    "$build/libdeformable_sim_fuzz.a" -lyaml-cpp -lassimp -lurdfdom_model -o "$build/$target/$target" || build_failed
 done
 echo "   built in $(($(date +%s) - started)) s"
 
