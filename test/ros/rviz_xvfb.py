@@ -56,6 +56,12 @@ def count_pixels(png, is_wanted, area=RENDER_AREA):
     return sum(1 for k in range(0, len(raw), 3) if is_wanted(raw[k], raw[k + 1], raw[k + 2]))
 
 
+def is_mesh_orange(r, g, b):
+    """A body's surface in the markers' orange (1.0, 0.55, 0.1), lit or in shade; not the red fixed
+    nodes."""
+    return r > 80 and 0.35 * r < g < 0.75 * r and b < 0.3 * r
+
+
 # Colours of config/grasp_demo.rviz and grasp_friction.rviz, lit or in shade.
 def is_strain_coloured(r, g, b):
     """A body's surface: strain colours (s, 0.2, 1 - s)."""

@@ -10,14 +10,9 @@ import rospkg
 import rospy
 import rostest
 
-from rviz_xvfb import RvizUnderXvfb, count_pixels
+from rviz_xvfb import RvizUnderXvfb, count_pixels, is_mesh_orange
 
 CONFIG = os.path.join(rospkg.RosPack().get_path('deformable_sim'), 'config', 'deformable_sim.rviz')
-
-
-def is_mesh_orange(r, g, b):
-    """The mesh's orange (1.0, 0.55, 0.1), lit or in shade; not the red fixed nodes."""
-    return r > 80 and 0.35 * r < g < 0.75 * r and b < 0.3 * r
 
 
 class RvizScreenshot(unittest.TestCase):

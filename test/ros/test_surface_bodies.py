@@ -20,7 +20,7 @@ import rostest
 from visualization_msgs.msg import Marker
 
 from deformable_sim.msg import FixedNodes
-from rviz_xvfb import RvizUnderXvfb, count_pixels, is_strain_coloured
+from rviz_xvfb import RvizUnderXvfb, count_pixels, is_mesh_orange
 from sim_client import SimClient, connected, start_recording, stop_recording
 
 NODE = '/deformable_sim'
@@ -131,7 +131,7 @@ class SurfaceBodies(unittest.TestCase):
                 time.sleep(2.0)
                 shot = rviz.screenshot()
                 if shot:
-                    pixels = count_pixels(shot, is_strain_coloured)
+                    pixels = count_pixels(shot, is_mesh_orange)
             keep = rospy.get_param('~screenshot', '')
             if keep and shot:
                 shutil.copy(shot, keep)
