@@ -15,6 +15,7 @@ core::Simulation makeBlocksOnFloor(const BlocksOnFloor& scene) {
   spec.effects.warping = true;
   spec.effects.damping = core::RayleighDamping{1.0, 0.002};
   spec.solver.threads = scene.threads;
+  if (scene.direct) spec.solver.method = core::SolverSettings::Method::kDirect;
   if (scene.floor) {
     spec.contact = core::ContactSettings{0.5, scene.bodies, scene.self};
     core::PlacedShape floor;

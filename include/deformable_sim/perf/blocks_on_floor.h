@@ -15,7 +15,8 @@ struct BlocksOnFloor {
   /// false: no floor and no contact; each block instead clamped at its x = min face, swinging
   /// down under gravity (bodies that move every step, apart).
   bool floor = true;
-  int threads = 1;  ///< solver.threads: the bodies step side by side on them
+  int threads = 1;      ///< solver.threads: the bodies step side by side on them
+  bool direct = false;  ///< solver.method direct instead of CG
 };
 
 /// The scene, built; its blocks are named block0, block1, ...
