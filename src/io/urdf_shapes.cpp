@@ -5,19 +5,11 @@
 #include <filesystem>
 #include <memory>
 
+#include "urdf_pose.h"
+
 namespace deformable_sim::io {
 
 namespace {
-
-Eigen::Isometry3d toPose(const urdf::Pose& pose) {
-  Eigen::Isometry3d result = Eigen::Isometry3d::Identity();
-  result.translation() << pose.position.x, pose.position.y, pose.position.z;
-  result.linear() =
-      Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
-          .normalized()
-          .toRotationMatrix();
-  return result;
-}
 
 // Reads a <mesh> element into `shape`; false (with a warning) when it cannot be read.
 bool readMeshShape(const urdf::Mesh& mesh, const std::string& link, const PackageResolver& resolver,
@@ -88,7 +80,7 @@ std::map<std::string, std::vector<core::PlacedShape>> readCollisionShapes(
       if (!collision || !collision->geometry) continue;
       core::PlacedShape shape;
       shape.name = name;
-      shape.pose = toPose(collision->origin);
+      shape.pose = toIsometry(collision->origin);
       if (!readGeometry(*collision->geometry, name, resolver, base_directory, shape.shape,
                         warnings)) {
         continue;

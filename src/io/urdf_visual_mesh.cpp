@@ -5,19 +5,11 @@
 #include <Eigen/Geometry>
 #include <filesystem>
 
+#include "urdf_pose.h"
+
 namespace deformable_sim::io {
 
 namespace {
-
-Eigen::Isometry3d linkFramePose(const urdf::Pose& pose) {
-  Eigen::Isometry3d result = Eigen::Isometry3d::Identity();
-  result.translation() << pose.position.x, pose.position.y, pose.position.z;
-  result.linear() =
-      Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
-          .normalized()
-          .toRotationMatrix();
-  return result;
-}
 
 // Appends the mesh of `geometry`, posed by `pose`, to `surface`.
 void appendMesh(const urdf::Mesh& geometry, const Eigen::Isometry3d& pose,
@@ -46,7 +38,7 @@ core::TriangleMesh readVisualMesh(const std::string& urdf_xml, const std::string
   core::TriangleMesh surface;
   for (const urdf::VisualSharedPtr& visual : found->second->visual_array) {
     if (!visual || !visual->geometry || visual->geometry->type != urdf::Geometry::MESH) continue;
-    appendMesh(static_cast<const urdf::Mesh&>(*visual->geometry), linkFramePose(visual->origin),
+    appendMesh(static_cast<const urdf::Mesh&>(*visual->geometry), toIsometry(visual->origin),
                resolver, base_directory, surface);
   }
   if (surface.triangles.empty()) {
