@@ -421,7 +421,16 @@ SolveReport Body::solveLastStep(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   const double h = history_dt_;
   const SystemMatrix a = systemMatrix(1.0 + h * damping.mass, h * damping.stiffness + h * h);
   x.setZero();
-  return solve(a, b, x, false, 0.0);
+  if (direct_) return solve(a, b, x, false, 0.0);  // the step's own factorization
+  SolveReport report;
+  if (!response_direct_) response_direct_ = std::make_unique<DirectSolver>();
+  if (!response_factored_) {
+    if (!response_direct_->factorize(a, constrained_)) return solve(a, b, x, false, 0.0);
+    response_factored_ = true;
+  }
+  response_direct_->applyInverse(b, x);
+  report.converged = true;
+  return report;
 }
 
 void Body::addConstraintForces(const Eigen::VectorXd& dv) {

@@ -189,8 +189,13 @@ class Body {
   bool isConstrained(int node) const { return constrained_[node] != 0; }
   /// After a step (finite elements): x = A^-1 b with the matrix A of its last solve and the
   /// constrained nodes' rows held at zero: how the free nodes' velocities answer impulses b
-  /// within the step (contact between bodies). Allocates nothing once a step has run.
+  /// within the step (contact between bodies). A body that steps with CG factorizes A for these
+  /// answers, once after each forgetLastStepFactorization(): they come many to a step, and a
+  /// back-substitution is exact and far cheaper than a CG solve. Allocates nothing once a step
+  /// has run.
   SolveReport solveLastStep(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// The step's matrix has changed (a new step): solveLastStep factorizes again when next asked.
+  void forgetLastStepFactorization() { response_factored_ = false; }
   /// Adds to reactionForces() what a velocity change dv of the free nodes (an answer of
   /// solveLastStep) asks of the constrained ones, (A dv) / h there.
   void addConstraintForces(const Eigen::VectorXd& dv);
@@ -335,6 +340,9 @@ class Body {
 
   ConjugateGradientSolver cg_;
   std::unique_ptr<DirectSolver> direct_;  ///< only when the scene asks for it
+  /// A CG body's factorization for solveLastStep, made when contact between bodies first asks.
+  std::unique_ptr<DirectSolver> response_direct_;
+  bool response_factored_ = false;
   Eigen::VectorXd rhs_, next_, scratch_;
   /// The velocities of the last steps, newest first, for the solver's initial guess.
   std::array<Eigen::VectorXd, 3> v_history_;
