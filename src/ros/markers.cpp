@@ -32,6 +32,12 @@ visualization_msgs::Marker marker(const std_msgs::Header& header, const std::str
   return m;
 }
 
+// Blue at no strain to red at `scale` and above.
+std_msgs::ColorRGBA strainColour(double strain, double scale) {
+  const float s = static_cast<float>(std::clamp(strain / scale, 0.0, 1.0));
+  return rgba(s, 0.2f, 1.0f - s);
+}
+
 }  // namespace
 
 SurfaceMarkers::SurfaceMarkers(const core::Simulation& simulation, double strain_scale)
@@ -61,8 +67,7 @@ void SurfaceMarkers::drawEmbedded(core::EmbeddedSurface& surface, const core::Bo
       const auto& nodes = surface.nodes(v);
       double strain = 0.0;
       for (int n = 0; n < 8; ++n) strain += surface.weights(v)[n] * strain_[nodes[n]];
-      const float s = static_cast<float>(std::clamp(strain / strain_scale_, 0.0, 1.0));
-      m.colors[3 * t + k] = rgba(s, 0.2f, 1.0f - s);
+      m.colors[3 * t + k] = strainColour(strain, strain_scale_);
     }
   }
 }
@@ -93,8 +98,7 @@ const visualization_msgs::Marker& SurfaceMarkers::marker(const core::Body& body,
       const int node = surface[t][k];
       m.points[3 * t + k] = toPoint(x.segment<3>(3 * node));
       if (colour) {
-        const float s = static_cast<float>(std::min(1.0, strain_[node] / strain_scale_));
-        m.colors[3 * t + k] = rgba(s, 0.2f, 1.0f - s);
+        m.colors[3 * t + k] = strainColour(strain_[node], strain_scale_);
       }
     }
   }
