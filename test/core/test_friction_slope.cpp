@@ -1,5 +1,6 @@
-// A block on a plane tilted at theta, on a primitive box and on a triangle mesh: by Coulomb's law
-// it stays where tan(theta) < mu and otherwise slides down with g (sin(theta) - mu cos(theta)).
+// A block on a plane tilted at theta, on a primitive box, a triangle mesh and a soft slab: by
+// Coulomb's law it stays where tan(theta) < mu and otherwise slides down with
+// g (sin(theta) - mu cos(theta)).
 // Close below the friction angle it still creeps (see DISABLED_ below).
 #include <gtest/gtest.h>
 
@@ -20,7 +21,7 @@ namespace {
 
 constexpr double kGravity = 9.81;
 
-enum class Plane { kPrimitiveBox, kOpenMesh };
+enum class Plane { kPrimitiveBox, kOpenMesh, kSoftSlab };
 
 // The obstacle: a 4 m x 4 m plane whose top is z = 0 in its frame.
 dc::Shape planeShape(Plane plane) {
@@ -43,35 +44,54 @@ struct Slide {
   double acceleration = 0.0;  ///< m/s^2 down the slope, from the mean velocity's growth
 };
 
+// The plane as a soft body: a slab 5 cm thick, 1.4 m long downhill, held by its underside, its top
+// at z = 0. The block touches it through contact between bodies.
+dc::BodySpec softSlab() {
+  dc::BodySpec slab;
+  slab.name = "slab";
+  slab.box_mesh = dc::BoxMeshSpec{{-0.2, -1.3, -0.05}, {0.2, 0.1, 0.0}, {4, 14, 1}};
+  slab.material = {1.0e5, 0.3, 500.0};
+  dc::NodeSelection underside;
+  underside.kind = dc::NodeSelection::Kind::kBox;
+  underside.box = dc::Box{{-1, -2, -0.05 - 1e-9}, {1, 1, -0.05 + 1e-9}};
+  slab.fixed.push_back(underside);
+  return slab;
+}
+
 // A 10 cm block resting on the plane tilted by `theta` about x, released at rest and run for one
-// second.
+// second. The soft slab stays level and gravity is tilted instead: the same slope.
 Slide slideOnSlope(Plane plane, double theta, double mu) {
   const Eigen::Matrix3d tilt =
       Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const Eigen::Matrix3d geometry = plane == Plane::kSoftSlab ? Eigen::Matrix3d::Identity() : tilt;
   dc::SceneSpec spec;
   spec.dt = 0.01;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -kGravity);
+  spec.effects.gravity = geometry * tilt.transpose() * Eigen::Vector3d(0, 0, -kGravity);
   spec.effects.warping = true;
   spec.effects.damping =
       dc::RayleighDamping{0.0, 0.01};  // no mass damping: it would slow the slide
-  spec.contact = dc::ContactSettings{mu};
-  dc::PlacedShape ground;
-  ground.name = "slope";
-  ground.shape = planeShape(plane);
-  ground.pose.linear() = tilt;
-  if (plane == Plane::kPrimitiveBox) ground.pose.translation() = tilt * Eigen::Vector3d(0, 0, -0.1);
-  spec.obstacles.push_back(ground);
+  spec.contact = dc::ContactSettings{mu, plane == Plane::kSoftSlab, false};
+  if (plane != Plane::kSoftSlab) {
+    dc::PlacedShape ground;
+    ground.name = "slope";
+    ground.shape = planeShape(plane);
+    ground.pose.linear() = tilt;
+    if (plane == Plane::kPrimitiveBox)
+      ground.pose.translation() = tilt * Eigen::Vector3d(0, 0, -0.1);
+    spec.obstacles.push_back(ground);
+  }
   dc::BodySpec block;
   block.name = "block";
   block.box_mesh = dc::BoxMeshSpec{{-0.05, -0.05, 0.0}, {0.05, 0.05, 0.1}, {2, 2, 2}};
   block.material = {1.0e5, 0.3, 500.0};
   spec.bodies.push_back(block);
+  if (plane == Plane::kSoftSlab) spec.bodies.push_back(softSlab());
   dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];
   Eigen::VectorXd x = body.restPositions();
-  for (int i = 0; i < body.numNodes(); ++i) x.segment<3>(3 * i) = tilt * x.segment<3>(3 * i);
+  for (int i = 0; i < body.numNodes(); ++i) x.segment<3>(3 * i) = geometry * x.segment<3>(3 * i);
   body.setState(x, Eigen::VectorXd::Zero(x.size()));
-  const Eigen::Vector3d downhill = tilt * -Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d downhill = geometry * -Eigen::Vector3d::UnitY();
   auto along = [&](const Eigen::VectorXd& values) {
     double sum = 0.0;
     for (int i = 0; i < body.numNodes(); ++i) sum += values.segment<3>(3 * i).dot(downhill);
@@ -140,6 +160,15 @@ TEST(FrictionSlope, BlockSlidesAgainstFrictionAboveTheFrictionAngle) {
     expectSlides(plane, 0.5, 0.3);  // tan = 0.55
     expectSlides(plane, 0.6, 0.5);  // tan = 0.68
   }
+}
+
+// On a soft slab the block presses a dent that it carries along: the slab's surface is not flat
+// under it, and contact between bodies acts at nodes and triangles rather than on a plane.
+TEST(FrictionSlope, BlockOnASoftSlabStaysBelowTheFrictionAngleAndSlidesAbove) {
+  expectStays(Plane::kSoftSlab, 0.3, 0.5);
+  expectSlides(Plane::kSoftSlab, 0.3, 0.0);
+  expectSlides(Plane::kSoftSlab, 0.3, 0.2);
+  expectSlides(Plane::kSoftSlab, 0.5, 0.3);
 }
 
 // Fails today: at tan = 0.55 and mu = 0.6 the block creeps 3 to 5 cm in a second. Stick or slip is
