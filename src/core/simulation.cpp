@@ -161,6 +161,13 @@ void Simulation::addBody(const SceneSpec& spec, size_t b, Mesh mesh) {
         selectSome(body.mesh(), body_spec.fixed[k], key + ".fixed[" + std::to_string(k) + "]"));
   }
   addLoads(body, body_spec, key);
+  if (!body_spec.velocity.isZero(0.0)) {
+    if (!body_spec.velocity.allFinite()) throw SpecError(key + ".velocity", "must be finite");
+    if (body.numConstrained() > 0) {
+      throw SpecError(key + ".velocity", "a body with fixed nodes starts at rest");
+    }
+    body.setState(body.positions(), body_spec.velocity.replicate(body.numNodes(), 1));
+  }
 }
 
 Body& Simulation::body(const std::string& name) {

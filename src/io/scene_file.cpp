@@ -365,7 +365,7 @@ class SceneParser {
     expectMap(node, key);
     checkKeys(node, key,
               {"name", "mesh", "model", "material", "effects", "fixed", "loads", "groups",
-               "wrench_radius"});
+               "wrench_radius", "velocity"});
     remember(key, node);
     core::BodySpec body;
     if (!node["name"]) fail(node, key + ".name", "missing");
@@ -391,6 +391,10 @@ class SceneParser {
     if (node["wrench_radius"]) {
       body.wrench_radius = nonNegative(node["wrench_radius"], key + ".wrench_radius");
       remember(key + ".wrench_radius", node["wrench_radius"]);
+    }
+    if (node["velocity"]) {
+      body.velocity = vector3(node["velocity"], key + ".velocity");
+      remember(key + ".velocity", node["velocity"]);
     }
     parseLoads(node["loads"], key + ".loads", body.loads);
     return body;

@@ -235,6 +235,25 @@ TEST(SceneFile, GroupsAndWrenchLoads) {
             "test.yaml:12: bodies[0].groups.one: selects no node");
 }
 
+TEST(SceneFile, ABodyStartsWithItsVelocityUnlessItIsHeld) {
+  const std::string free = replaced(
+      replaced(kScene,
+               "    fixed: [{box: {min: [-1.0e-6, -1, -1], max: [1.0e-6, 1, 1]}}, {nodes: [13]}]\n",
+               ""),
+      "    model: fem\n", "    model: fem\n    velocity: [5, 0, -1]\n");
+  dc::Simulation sim = dio::buildSimulation(dio::parseScene(free, "test.yaml", "."), nullptr);
+  const dc::Body& body = sim.bodies()[0];
+  for (int i = 0; i < body.numNodes(); ++i) {
+    ASSERT_EQ(body.velocities().segment<3>(3 * i), Eigen::Vector3d(5, 0, -1)) << i;
+  }
+  EXPECT_EQ(
+      errorOf(replaced(kScene, "    model: fem\n", "    model: fem\n    velocity: [5, 0, -1]\n"),
+              true),
+      "test.yaml:10: bodies[0].velocity: a body with fixed nodes starts at rest");
+  EXPECT_EQ(errorOf(replaced(free, "velocity: [5, 0, -1]", "velocity: [5, .nan, -1]")),
+            "test.yaml:10: bodies[0].velocity[1]: must be finite");
+}
+
 TEST(SceneFile, BodiesChooseTheirModelAndChangeTheScenesEffects) {
   const std::string yaml = replaced(kScene, "    model: fem\n", R"(    model: rigid
     effects: {gravity: off, damping: {mass: 2.0}, reactions: false}

@@ -67,6 +67,9 @@ struct BodySpec {
   /// A wrench given in a frame that is not one of the body's groups acts on the body's nodes
   /// within this distance of the frame's origin, m.
   double wrench_radius = 0.05;
+  /// The velocity every node starts with, m/s (key `velocity`): a body thrown or dropped at
+  /// speed. A body with fixed nodes starts at rest.
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
 };
 
 /// Where a scene file gives the entries that can only be checked once the spec is built (a mesh
