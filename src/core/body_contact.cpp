@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "deformable_sim/core/edge_edge.h"
 #include "deformable_sim/core/node_triangle.h"
 
 namespace deformable_sim::core {
@@ -31,21 +32,31 @@ SurfacePoint nodePoint(int i) {
   return point;
 }
 
+/// The point a fraction s along an edge.
+SurfacePoint edgePoint(const SurfaceEdge& edge, double s) {
+  SurfacePoint point;
+  point.nodes = {edge.nodes[0], edge.nodes[1], edge.nodes[1]};
+  point.weights = {1.0 - s, s, 0.0};
+  point.count = 2;
+  return point;
+}
+
 }  // namespace
 
 BodyContact::BodyContact(const std::vector<Body>& bodies, const ContactSettings& settings,
                          const std::vector<bool>& with_bodies, const std::vector<bool>& with_self)
     : settings_(settings), with_bodies_(with_bodies), with_self_(with_self) {
-  size_t surface_nodes = 0;
+  size_t surface_points = 0;
   for (size_t b = 0; b < bodies.size(); ++b) {
     surfaces_.emplace_back();
     participants_.emplace_back();
     if (!with_bodies_[b] && !with_self_[b]) continue;
     surfaces_.back().emplace(bodies[b].mesh(), bodies[b].positions(), with_self_[b]);
     participants_.back().emplace(bodies[b]);
-    surface_nodes += surfaces_.back()->nodes().size();
+    surface_points +=
+        surfaces_.back()->nodes().size() + kEdgeHits * surfaces_.back()->edges().size();
   }
-  contacts_.reserve(surface_nodes);
+  contacts_.reserve(surface_points);
   loads_.resize(bodies.size() * bodies.size());
 }
 
@@ -100,7 +111,72 @@ void BodyContact::findContact(int a, int i) {
   if (best_depth == std::numeric_limits<double>::infinity()) return;
   best.node_body = a;
   best.node = nodePoint(i);
-  contacts_.push_back(best);
+  add(best);
+}
+
+void BodyContact::add(Contact c) {
+  c.node_moves = participants_[c.node_body]->movable(c.node) >= kMovable;
+  c.triangle_moves = participants_[c.triangle_body]->movable(c.triangle) >= kMovable;
+  contacts_.push_back(c);
+}
+
+Eigen::Vector3d BodyContact::outwardAt(int b, const SurfaceEdge& edge) const {
+  Eigen::Vector3d outward = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 2; ++k) {
+    const Triangle& t = surfaces_[b]->triangles()[edge.triangles[k]];
+    const ContactParticipant& body = *participants_[b];
+    const Eigen::Vector3d corner = body.position(nodePoint(t[0]));
+    const Eigen::Vector3d normal =
+        (body.position(nodePoint(t[1])) - corner).cross(body.position(nodePoint(t[2])) - corner);
+    if (normal.norm() > 0.0) outward += normal.normalized();
+  }
+  return outward;
+}
+
+void BodyContact::findEdgeContacts(int a, int e) {
+  const BodySurface& mine = *surfaces_[a];
+  const SurfaceEdge& edge = mine.edges()[e];
+  SweptEdge swept;
+  for (int k = 0; k < 2; ++k) {
+    swept.start[k] = mine.start().segment<3>(3 * edge.nodes[k]);
+    swept.end[k] = participants_[a]->position(nodePoint(edge.nodes[k]));
+  }
+  const Eigen::Vector3d outward = outwardAt(a, edge);
+  int hits = 0;
+  for (int b = a; b < static_cast<int>(surfaces_.size()); ++b) {
+    if (!surfaces_[b] || !touches(a, b)) continue;
+    const BodySurface& other = *surfaces_[b];
+    const double skin = tolerance(a, b);
+    Box3 box(swept.start[0].cwiseMin(swept.end[0]).cwiseMin(swept.start[1]).cwiseMin(swept.end[1]),
+             swept.start[0].cwiseMax(swept.end[0]).cwiseMax(swept.start[1]).cwiseMax(swept.end[1]));
+    box = Box3(box.min().array() - skin, box.max().array() + skin);
+    other.edgeTree().query(box, [&](int f) {
+      const SurfaceEdge& across = other.edges()[f];
+      if (hits == kEdgeHits) return;
+      if (a == b && (f <= e || mine.adjacent(edge.nodes[0], across.nodes[0]) ||
+                     mine.adjacent(edge.nodes[0], across.nodes[1]) ||
+                     mine.adjacent(edge.nodes[1], across.nodes[0]) ||
+                     mine.adjacent(edge.nodes[1], across.nodes[1]))) {
+        return;  // each pair once; and its own elements' stiffness keeps them apart
+      }
+      SweptEdge them;
+      for (int k = 0; k < 2; ++k) {
+        them.start[k] = other.start().segment<3>(3 * across.nodes[k]);
+        them.end[k] = participants_[b]->position(nodePoint(across.nodes[k]));
+      }
+      EdgeEdgeHit hit;
+      const double shallow = kShallowFraction * std::min(mine.shortestEdge(), other.shortestEdge());
+      if (!edgesMeet(swept, them, outward, outwardAt(b, across), skin, shallow, &hit)) return;
+      Contact c;
+      c.node_body = a;
+      c.triangle_body = b;
+      c.node = edgePoint(edge, hit.s);
+      c.triangle = edgePoint(across, hit.t);
+      c.normal = hit.normal;
+      add(c);
+      ++hits;
+    });
+  }
 }
 
 double BodyContact::gap(const Contact& c) const {
@@ -109,8 +185,8 @@ double BodyContact::gap(const Contact& c) const {
 }
 
 void BodyContact::shift(Contact& c, const Eigen::Vector3d& amount) {
-  participants_[c.node_body]->nudge(c.node, amount);
-  participants_[c.triangle_body]->nudge(c.triangle, -amount);
+  if (c.node_moves) participants_[c.node_body]->nudge(c.node, amount);
+  if (c.triangle_moves) participants_[c.triangle_body]->nudge(c.triangle, -amount);
 }
 
 void BodyContact::separate(std::vector<StepReport>& reports) {
@@ -120,8 +196,10 @@ void BodyContact::separate(std::vector<StepReport>& reports) {
       const double depth = -gap(c);
       if (!(depth > 0.0)) continue;
       if (depth > kTarget * tolerance(c.node_body, c.triangle_body)) settled = false;
-      const double w = participants_[c.node_body]->nudgeCompliance(c.node, c.normal) +
-                       participants_[c.triangle_body]->nudgeCompliance(c.triangle, c.normal);
+      const double w =
+          (c.node_moves ? participants_[c.node_body]->nudgeCompliance(c.node, c.normal) : 0.0) +
+          (c.triangle_moves ? participants_[c.triangle_body]->nudgeCompliance(c.triangle, c.normal)
+                            : 0.0);
       if (!(w > 0.0)) continue;  // both held: nothing can move
       c.pushed += depth / w;
       shift(c, depth / w * c.normal);
@@ -146,10 +224,14 @@ void BodyContact::apply(Contact& c, const Eigen::Vector3d& impulse, double dt) {
   // the step stays an implicit Euler step, x = x0 + dt v.
   ContactParticipant& node = *participants_[c.node_body];
   ContactParticipant& triangle = *participants_[c.triangle_body];
-  node.push(c.node, impulse, c.local);
-  node.displace(c.node, dt * impulse, c.local);
-  triangle.push(c.triangle, -impulse, c.local);
-  triangle.displace(c.triangle, -dt * impulse, c.local);
+  if (c.node_moves) {
+    node.push(c.node, impulse, c.local);
+    node.displace(c.node, dt * impulse, c.local);
+  }
+  if (c.triangle_moves) {
+    triangle.push(c.triangle, -impulse, c.local);
+    triangle.displace(c.triangle, -dt * impulse, c.local);
+  }
 }
 
 double BodyContact::compliance(const Contact& c, const Eigen::Vector3d& direction) const {
@@ -199,11 +281,13 @@ void BodyContact::settleVelocities(double dt) {
     // out: the passes then take smaller steps, which only slows them.
     const ContactParticipant& node = *participants_[c.node_body];
     const ContactParticipant& triangle = *participants_[c.triangle_body];
-    // Against a surface that cannot move (held all over: a plate driven as a whole) the free
-    // side answers node by node: its whole-body answer, pinned between such surfaces, makes
-    // the passes converge too slowly to keep it out of them.
-    c.local = node.compliance(c.node).isZero(0.0) || triangle.compliance(c.triangle).isZero(0.0);
-    c.compliance = node.compliance(c.node, c.local) + triangle.compliance(c.triangle, c.local);
+    // Against a surface that cannot move there (held all over: a plate driven as a whole; or
+    // held about the point) the free side answers node by node: its whole-body answer, pinned
+    // between such surfaces, makes the passes converge too slowly to keep it out of them.
+    c.local = !c.node_moves || !c.triangle_moves;
+    c.compliance = Eigen::Matrix3d::Zero();
+    if (c.node_moves) c.compliance += node.compliance(c.node, c.local);
+    if (c.triangle_moves) c.compliance += triangle.compliance(c.triangle, c.local);
   }
   for (int pass = 0; pass < kVelocityPasses; ++pass) {
     for (Contact& c : contacts_) {
@@ -252,6 +336,7 @@ void BodyContact::findContacts(std::vector<Body>& bodies, bool new_step) {
   for (int a = 0; a < n; ++a) {
     if (!surfaces_[a]) continue;
     for (int i : surfaces_[a]->nodes()) findContact(a, i);
+    for (int e = 0; e < static_cast<int>(surfaces_[a]->edges().size()); ++e) findEdgeContacts(a, e);
   }
 }
 

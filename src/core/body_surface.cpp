@@ -2,14 +2,17 @@
 
 #include <algorithm>
 #include <limits>
+#include <map>
+#include <utility>
 
 namespace deformable_sim::core {
 
 namespace {
 
-Box3 triangleBox(const Eigen::VectorXd& x, const Triangle& t) {
+template <class Corners>
+Box3 boxOf(const Eigen::VectorXd& x, const Corners& corners) {
   Box3 box;
-  for (int k = 0; k < 3; ++k) box.extend(Eigen::Vector3d(x.segment<3>(3 * t[k])));
+  for (int i : corners) box.extend(Eigen::Vector3d(x.segment<3>(3 * i)));
   return box;
 }
 
@@ -37,8 +40,11 @@ BodySurface::BodySurface(const Mesh& mesh, const Eigen::VectorXd& positions, boo
   }
   std::sort(nodes_.begin(), nodes_.end());
   nodes_.erase(std::unique(nodes_.begin(), nodes_.end()), nodes_.end());
-  for (size_t k = 0; k < triangles_.size(); ++k) boxes_[k] = triangleBox(positions, triangles_[k]);
+  for (size_t k = 0; k < triangles_.size(); ++k) boxes_[k] = boxOf(positions, triangles_[k]);
   tree_.build(boxes_);
+  findEdges(mesh.positions);
+  for (const SurfaceEdge& edge : edges_) edge_boxes_.push_back(boxOf(positions, edge.nodes));
+  edge_tree_.build(edge_boxes_);
   if (!with_neighbours) return;
   std::vector<std::vector<int>> lists(mesh.numNodes());
   forEachElement(mesh, [&](const int* nodes, int count) {
@@ -56,13 +62,44 @@ BodySurface::BodySurface(const Mesh& mesh, const Eigen::VectorXd& positions, boo
   }
 }
 
+void BodySurface::findEdges(const std::vector<Eigen::Vector3d>& rest) {
+  // (lower node, higher node) -> the triangles that have that edge
+  std::map<std::pair<int, int>, std::vector<int>> sharing;
+  for (size_t t = 0; t < triangles_.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = triangles_[t][k], b = triangles_[t][(k + 1) % 3];
+      sharing[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(t));
+    }
+  }
+  const auto normal = [&](int t) {
+    const Triangle& c = triangles_[t];
+    return Eigen::Vector3d((rest[c[1]] - rest[c[0]]).cross(rest[c[2]] - rest[c[0]]).normalized());
+  };
+  for (const auto& [nodes, triangles] : sharing) {
+    if (triangles.size() != 2) continue;  // not a simple ridge: left to nodes and triangles
+    const Eigen::Vector3d n0 = normal(triangles[0]), n1 = normal(triangles[1]);
+    if (!(n0.dot(n1) < kFeatureCosine)) continue;  // flat (or degenerate)
+    // Convex when the second triangle's far corner lies behind the first one's plane.
+    const Triangle& second = triangles_[triangles[1]];
+    int apex = second[0];
+    for (int k : second) apex = (k != nodes.first && k != nodes.second) ? k : apex;
+    if (!(n0.dot(rest[apex] - rest[nodes.first]) < 0.0)) continue;
+    edges_.push_back({{nodes.first, nodes.second}, {triangles[0], triangles[1]}});
+  }
+}
+
 void BodySurface::sweep(const Eigen::VectorXd& positions, double margin) {
   const Eigen::Vector3d widen = Eigen::Vector3d::Constant(margin);
   for (size_t k = 0; k < triangles_.size(); ++k) {
-    Box3 box = triangleBox(start_, triangles_[k]).extend(triangleBox(positions, triangles_[k]));
+    const Box3 box = boxOf(start_, triangles_[k]).extend(boxOf(positions, triangles_[k]));
     boxes_[k] = Box3(box.min() - widen, box.max() + widen);
   }
   tree_.refit(boxes_);
+  for (size_t k = 0; k < edges_.size(); ++k) {
+    const Box3 box = boxOf(start_, edges_[k].nodes).extend(boxOf(positions, edges_[k].nodes));
+    edge_boxes_[k] = Box3(box.min() - widen, box.max() + widen);
+  }
+  edge_tree_.refit(edge_boxes_);
 }
 
 bool BodySurface::adjacent(int a, int b) const {

@@ -99,12 +99,13 @@ double ContactParticipant::inverseMass(const SurfacePoint& point,
     }
     return normal.dot(w * normal);
   }
+  // A quadratic form in `normal` (compliance() takes it on sums of axes, which are not unit).
   const Eigen::Vector3d a = arm(point);
   if (body_->reduced()->model() == BodyModel::kRigid) {
     const Eigen::Vector3d lever = (gradient_ * a).cross(normal);
-    return inverse_mass_ + lever.dot(inverse_moment_ * lever);
+    return inverse_mass_ * normal.squaredNorm() + lever.dot(inverse_moment_ * lever);
   }
-  return inverse_mass_ + a.dot(inverse_moment_ * a);
+  return (inverse_mass_ + a.dot(inverse_moment_ * a)) * normal.squaredNorm();
 }
 
 Eigen::Matrix3d ContactParticipant::compliance(const SurfacePoint& point, bool local) const {
@@ -184,6 +185,15 @@ double ContactParticipant::nudgeCompliance(const SurfacePoint& point,
       w += point.weights[k] * point.weights[k] / body_->nodalMasses()[i];
   }
   return w;
+}
+
+double ContactParticipant::movable(const SurfacePoint& point) const {
+  if (body_->reduced()) return 1.0;
+  double free = 0.0;
+  for (int k = 0; k < point.count; ++k) {
+    if (!body_->isConstrained(point.nodes[k])) free += point.weights[k];
+  }
+  return free;
 }
 
 void ContactParticipant::addAnswer(const SurfacePoint& point, const Eigen::Vector3d& amount,

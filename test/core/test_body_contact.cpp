@@ -2,12 +2,15 @@
 // body's surface triangles), the swept node-triangle test, and scenes through the core.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <random>
 
 #include "contact_test_helpers.h"
 #include "deformable_sim/core/aabb_tree.h"
 #include "deformable_sim/core/body_surface.h"
 #include "deformable_sim/core/box_mesh.h"
+#include "deformable_sim/core/contact_participant.h"
+#include "deformable_sim/core/edge_edge.h"
 #include "deformable_sim/core/node_triangle.h"
 #include "deformable_sim/core/simulation.h"
 #include "simulation_test_helpers.h"
@@ -109,6 +112,65 @@ TEST(NodeTriangle, ANodeThatCameThroughIsFoundDeepANodeInsideFromTheStartOnlyWhe
   for (Eigen::Vector3d& corner : rising.end) corner.z() = 0.5;
   EXPECT_TRUE(dc::nodeHitsTriangle({{0.2, 0.2, 0.1}, {0.2, 0.2, 0.1}}, rising, 1e-3, 0.01, &hit));
   EXPECT_NEAR(hit.depth, 0.4, 1e-15);
+}
+
+namespace {
+
+/// An edge that moves straight from `from` to `to` (both ends alike).
+dc::SweptEdge edgeMoving(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
+                         const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+  return {{p + from, q + from}, {p + to, q + to}};
+}
+
+}  // namespace
+
+TEST(EdgeEdge, CrossedEdgesMeetAlongTheirCommonNormalOutOfTheLowerBody) {
+  // b: the top edge of a bar along y (its top face and its +x side meet there), still.
+  const dc::SweptEdge b = edgeMoving({0, -1, 0}, {0, 1, 0}, {0, 0, 0}, {0, 0, 0});
+  const Eigen::Vector3d out_b(1, 0, 1), out_a(0, -1, -1);  // a: a bottom edge along x
+  dc::EdgeEdgeHit hit;
+  // a comes down through b within the step, ending 1 cm below it.
+  const auto a = [](double z0, double z1, double x0 = -1, double x1 = 1) {
+    return edgeMoving({x0, 0.2, 0}, {x1, 0.2, 0}, {0, 0, z0}, {0, 0, z1});
+  };
+  ASSERT_TRUE(dc::edgesMeet(a(0.01, -0.01), b, out_a, out_b, 0.005, 0.002, &hit));
+  EXPECT_NEAR(hit.depth, 0.01, 1e-15);
+  EXPECT_TRUE(hit.normal.isApprox(Eigen::Vector3d::UnitZ()));
+  EXPECT_NEAR(hit.s, 0.5, 1e-15);  // where they cross: x = 0 on a, y = 0.2 on b
+  EXPECT_NEAR(hit.t, 0.6, 1e-15);
+  // Within the skin above it: touching; beyond the skin: not.
+  ASSERT_TRUE(dc::edgesMeet(a(0.01, 0.002), b, out_a, out_b, 0.005, 0.002, &hit));
+  EXPECT_NEAR(hit.depth, -0.002, 1e-15);
+  EXPECT_FALSE(dc::edgesMeet(a(0.01, 0.006), b, out_a, out_b, 0.005, 0.002, &hit));
+  // Deep below from the start (the far sides of two bodies): not.
+  EXPECT_FALSE(dc::edgesMeet(a(-0.05, -0.05), b, out_a, out_b, 0.005, 0.002, &hit));
+  // Only a little below from the start (resting, sunk in a little): found.
+  EXPECT_TRUE(dc::edgesMeet(a(-0.001, -0.001), b, out_a, out_b, 0.005, 0.002, &hit));
+  // Nearest points beyond an end of a (an end is a node: nodes and triangles take it): not.
+  EXPECT_FALSE(dc::edgesMeet(a(0.01, -0.01, 0.1, 1), b, out_a, out_b, 0.005, 0.002, &hit));
+  // Parallel: not.
+  const dc::SweptEdge along_b = edgeMoving({0.001, -1, 0}, {0.001, 1, 0}, {0, 0, 0.01}, {0, 0, 0});
+  EXPECT_FALSE(dc::edgesMeet(along_b, b, out_a, out_b, 0.005, 0.002, &hit));
+  // Side by side in one plane (two rims of a folded strip): their common normal points out of
+  // neither body.
+  const dc::SweptEdge rim = edgeMoving({-1, 0, -0.1}, {1, 0, 0.1}, {0, 0, 0}, {0, 0, 0});
+  const dc::SweptEdge other_rim = edgeMoving({-1, 0, 0}, {1, 0, 0}, {0, 0, 0}, {0, 0, 0});
+  EXPECT_FALSE(dc::edgesMeet(rim, other_rim, Eigen::Vector3d(0, -1, -1), Eigen::Vector3d(0, -1, 1),
+                             0.005, 0.002, &hit));
+}
+
+TEST(BodySurface, FeatureEdgesAreTheConvexRidgesOnly) {
+  // A box of 3 x 3 x 1 cells: its 12 edges, in 3 + 3 + 1 pieces each four times; the lines of
+  // its faces' grid and the diagonals of their quadrilaterals are flat.
+  const dc::Mesh box = dc::makeBoxMesh({0, 0, 0}, {0.3, 0.3, 0.1}, {3, 3, 1});
+  Eigen::VectorXd x(3 * box.numNodes());
+  for (int i = 0; i < box.numNodes(); ++i) x.segment<3>(3 * i) = box.positions[i];
+  const dc::BodySurface surface(box, x, false);
+  EXPECT_EQ(surface.edges().size(), 4u * (3 + 3 + 1));
+  for (const dc::SurfaceEdge& edge : surface.edges()) {
+    const Eigen::Vector3d d = box.positions[edge.nodes[1]] - box.positions[edge.nodes[0]];
+    EXPECT_EQ((d.array() != 0.0).count(), 1);  // along an axis
+  }
 }
 
 namespace {
@@ -262,4 +324,77 @@ TEST(BodyContact, RunsOnlyWhenTheSceneAndAtLeastTwoBodiesOrOneSelfAskForIt) {
   self.bodies[0].effects = spec.effects;
   self.bodies[0].effects->contact_self = false;
   EXPECT_EQ(steppedSteps(self), std::make_pair(false, 0L));
+}
+
+TEST(ContactParticipant, ComplianceIsOneSymmetricPositiveMatrixForEveryModel) {
+  // Pushing a point along n moves it along n by n^T W n per unit impulse, for every direction:
+  // W must be the matrix of that quadratic form, and positive (off the axes as well as on them).
+  std::mt19937 random(3);
+  std::normal_distribution<double> normal;
+  for (dc::BodyModel model :
+       {dc::BodyModel::kFiniteElement, dc::BodyModel::kPseudoRigid, dc::BodyModel::kRigid}) {
+    dc::SceneSpec spec = bodyContactScene();
+    spec.bodies.push_back(cube("cube", {0, 0, 0}, 0.1, model));
+    dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+    std::vector<dc::StepReport> reports;
+    sim.step(reports);  // a finite-element body answers through its last step's matrix
+    dc::Body& body = sim.bodies()[0];
+    dc::ContactParticipant participant(body);
+    participant.begin(body);
+    dc::SurfacePoint point;  // on a vertical edge at a corner, off its nodes
+    point.nodes = {17, 26, 26};
+    point.weights = {0.3, 0.7, 0.0};
+    point.count = 2;
+    const Eigen::Matrix3d w = participant.compliance(point);
+    EXPECT_TRUE(w.isApprox(w.transpose(), 1e-12)) << dc::modelName(model);
+    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(w).eigenvalues().minCoeff(), 0.0)
+        << dc::modelName(model);
+    for (int k = 0; k < 10; ++k) {
+      const Eigen::Vector3d n =
+          Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized();
+      EXPECT_NEAR(n.dot(w * n), participant.inverseMass(point, n), 1e-9 * w.norm())
+          << dc::modelName(model);
+    }
+  }
+}
+
+TEST(BodyContact, ABarDroppedAcrossAnotherRestsOnItWhereOnlyTheirEdgesMeet) {
+  // Two bars of one cell across, laid crosswise: no node of either lies over the other's face
+  // (3 cells along each, nodes at +-1/6 and +-1/2 of the length), so only their edges can meet.
+  dc::SceneSpec spec = bodyContactScene();
+  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
+  spec.effects.damping = dc::RayleighDamping{2.0, 0.005};
+  dc::BodySpec lower, upper;
+  lower.name = "lower";
+  lower.box_mesh = dc::BoxMeshSpec{{-0.3, -0.025, -0.05}, {0.3, 0.025, 0.0}, {3, 1, 1}};
+  lower.material = {1.0e6, 0.3, 100.0};
+  lower.fixed.push_back(
+      dc::NodeSelection{dc::NodeSelection::Kind::kBox, {}, {{-1, -1, -1}, {-0.3 + 1e-9, 1, 1}}});
+  lower.fixed.push_back(
+      dc::NodeSelection{dc::NodeSelection::Kind::kBox, {}, {{0.3 - 1e-9, -1, -1}, {1, 1, 1}}});
+  upper = lower;
+  upper.name = "upper";
+  upper.fixed.clear();
+  upper.box_mesh = dc::BoxMeshSpec{{-0.025, -0.3, 0.005}, {0.025, 0.3, 0.055}, {1, 3, 1}};
+  spec.bodies = {lower, upper};
+  dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+  const dc::Body& bar = sim.bodies()[1];
+  for (const dc::Body& body : sim.bodies()) {
+    for (int i = 0; i < body.numNodes(); ++i) {  // no node over the crossing
+      const Eigen::Vector3d p = body.restPositions().segment<3>(3 * i);
+      ASSERT_GT(std::max(std::abs(p.x()), std::abs(p.y())), 0.05) << body.name() << " " << i;
+    }
+  }
+  const double tolerance = sim.bodyContact()->tolerance(0, 1);
+  std::vector<dc::StepReport> reports;
+  int edge_steps = 0;
+  for (int s = 0; s < 150; ++s) {
+    sim.step(reports);
+    edge_steps += reports[1].body_contacts > 0;
+  }
+  const auto z = bar.positions().reshaped(3, bar.numNodes()).row(2);
+  EXPECT_GT(edge_steps, 100);
+  EXPECT_GT(z.minCoeff(), -tolerance);  // lying on the lower bar's top, not through it
+  EXPECT_LT(z.minCoeff(), 0.005);       // it did come down onto it
+  EXPECT_LT(bar.kineticEnergy(), 1e-6);
 }

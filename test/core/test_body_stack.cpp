@@ -147,3 +147,57 @@ TEST(BodyStack, BodiesSteppedSideBySideOnTwoThreadsGiveTheSameBits) {
   }
   EXPECT_GT(reports_two[1].body_contacts, 0);
 }
+
+namespace {
+
+/// Blocks side by side in a row on the floor, each face on its neighbour's (the contact
+/// benchmark's scene, perf/blocks_on_floor.h, smaller).
+dc::Simulation rowOfBlocks(int count, int cells, dc::SolverSettings::Method method) {
+  dc::SceneSpec spec;
+  spec.dt = 0.01;
+  spec.effects.gravity = Eigen::Vector3d(0, 0, -kGravity);
+  spec.effects.warping = true;
+  spec.effects.damping = dc::RayleighDamping{1.0, 0.002};
+  spec.contact = dc::ContactSettings{0.5, true, false};
+  spec.solver.method = method;
+  dc::PlacedShape floor;
+  floor.name = "floor";
+  floor.shape.size = {4.0, 4.0, 0.2};
+  floor.pose.translation() = Eigen::Vector3d(0, 0, -0.1);
+  spec.obstacles.push_back(floor);
+  for (int k = 0; k < count; ++k) {
+    dc::BodySpec block;
+    block.name = "block" + std::to_string(k);
+    const Eigen::Vector3d min(0.08 * k, 0.0, 0.0);
+    block.box_mesh = dc::BoxMeshSpec{min, min + Eigen::Vector3d(0.08, 0.08, 0.04),
+                                     Eigen::Vector3i(2 * cells, 2 * cells, cells)};
+    block.material = {1.0e5, 0.3, 500.0};
+    spec.bodies.push_back(block);
+  }
+  return deformable_sim::test::boxMeshSimulation(spec);
+}
+
+}  // namespace
+
+// Faces that coincide from the start, their edges on the floor: a node of one block lies on the
+// other's bottom edge, where a point is held all but a sliver of its weight. Moving that sliver
+// alone to resolve the contact took impulses of 1e25 N s, and the blocks flew off within two
+// steps (and a few centimetres apart with finer meshes).
+TEST(BodyStack, BlocksSideBySideOnAFloorStayWhereTheyAre) {
+  for (const auto method :
+       {dc::SolverSettings::Method::kDirect, dc::SolverSettings::Method::kConjugateGradient}) {
+    for (int cells : {1, 2}) {
+      dc::Simulation sim = rowOfBlocks(3, cells, method);
+      std::vector<Eigen::Vector3d> start;
+      for (const dc::Body& body : sim.bodies()) start.push_back(centreOf(body));
+      std::vector<dc::StepReport> reports;
+      for (int s = 0; s < 100; ++s) sim.step(reports);
+      for (size_t b = 0; b < start.size(); ++b) {
+        const dc::Body& body = sim.bodies()[b];
+        // Each sags under its weight (a fraction of a millimetre) and moves no more.
+        EXPECT_LT((centreOf(body) - start[b]).norm(), 1e-3) << "block " << b << " cells " << cells;
+        EXPECT_LT(body.kineticEnergy(), 1e-8) << "block " << b << " cells " << cells;
+      }
+    }
+  }
+}

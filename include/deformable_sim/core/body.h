@@ -85,8 +85,8 @@ struct StepReport {
   double largest_rotation_change = 0.0;
   int inverted_elements = 0;  ///< elements with det F <= 0 at the start of the step
   int contacts = 0;           ///< nodes put back on an obstacle's surface after the step
-  /// Contact between bodies: node-triangle pairs with another body that this body is part of
-  /// (its node or its triangle), and with itself; the largest depth such a pair is left at, m.
+  /// Contact between bodies: node-triangle and edge-edge pairs with another body that this body is
+  /// part of (either side), and with itself; the largest depth such a pair is left at, m.
   int body_contacts = 0;
   int self_contacts = 0;
   double body_penetration = 0.0;

@@ -3,13 +3,15 @@
 // still held), each surface node that ended the step behind a surface triangle of another body
 // (or of its own body, away from its own elements), or in front of it by less than the
 // tolerance, is found through the triangles' bounding-volume trees (core/body_surface.h) and the
-// swept test of core/node_triangle.h. Equal and opposite impulses on the node and the triangle's
-// point (barycentric among its corners), in Gauss-Seidel passes, then let each pair approach no
-// faster than closes the gap it had at the step's start, and friction stop its slip within
-// Coulomb's cone; each impulse moves the end positions with the velocities (x = x0 + dt v). A
-// finite-element body answers an impulse as its implicit step would have, through its own
-// matrix (core/implicit_response.h), so a body resting on a soft body is carried, and what presses
-// on a body goes through it to what holds it. Against a surface held all over the free side
+// swept test of core/node_triangle.h; so is each surface edge that ended the step across an edge
+// of another body (or of its own, away from it), or nearer than the tolerance
+// (core/edge_edge.h): edges meet where neither surface has a node. Equal and opposite impulses on
+// the node and the triangle's point (barycentric among its corners), in Gauss-Seidel passes, then
+// let each pair approach no faster than closes the gap it had at the step's start, and friction
+// stop its slip within Coulomb's cone; each impulse moves the end positions with the velocities (x
+// = x0 + dt v). A finite-element body answers an impulse as its implicit step would have, through
+// its own matrix (core/implicit_response.h), so a body resting on a soft body is carried, and what
+// presses on a body goes through it to what holds it. Against a surface held all over the free side
 // answers node by node. A last round finds the contacts again and puts back, node by node, what
 // the impulses pressed in elsewhere. Momentum is kept (doc/physics.md).
 #pragma once
@@ -53,6 +55,12 @@ class BodyContact {
   static constexpr int kVelocityPasses = 32;
   /// Rounds of finding and resolving contacts a step.
   static constexpr int kRounds = 2;
+  /// The most edges one edge meets in a step (two bars laid crosswise: each edge crosses two).
+  static constexpr int kEdgeHits = 4;
+  /// A point whose free nodes carry less of its weight than this counts as held: moving it by
+  /// its free nodes alone would take impulses and shifts of 1 / weight times what it needs (two
+  /// blocks side by side on a floor, where a node touches the other's bottom edge, exploded).
+  static constexpr double kMovable = 0.2;
 
  private:
   struct Contact {
@@ -66,6 +74,9 @@ class BodyContact {
     /// m/s per N s: how the points part per unit impulse on the pair (both bodies' answers).
     Eigen::Matrix3d compliance = Eigen::Matrix3d::Zero();
     bool local = false;  ///< answered node by node (see settleVelocities)
+    /// Whether each side takes impulses: a point that lies mostly on held nodes does not (see
+    /// kMovable); what holds them takes its share.
+    bool node_moves = true, triangle_moves = true;
   };
 
   bool touches(int a, int b) const;
@@ -79,6 +90,11 @@ class BodyContact {
   void addContactForces(double dt);
   /// The contact of surface node i of body a, if it ended the step behind some triangle.
   void findContact(int a, int i);
+  /// The contacts of surface edge e of body a with the edges of bodies after a (and of a itself,
+  /// after e) that it ended the step across or near: up to kEdgeHits.
+  void findEdgeContacts(int a, int e);
+  /// Out of body b at its surface edge e, now: the sum of its two triangles' unit normals.
+  Eigen::Vector3d outwardAt(int b, const SurfaceEdge& edge) const;
   /// Position passes until every contact is within kTarget of its tolerance; returns the
   /// largest depth left, per body into `left`.
   void separate(std::vector<StepReport>& reports);
@@ -92,13 +108,16 @@ class BodyContact {
   void pushApart(Contact& c, double dt);
   void holdByFriction(Contact& c, double dt);
   double gap(const Contact& c) const;
+  /// Sets which sides of a contact just found take impulses, and adds it.
+  void add(Contact c);
   void shift(Contact& c, const Eigen::Vector3d& amount);
 
   ContactSettings settings_;
   std::vector<bool> with_bodies_, with_self_;
   std::vector<std::optional<BodySurface>> surfaces_;
   std::vector<std::optional<ContactParticipant>> participants_;
-  std::vector<Contact> contacts_;   ///< at most one per surface node: reserved once
+  /// At most one per surface node and kEdgeHits per edge: reserved once.
+  std::vector<Contact> contacts_;
   std::vector<ContactLoad> loads_;  ///< per pair of bodies (see load()), sized once
 };
 

@@ -35,7 +35,8 @@ class ContactParticipant {
 
   Eigen::Vector3d position(const SurfacePoint& point) const;
   Eigen::Vector3d velocity(const SurfacePoint& point) const;
-  /// n^T W n: how fast the point moves along the unit normal n per unit impulse along it.
+  /// n^T W n: how fast the point moves along the unit normal n per unit impulse along it (a
+  /// quadratic form in n, whatever its length).
   double inverseMass(const SurfacePoint& point, const Eigen::Vector3d& normal) const;
   /// W itself: the point's velocity change per unit impulse there; `local`: a finite-element
   /// body's nodes answering alone, by their lumped masses.
@@ -52,6 +53,9 @@ class ContactParticipant {
   /// correction stays where it is needed; other bodies as displace().
   void nudge(const SurfacePoint& point, const Eigen::Vector3d& shift);
   double nudgeCompliance(const SurfacePoint& point, const Eigen::Vector3d& normal) const;
+  /// The part of the point's weight on nodes free to move: 1 for a rigid or pseudo-rigid body,
+  /// 0 where a finite-element body is held all over.
+  double movable(const SurfacePoint& point) const;
 
  private:
   /// The rest arm X - Xc of the point (rigid and pseudo-rigid bodies).
