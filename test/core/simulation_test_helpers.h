@@ -22,6 +22,14 @@ inline core::Simulation boxMeshSimulation(const core::SceneSpec& spec) {
   return core::Simulation(spec, std::move(meshes));
 }
 
+/// Selects the nodes whose rest positions lie in the box [min, max].
+inline core::NodeSelection boxSelection(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
+  core::NodeSelection selection;
+  selection.kind = core::NodeSelection::Kind::kBox;
+  selection.box = {min, max};
+  return selection;
+}
+
 /// The built-in default scene, runnable.
 inline core::Simulation defaultSimulation() { return boxMeshSimulation(core::defaultScene()); }
 

@@ -368,10 +368,8 @@ TEST(BodyContact, ABarDroppedAcrossAnotherRestsOnItWhereOnlyTheirEdgesMeet) {
   lower.name = "lower";
   lower.box_mesh = dc::BoxMeshSpec{{-0.3, -0.025, -0.05}, {0.3, 0.025, 0.0}, {3, 1, 1}};
   lower.material = {1.0e6, 0.3, 100.0};
-  lower.fixed.push_back(
-      dc::NodeSelection{dc::NodeSelection::Kind::kBox, {}, {{-1, -1, -1}, {-0.3 + 1e-9, 1, 1}}});
-  lower.fixed.push_back(
-      dc::NodeSelection{dc::NodeSelection::Kind::kBox, {}, {{0.3 - 1e-9, -1, -1}, {1, 1, 1}}});
+  lower.fixed.push_back(deformable_sim::test::boxSelection({-1, -1, -1}, {-0.3 + 1e-9, 1, 1}));
+  lower.fixed.push_back(deformable_sim::test::boxSelection({0.3 - 1e-9, -1, -1}, {1, 1, 1}));
   upper = lower;
   upper.name = "upper";
   upper.fixed.clear();

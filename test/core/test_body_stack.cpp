@@ -40,21 +40,28 @@ Eigen::Vector3d centreOf(const dc::Body& body) {
   return body.positions().reshaped(3, body.numNodes()).rowwise().mean();
 }
 
-dc::Simulation stackOfCubes(const dc::LinearElasticMaterial& material, int cells,
-                            int count = kCubes, int threads = 1) {
+/// Gravity, warping, contact between bodies (mu = 0.5) and a floor whose top is z = 0.
+dc::SceneSpec floorScene(double stiffness_damping, dc::SolverSettings::Method method) {
   dc::SceneSpec spec;
   spec.dt = 0.01;
   spec.effects.gravity = Eigen::Vector3d(0, 0, -kGravity);
   spec.effects.warping = true;
-  spec.effects.damping = dc::RayleighDamping{1.0, 0.005};
+  spec.effects.damping = dc::RayleighDamping{1.0, stiffness_damping};
   spec.contact = dc::ContactSettings{0.5, true, false};
-  spec.solver.method = dc::SolverSettings::Method::kDirect;  // the answers' solves, quickly
-  spec.solver.threads = threads;
+  spec.solver.method = method;
   dc::PlacedShape floor;
   floor.name = "floor";
-  floor.shape.size = {1.0, 1.0, 0.1};
-  floor.pose.translation() = Eigen::Vector3d(0, 0, -0.05);  // top at z = 0
+  floor.shape.size = {4.0, 4.0, 0.2};
+  floor.pose.translation() = Eigen::Vector3d(0, 0, -0.1);
   spec.obstacles.push_back(floor);
+  return spec;
+}
+
+dc::Simulation stackOfCubes(const dc::LinearElasticMaterial& material, int cells,
+                            int count = kCubes, int threads = 1) {
+  // The direct solver: the answers' solves, quickly.
+  dc::SceneSpec spec = floorScene(0.005, dc::SolverSettings::Method::kDirect);
+  spec.solver.threads = threads;
   for (int k = 0; k < count; ++k) {
     dc::BodySpec cube;
     cube.name = "cube" + std::to_string(k);
@@ -153,18 +160,7 @@ namespace {
 /// Blocks side by side in a row on the floor, each face on its neighbour's (the contact
 /// benchmark's scene, perf/blocks_on_floor.h, smaller).
 dc::Simulation rowOfBlocks(int count, int cells, dc::SolverSettings::Method method) {
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -kGravity);
-  spec.effects.warping = true;
-  spec.effects.damping = dc::RayleighDamping{1.0, 0.002};
-  spec.contact = dc::ContactSettings{0.5, true, false};
-  spec.solver.method = method;
-  dc::PlacedShape floor;
-  floor.name = "floor";
-  floor.shape.size = {4.0, 4.0, 0.2};
-  floor.pose.translation() = Eigen::Vector3d(0, 0, -0.1);
-  spec.obstacles.push_back(floor);
+  dc::SceneSpec spec = floorScene(0.002, method);
   for (int k = 0; k < count; ++k) {
     dc::BodySpec block;
     block.name = "block" + std::to_string(k);

@@ -51,10 +51,8 @@ dc::BodySpec softSlab() {
   slab.name = "slab";
   slab.box_mesh = dc::BoxMeshSpec{{-0.2, -1.3, -0.05}, {0.2, 0.1, 0.0}, {4, 14, 1}};
   slab.material = {1.0e5, 0.3, 500.0};
-  dc::NodeSelection underside;
-  underside.kind = dc::NodeSelection::Kind::kBox;
-  underside.box = dc::Box{{-1, -2, -0.05 - 1e-9}, {1, 1, -0.05 + 1e-9}};
-  slab.fixed.push_back(underside);
+  slab.fixed.push_back(
+      deformable_sim::test::boxSelection({-1, -2, -0.05 - 1e-9}, {1, 1, -0.05 + 1e-9}));
   return slab;
 }
 

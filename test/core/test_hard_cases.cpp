@@ -22,6 +22,7 @@
 
 namespace dc = deformable_sim::core;
 using deformable_sim::test::boxMeshSimulation;
+using deformable_sim::test::boxSelection;
 
 namespace {
 
@@ -46,13 +47,6 @@ dc::BodySpec boxBody(const std::string& name, const Eigen::Vector3d& min,
   body.box_mesh = dc::BoxMeshSpec{min, max, cells};
   body.material = material;
   return body;
-}
-
-dc::NodeSelection boxSelection(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
-  dc::NodeSelection selection;
-  selection.kind = dc::NodeSelection::Kind::kBox;
-  selection.box = {min, max};
-  return selection;
 }
 
 /// The nodes whose rest x lies at `x` (a beam's end face).

@@ -11,8 +11,10 @@
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/selection.h"
 #include "deformable_sim/core/simulation.h"
+#include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
+using deformable_sim::test::boxSelection;
 using deformable_sim::test::distanceToTriangle;
 using deformable_sim::test::windingNumber;
 
@@ -84,13 +86,6 @@ dc::Mesh keptCells(const dc::Mesh& box, const std::function<bool(const Eigen::Ve
   }
   mesh.incompatible_modes = true;  // one cell through: plain hexahedra would lock in bending
   return mesh;
-}
-
-dc::NodeSelection boxSelection(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
-  dc::NodeSelection selection;
-  selection.kind = dc::NodeSelection::Kind::kBox;
-  selection.box = {min, max};
-  return selection;
 }
 
 dc::SceneSpec selfContactScene(bool self) {
