@@ -7,7 +7,14 @@ BenchContext::BenchContext(const std::string& reference_dir)
 
 const ReferenceBeam& BenchContext::beam(const std::string& mesh) {
   std::unique_ptr<ReferenceBeam>& slot = beams_[mesh];
-  if (!slot) slot = std::make_unique<ReferenceBeam>(reference_dir_, mesh);
+  double turn_degrees = 0.0;
+  int cells = 0;
+  if (slot) return *slot;
+  if (ReferenceBeam::parseSurfaceId(mesh, &turn_degrees, &cells)) {
+    slot = std::make_unique<ReferenceBeam>(ReferenceBeam::fromSurface(turn_degrees, cells));
+  } else {
+    slot = std::make_unique<ReferenceBeam>(reference_dir_, mesh);
+  }
   return *slot;
 }
 

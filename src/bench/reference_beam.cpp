@@ -1,8 +1,14 @@
 #include "deformable_sim/bench/reference_beam.h"
 
+#include <Eigen/Geometry>
+#include <cmath>
 #include <fstream>
+#include <regex>
+#include <sstream>
 #include <stdexcept>
 
+#include "deformable_sim/core/selection.h"
+#include "deformable_sim/core/voxelization.h"
 #include "deformable_sim/io/mesh_reader.h"
 
 namespace deformable_sim::bench {
@@ -47,7 +53,57 @@ void readTipShares(const std::string& path, std::vector<long>& nodes,
   }
 }
 
+// The beam's six faces, turned about the x axis, as a closed surface facing outwards.
+core::TriangleMesh turnedBeamSurface(double turn_degrees) {
+  const Eigen::AngleAxisd turn(turn_degrees * M_PI / 180.0, Eigen::Vector3d::UnitX());
+  core::TriangleMesh surface;
+  for (int c = 0; c < 8; ++c) {  // corner c: bit 1 for x = L, 2 for y = +b/2, 4 for z = +h/2
+    const Eigen::Vector3d corner((c & 1) ? kLength : 0.0, ((c & 2) ? 0.5 : -0.5) * kSection,
+                                 ((c & 4) ? 0.5 : -0.5) * kSection);
+    surface.vertices.push_back(turn * corner);
+  }
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) {
+    surface.triangles.emplace_back(q[0], q[1], q[2]);
+    surface.triangles.emplace_back(q[0], q[2], q[3]);
+  }
+  return surface;
+}
+
+// The nodes whose rest x lies within 1e-9 m of `x`.
+std::vector<int> nodesAtX(const core::Mesh& mesh, double x) {
+  core::NodeSelection plane;
+  plane.kind = core::NodeSelection::Kind::kBox;
+  plane.box = {Eigen::Vector3d(x - 1e-9, -1.0, -1.0), Eigen::Vector3d(x + 1e-9, 1.0, 1.0)};
+  return core::selectNodes(mesh, plane);
+}
+
 }  // namespace
+
+bool ReferenceBeam::parseSurfaceId(const std::string& id, double* turn_degrees, int* cells) {
+  static const std::regex pattern(R"(surface([0-9.]+)_c([0-9]+))");
+  std::smatch match;
+  if (!std::regex_match(id, match, pattern)) return false;
+  *turn_degrees = std::stod(match[1]);
+  *cells = std::stoi(match[2]);
+  return true;
+}
+
+ReferenceBeam ReferenceBeam::fromSurface(double turn_degrees, int cells) {
+  const core::TriangleMesh surface = turnedBeamSurface(turn_degrees);
+  core::VoxelSettings settings;
+  settings.longest_side_cells = cells;
+  ReferenceBeam beam;
+  std::ostringstream id;
+  id << "surface" << turn_degrees << "_c" << cells;
+  beam.id_ = id.str();
+  beam.mesh_ = core::voxelize(surface, core::voxelGridFor(surface, settings), settings.levels).mesh;
+  beam.clamp_ = nodesAtX(beam.mesh_, 0.0);
+  beam.tip_ = nodesAtX(beam.mesh_, kLength);
+  beam.tip_weights_.assign(beam.tip_.size(), 1.0 / beam.tip_.size());
+  return beam;
+}
 
 core::LinearElasticMaterial referenceMaterial() { return {1.0e6, 0.3, 1000.0}; }
 

@@ -103,6 +103,10 @@ std::vector<BenchSetting> shortPlan() {
   // sweep starts at 1e-1 so that the loose end shows.
   addDynamic(CaseKind::kTrajectory,
              {"tetU_L1", {30, 60, 120, 240}, {60}, {1e-1, 1e-2, 1e-4, 1e-6}, {}, {2}}, plan);
+  // A beam made from its surface, along the grid (one cell across: hex_L1's nodes and elements)
+  // and turned against it.
+  for (const char* mesh : {"hex_L1", "surface0_c10", "surface30_c12"})
+    plan.push_back(make(CaseKind::kLinearStatic, mesh, false, direct()));
   return plan;
 }
 
@@ -115,6 +119,15 @@ std::vector<BenchSetting> fullPlan() {
              "hex_L2", "hex_L3", "hex_L4"},
             {1e-1, 1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10}, "tetU_L3", {10, 30, 100, 300, 1000}, true,
             plan);
+  // The beam given as a surface, along the grid and turned 30 degrees about its axis: A at
+  // several cell counts, B where the grid is fine enough to bend.
+  std::vector<std::string> surfaces, b_surfaces;
+  for (const char* turn : {"surface0", "surface30"}) {
+    for (int cells : {12, 18, 24, 36, 48})
+      surfaces.push_back(turn + std::string("_c") + std::to_string(cells));
+    b_surfaces.push_back(turn + std::string("_c24"));
+  }
+  addStatic(surfaces, b_surfaces, {}, "", {}, true, plan);
   const std::vector<double> tolerances = {1e-1, 1e-2, 1e-3, 1e-4, 1e-6, 1e-8};
   // C2 on tetU only: the split first-mode pair of the tetS meshes beats. On tetU_L4 a warped
   // direct step refactorises 26k tetrahedra, far too slow a step: linear FEM (factorised once)

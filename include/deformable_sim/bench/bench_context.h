@@ -21,7 +21,8 @@ class BenchContext {
   const std::string& referenceDir() const { return reference_dir_; }
   const ReferenceResults& results() const { return results_; }
 
-  /// The beam on that mesh, read on first use.
+  /// The beam on that mesh, read (or made from its surface: ReferenceBeam::fromSurface) on first
+  /// use.
   const ReferenceBeam& beam(const std::string& mesh);
 
   /// Results of expensive reference runs of our own (converged trajectories), computed once per

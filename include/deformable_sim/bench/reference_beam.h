@@ -2,6 +2,9 @@
 // x in [0, 1] m, a 0.1 m square section, E = 1 MPa, nu = 0.3, rho = 1000 kg/m^3, clamped on the
 // face x = 0 (fix_nodes.txt), loaded on the face x = 1 by the consistent nodal shares of a uniform
 // traction (tip_load_unit.csv), measured by the area-weighted mean displacement of that face.
+// Or the same beam given as a surface, its body the grid of cubes it encloses
+// (core/voxelization.h): clamped at the grid's nodes on x = 0, loaded and measured equally at its
+// nodes on x = 1.
 #pragma once
 
 #include <Eigen/Core>
@@ -29,6 +32,12 @@ class ReferenceBeam {
   /// `reference_dir`. Throws std::runtime_error naming the file that is missing or wrong.
   ReferenceBeam(const std::string& reference_dir, const std::string& mesh_id);
 
+  /// The beam's surface turned `turn_degrees` about its long axis, voxelized with `cells` cells
+  /// along it; its id is "surface<turn_degrees>_c<cells>" ("surface30_c24").
+  static ReferenceBeam fromSurface(double turn_degrees, int cells);
+  /// The (turn, cells) of a surface beam's id, or false for a shipped mesh's id.
+  static bool parseSurfaceId(const std::string& id, double* turn_degrees, int* cells);
+
   const std::string& id() const { return id_; }
   const core::Mesh& mesh() const { return mesh_; }
 
@@ -43,6 +52,8 @@ class ReferenceBeam {
   Eigen::Vector3d tipDisplacement(const core::Body& body) const;
 
  private:
+  ReferenceBeam() = default;
+
   std::string id_;
   core::Mesh mesh_;
   std::vector<int> clamp_;  ///< node indices of the face x = 0
