@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "deformable_sim/core/contact_skin.h"
 #include "deformable_sim/core/loads.h"
 #include "deformable_sim/core/parallel_for.h"
 #include "deformable_sim/core/selection.h"
@@ -273,6 +274,10 @@ void Simulation::setEmbeddedSurface(int b, EmbeddedSurface surface) {
                                 "': the embedded surface refers to nodes its mesh does not have");
   }
   embedded_surfaces_.resize(bodies_.size());
+  if (contact_states_[b]) {
+    contact_states_[b]->setSkins(contactSkins(
+        bodies_[b].mesh(), TriangleMesh{surface.restPositions(), surface.triangles()}));
+  }
   surface.update(bodies_[b].positions());
   embedded_surfaces_[b] = std::move(surface);
 }

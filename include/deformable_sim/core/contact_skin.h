@@ -1,0 +1,18 @@
+// How far each node of a body made from a surface lies outside that surface at rest. The grid's
+// cells cover the surface, so its boundary nodes stand up to a cell outside it; an obstacle lets
+// each node that far in (core/contact.h), so that the surface drawn and reported, not the grid
+// around it, is what rests on a table or in a gripper.
+#pragma once
+
+#include <vector>
+
+#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/triangle_mesh.h"
+
+namespace deformable_sim::core {
+
+/// Per node of `mesh`, its distance from `surface` (both at rest, m) where the node lies outside
+/// it (generalized winding number below 1/2), 0 inside. Allocates.
+std::vector<double> contactSkins(const Mesh& mesh, const TriangleMesh& surface);
+
+}  // namespace deformable_sim::core
