@@ -37,6 +37,10 @@
 //
 // ManyBodies/<bodies>/<threads>: 1, 5 or 20 such blocks hanging apart (clamped at one face, no
 // floor, no contact), on 1 or 2 threads: the bodies step side by side.
+//
+// MachineRead/<KiB> and MachineFma: what one core does at best (perf/machine_floor.h), the
+// floors under the step's parts in doc/performance.md. Counters: GB/s read from an array of that
+// size, read again and again (in L1, L2, L3 or memory by its size); GFlop/s of multiply-adds.
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -44,6 +48,7 @@
 #include <memory>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include "deformable_sim/bench/heap_usage.h"
 #include "deformable_sim/core/contact.h"
@@ -52,6 +57,7 @@
 #include "deformable_sim/perf/blocks_on_floor.h"
 #include "deformable_sim/perf/bullet_peer.h"
 #include "deformable_sim/perf/cantilever.h"
+#include "deformable_sim/perf/machine_floor.h"
 
 namespace {
 
@@ -286,6 +292,21 @@ void ManyBodies(benchmark::State& state) {
   for (auto _ : state) sim.step(reports);
 }
 
+void MachineRead(benchmark::State& state) {
+  const std::size_t count = static_cast<std::size_t>(state.range(0)) * 1024 / sizeof(double);
+  std::vector<double> values(count, 1.0);
+  for (auto _ : state) benchmark::DoNotOptimize(perf::sumArray(values.data(), count));
+  state.counters["GB"] = benchmark::Counter(static_cast<double>(count * sizeof(double)) / 1e9,
+                                              benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void MachineFma(benchmark::State& state) {
+  constexpr long kRounds = 1000000;
+  for (auto _ : state) benchmark::DoNotOptimize(perf::multiplyAddChains(kRounds));
+  state.counters["GFlop"] = benchmark::Counter(kRounds * perf::kFlopsPerRound / 1e9,
+                                                 benchmark::Counter::kIsIterationInvariantRate);
+}
+
 void meshSizes(benchmark::internal::Benchmark* b, bool with_preconditioners) {
   for (int mesh = 0; mesh < static_cast<int>(kCells.size()); ++mesh) {
     if (!with_preconditioners) {
@@ -355,6 +376,19 @@ BENCHMARK(MatVec)
     ->ArgNames({"mesh"})
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
+
+// L1 (48 KiB here), L2 (1 MiB), the 9k mesh's matrix (1.9 MB) and the 98k one's (19 MB) in L3,
+// and memory.
+BENCHMARK(MachineRead)
+    ->Arg(32)
+    ->Arg(512)
+    ->Arg(2048)
+    ->Arg(20 * 1024)
+    ->Arg(256 * 1024)
+    ->ArgNames({"KiB"})
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+BENCHMARK(MachineFma)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
