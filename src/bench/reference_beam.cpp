@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "deformable_sim/core/selection.h"
+#include "deformable_sim/core/triangle_mesh.h"
 #include "deformable_sim/core/voxelization.h"
 #include "deformable_sim/io/mesh_reader.h"
 
@@ -56,18 +57,10 @@ void readTipShares(const std::string& path, std::vector<long>& nodes,
 // The beam's six faces, turned about the x axis, as a closed surface facing outwards.
 core::TriangleMesh turnedBeamSurface(double turn_degrees) {
   const Eigen::AngleAxisd turn(turn_degrees * M_PI / 180.0, Eigen::Vector3d::UnitX());
-  core::TriangleMesh surface;
-  for (int c = 0; c < 8; ++c) {  // corner c: bit 1 for x = L, 2 for y = +b/2, 4 for z = +h/2
-    const Eigen::Vector3d corner((c & 1) ? kLength : 0.0, ((c & 2) ? 0.5 : -0.5) * kSection,
-                                 ((c & 4) ? 0.5 : -0.5) * kSection);
-    surface.vertices.push_back(turn * corner);
-  }
-  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& q : quads) {
-    surface.triangles.emplace_back(q[0], q[1], q[2]);
-    surface.triangles.emplace_back(q[0], q[2], q[3]);
-  }
+  core::TriangleMesh surface =
+      core::boxSurface(Eigen::Vector3d(0.0, -0.5 * kSection, -0.5 * kSection),
+                       Eigen::Vector3d(kLength, 0.5 * kSection, 0.5 * kSection));
+  for (Eigen::Vector3d& v : surface.vertices) v = turn * v;
   return surface;
 }
 

@@ -63,23 +63,12 @@ inline core::TriangleMesh torusSurface(double major, double minor, int around, i
   return mesh;
 }
 
-/// The box [min, max] as 12 triangles, every point moved by `pose`.
+/// The box [min, max] as 12 triangles (core::boxSurface), every point moved by `pose`.
 inline core::TriangleMesh boxSurface(
     const Eigen::Vector3d& min, const Eigen::Vector3d& max,
     const Eigen::Isometry3d& pose = Eigen::Isometry3d::Identity()) {
-  core::TriangleMesh mesh;
-  for (int c = 0; c < 8; ++c) {
-    const Eigen::Vector3d corner((c & 1) ? max.x() : min.x(), (c & 2) ? max.y() : min.y(),
-                                 (c & 4) ? max.z() : min.z());
-    mesh.vertices.push_back(pose * corner);
-  }
-  // Corner c has bits x = 1, y = 2, z = 4; each face counter-clockwise seen from outside.
-  addQuad(mesh, 0, 2, 3, 1);  // z = min
-  addQuad(mesh, 4, 5, 7, 6);  // z = max
-  addQuad(mesh, 0, 1, 5, 4);  // y = min
-  addQuad(mesh, 2, 6, 7, 3);  // y = max
-  addQuad(mesh, 0, 4, 6, 2);  // x = min
-  addQuad(mesh, 1, 3, 7, 5);  // x = max
+  core::TriangleMesh mesh = core::boxSurface(min, max);
+  for (Eigen::Vector3d& v : mesh.vertices) v = pose * v;
   return mesh;
 }
 

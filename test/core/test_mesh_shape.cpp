@@ -18,18 +18,7 @@ namespace {
 
 // A box of `size` centred on the origin, triangles facing out.
 dc::TriangleMesh boxMesh(const Eigen::Vector3d& size) {
-  dc::TriangleMesh mesh;
-  for (int k = 0; k < 8; ++k) {
-    mesh.vertices.push_back(
-        0.5 * size.cwiseProduct(Eigen::Vector3d(k & 4 ? 1 : -1, k & 2 ? 1 : -1, k & 1 ? 1 : -1)));
-  }
-  const int quads[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
-                           {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
-  for (const auto& q : quads) {
-    mesh.triangles.emplace_back(q[0], q[1], q[2]);
-    mesh.triangles.emplace_back(q[0], q[2], q[3]);
-  }
-  return mesh;
+  return dc::boxSurface(-0.5 * size, 0.5 * size);
 }
 
 // An icosahedron subdivided `levels` times and pushed onto the sphere of `radius`.

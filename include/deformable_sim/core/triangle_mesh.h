@@ -12,4 +12,8 @@ struct TriangleMesh {
   std::vector<Eigen::Vector3i> triangles;  ///< vertex indices, counter-clockwise seen from outside
 };
 
+/// The box [min, max] as a closed surface of 12 triangles facing outwards; vertex c is the corner
+/// with max.x when bit 1 of c is set, max.y for bit 2, max.z for bit 4.
+TriangleMesh boxSurface(const Eigen::Vector3d& min, const Eigen::Vector3d& max);
+
 }  // namespace deformable_sim::core
