@@ -4,11 +4,11 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "deformable_sim/core/contact_skin.h"
 #include "deformable_sim/core/loads.h"
 #include "deformable_sim/core/parallel_for.h"
 #include "deformable_sim/core/selection.h"
 #include "deformable_sim/core/spec_error.h"
+#include "deformable_sim/core/surface_inset.h"
 #include "deformable_sim/core/wrench.h"
 
 namespace deformable_sim::core {
@@ -275,7 +275,7 @@ void Simulation::setEmbeddedSurface(int b, EmbeddedSurface surface) {
   }
   embedded_surfaces_.resize(bodies_.size());
   if (contact_states_[b]) {
-    contact_states_[b]->setSkins(contactSkins(
+    contact_states_[b]->setInsets(surfaceInsets(
         bodies_[b].mesh(), TriangleMesh{surface.restPositions(), surface.triangles()}));
   }
   surface.update(bodies_[b].positions());

@@ -1,4 +1,4 @@
-#include "deformable_sim/core/contact_skin.h"
+#include "deformable_sim/core/surface_inset.h"
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -25,18 +25,18 @@ TriangleMesh withoutDegenerateTriangles(const TriangleMesh& surface) {
 
 }  // namespace
 
-std::vector<double> contactSkins(const Mesh& mesh, const TriangleMesh& surface) {
-  std::vector<double> skins(mesh.numNodes(), 0.0);
+std::vector<double> surfaceInsets(const Mesh& mesh, const TriangleMesh& surface) {
+  std::vector<double> insets(mesh.numNodes(), 0.0);
   const TriangleMesh triangles = withoutDegenerateTriangles(surface);
-  if (triangles.triangles.empty()) return skins;
+  if (triangles.triangles.empty()) return insets;
   const WindingNumber winding(triangles);
   const TriangleAabbTree tree(triangles);
   for (int i = 0; i < mesh.numNodes(); ++i) {
     const Eigen::Vector3d& node = mesh.positions[i];
     if (winding.at(node) >= 0.5) continue;
-    skins[i] = std::sqrt(tree.nearest(triangles, node).squared_distance);
+    insets[i] = std::sqrt(tree.nearest(triangles, node).squared_distance);
   }
-  return skins;
+  return insets;
 }
 
 }  // namespace deformable_sim::core
