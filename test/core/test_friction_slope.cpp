@@ -1,7 +1,8 @@
 // A block on a plane tilted at theta, on a primitive box, a triangle mesh and a soft slab: by
 // Coulomb's law it stays where tan(theta) < mu and otherwise slides down with
 // g (sin(theta) - mu cos(theta)).
-// Close below the friction angle it still creeps (see DISABLED_ below).
+// Released unstressed, the block lands with a wave that can tip it out of the friction cone close
+// below the friction angle; damped, it stays up to 0.95 mu (see DISABLED_ below).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -20,6 +21,11 @@ using deformable_sim::test::boxMeshSimulation;
 namespace {
 
 constexpr double kGravity = 9.81;
+// Stiffness-proportional (Rayleigh) damping, s: light, and enough to damp the wave of the block's
+// landing within a few steps. Neither slows a rigid slide (K has the rigid motions in its null
+// space); mass damping would.
+constexpr double kLightDamping = 0.01;
+constexpr double kWaveDamping = 0.03;
 
 enum class Plane { kPrimitiveBox, kOpenMesh, kSoftSlab };
 
@@ -58,7 +64,7 @@ dc::BodySpec softSlab() {
 
 // A 10 cm block resting on the plane tilted by `theta` about x, released at rest and run for one
 // second. The soft slab stays level and gravity is tilted instead: the same slope.
-Slide slideOnSlope(Plane plane, double theta, double mu) {
+Slide slideOnSlope(Plane plane, double theta, double mu, double damping = kLightDamping) {
   const Eigen::Matrix3d tilt =
       Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitX()).toRotationMatrix();
   const Eigen::Matrix3d geometry = plane == Plane::kSoftSlab ? Eigen::Matrix3d::Identity() : tilt;
@@ -66,8 +72,7 @@ Slide slideOnSlope(Plane plane, double theta, double mu) {
   spec.dt = 0.01;
   spec.effects.gravity = geometry * tilt.transpose() * Eigen::Vector3d(0, 0, -kGravity);
   spec.effects.warping = true;
-  spec.effects.damping =
-      dc::RayleighDamping{0.0, 0.01};  // no mass damping: it would slow the slide
+  spec.effects.damping = dc::RayleighDamping{0.0, damping};
   spec.contact = dc::ContactSettings{mu, plane == Plane::kSoftSlab, false};
   if (plane != Plane::kSoftSlab) {
     dc::PlacedShape ground;
@@ -115,15 +120,15 @@ Slide slideOnSlope(Plane plane, double theta, double mu) {
   return {along(body.positions()) - start, acceleration};
 }
 
-void expectStays(Plane plane, double theta, double mu) {
-  const Slide slide = slideOnSlope(plane, theta, mu);
+void expectStays(Plane plane, double theta, double mu, double damping = kLightDamping) {
+  const Slide slide = slideOnSlope(plane, theta, mu, damping);
   EXPECT_LT(std::abs(slide.distance), 1e-3) << "theta " << theta << " mu " << mu;
   EXPECT_LT(std::abs(slide.acceleration), 1e-2) << "theta " << theta << " mu " << mu;
 }
 
-void expectSlides(Plane plane, double theta, double mu) {
+void expectSlides(Plane plane, double theta, double mu, double damping = kLightDamping) {
   const double expected = kGravity * (std::sin(theta) - mu * std::cos(theta));
-  const Slide slide = slideOnSlope(plane, theta, mu);
+  const Slide slide = slideOnSlope(plane, theta, mu, damping);
   EXPECT_NEAR(slide.acceleration, expected, 0.05 * expected) << "theta " << theta << " mu " << mu;
   // It lands first and starts at rest: a little short of a t^2 / 2 after one second.
   EXPECT_GT(slide.distance, 0.8 * 0.5 * expected) << "theta " << theta << " mu " << mu;
@@ -178,11 +183,25 @@ TEST(FrictionSlope, BlockStaysCloseBelowTheFrictionAngle) {
   expectStays(Plane::kSoftSlab, std::atan(0.95 * mu), mu);
 }
 
-// Fails today: at tan = 0.55 and mu = 0.6 (0.91 mu) the block creeps 3 to 5 cm in a second on
-// an obstacle (it lands, and the wave of its landing tips it out of the cone). Stick or slip is
-// decided from the constraint forces of the step in which the touching nodes were held, and a
-// node that lands is held only once friction has stopped it: near the friction angle the held
-// set changes from step to step, and each change lets the block move a little.
+// Its landing wave damped within a few steps, the block stays up to tan = 0.95 mu on all three
+// planes, and the damping leaves the slide above the friction angle as it was.
+TEST(FrictionSlope, BlockWithItsLandingWaveDampedStaysUpTo95PercentOfTheFrictionAngle) {
+  const double mu = 0.6;
+  for (const Plane plane : {Plane::kPrimitiveBox, Plane::kOpenMesh, Plane::kSoftSlab}) {
+    expectStays(plane, std::atan(0.95 * mu), mu, kWaveDamping);
+  }
+  expectSlides(Plane::kPrimitiveBox, 0.5, 0.3, kWaveDamping);
+  expectSlides(Plane::kOpenMesh, 0.5, 0.3, kWaveDamping);
+}
+
+// Fails today: at tan = 0.97 mu the damped block still creeps 4 to 5 cm in a second on an
+// obstacle (0.7 mm on the soft slab). Stick or slip is decided from the constraint forces of the
+// step in which the touching nodes were held, and a node that lands is held only once friction
+// has stopped it: near the friction angle the held set changes from step to step, and each change
+// lets the block move a little.
 TEST(FrictionSlope, DISABLED_BlockStaysJustBelowTheFrictionAngle) {
-  for (const Plane plane : {Plane::kPrimitiveBox, Plane::kOpenMesh}) expectStays(plane, 0.5, 0.6);
+  const double mu = 0.6;
+  for (const Plane plane : {Plane::kPrimitiveBox, Plane::kOpenMesh}) {
+    expectStays(plane, std::atan(0.97 * mu), mu, kWaveDamping);
+  }
 }
