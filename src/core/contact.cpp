@@ -135,12 +135,10 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
     for (int i = 0; i < body.numNodes(); ++i) {
       if (body.isConstrained(i)) continue;
       Eigen::Vector3d surface, normal;
-      const double inset = insets_.empty() ? 0.0 : insets_[i];
       const double distance =
-          signedDistance(obstacle.shape, to_shape * x.segment<3>(3 * i), &surface, &normal) + inset;
+          signedDistance(obstacle.shape, to_shape * x.segment<3>(3 * i), &surface, &normal);
       if (!(distance < 0.0)) continue;
       contacts_[k].penetration = std::max(contacts_[k].penetration, -distance);
-      surface -= inset * normal;  // as far in as the node's inset
       const Eigen::Vector3d on_surface = obstacle.pose * surface;
       x.segment<3>(3 * i) = on_surface;
       // A node held at its point of this obstacle moved with it: it is inside by round-off only,

@@ -8,7 +8,6 @@
 #include "deformable_sim/core/parallel_for.h"
 #include "deformable_sim/core/selection.h"
 #include "deformable_sim/core/spec_error.h"
-#include "deformable_sim/core/surface_inset.h"
 #include "deformable_sim/core/wrench.h"
 
 namespace deformable_sim::core {
@@ -274,10 +273,6 @@ void Simulation::setEmbeddedSurface(int b, EmbeddedSurface surface) {
                                 "': the embedded surface refers to nodes its mesh does not have");
   }
   embedded_surfaces_.resize(bodies_.size());
-  if (contact_states_[b]) {
-    contact_states_[b]->setInsets(surfaceInsets(
-        bodies_[b].mesh(), TriangleMesh{surface.restPositions(), surface.triangles()}));
-  }
   surface.update(bodies_[b].positions());
   embedded_surfaces_[b] = std::move(surface);
 }

@@ -1,4 +1,5 @@
-// Grasping by friction: two finger obstacles squeeze a soft block on a table and lift it. Held by
+// Grasping by friction: two finger obstacles squeeze a soft block (or a ball made from its
+// surface) on a table and lift it. Held by
 // friction alone it rises with them, and what the fingers feel, summed, carries its weight; too
 // light a squeeze lets it slip out. Obstacles that move carry the nodes that stick to them.
 #include <gtest/gtest.h>
@@ -9,7 +10,9 @@
 #include "deformable_sim/core/contact.h"
 #include "deformable_sim/core/shape.h"
 #include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/surface_body.h"
 #include "simulation_test_helpers.h"
+#include "surface_test_helpers.h"
 
 namespace dc = deformable_sim::core;
 using deformable_sim::test::boxMeshSimulation;
@@ -48,9 +51,32 @@ Eigen::Vector3d centreOfMass(const dc::Body& body) {
   return sum / mass;
 }
 
-// Fingers 1 cm thick close on the block's sides by `squeeze` each in 0.5 s, rise kLift in 1 s,
+enum class Object { kBlock, kSurfaceBall };
+
+// The simulation of `spec` with the object as its one body: the block, or a ball of the block's
+// width made from its surface on a grid of 14 mm cells (5 across: the grid stands 5 mm out).
+dc::Simulation withObject(dc::SceneSpec spec, Object object) {
+  dc::BodySpec body;
+  body.name = "block";
+  body.box_mesh =
+      dc::BoxMeshSpec{{-kHalfWidth, -kHalfWidth, 0.0}, {kHalfWidth, kHalfWidth, 0.06}, {3, 3, 3}};
+  body.material = {3.0e4, 0.3, 150.0};
+  spec.bodies.push_back(body);
+  if (object == Object::kBlock) return boxMeshSimulation(spec);
+  dc::VoxelSettings cells;
+  cells.cell_size = 0.014;
+  dc::SurfaceBody ball = dc::bodyFromSurface(
+      deformable_sim::test::sphereSurface(kHalfWidth, {0, 0, kHalfWidth}, 16, 32), cells, nullptr);
+  spec.bodies.back().box_mesh.reset();
+  std::vector<dc::Mesh> meshes = {ball.voxels.mesh};
+  dc::Simulation sim(spec, std::move(meshes));
+  sim.setEmbeddedSurface(0, std::move(ball.surface));
+  return sim;
+}
+
+// Fingers 1 cm thick close on the object's sides by `squeeze` each in 0.5 s, rise kLift in 1 s,
 // swing it out (0.5 rad about x, 8 cm along x) and back in 3 s, and hold still for 1.5 s.
-Grasp squeezeAndLift(double squeeze, double friction) {
+Grasp squeezeAndLift(double squeeze, double friction, Object object = Object::kBlock) {
   dc::SceneSpec spec;
   spec.dt = 0.01;
   spec.effects.gravity = Eigen::Vector3d(0, 0, -kGravity);
@@ -63,13 +89,7 @@ Grasp squeezeAndLift(double squeeze, double friction) {
   for (int side : {-1, 1}) {
     spec.obstacles.push_back(box(side < 0 ? "left" : "right", finger_size, {0, side * open, 0.03}));
   }
-  dc::BodySpec block;
-  block.name = "block";
-  block.box_mesh =
-      dc::BoxMeshSpec{{-kHalfWidth, -kHalfWidth, 0.0}, {kHalfWidth, kHalfWidth, 0.06}, {3, 3, 3}};
-  block.material = {3.0e4, 0.3, 150.0};
-  spec.bodies.push_back(block);
-  dc::Simulation sim = boxMeshSimulation(spec);
+  dc::Simulation sim = withObject(spec, object);
   std::vector<dc::StepReport> reports;
   const double start = centreOfMass(sim.bodies()[0]).z();
   const auto place = [&](double closing, double height) {
@@ -134,4 +154,19 @@ TEST(FrictionGrasp, TooLightASqueezeLetsTheBlockSlipOut) {
   EXPECT_LT(grasp.rise, 0.2 * kLift);
   // It is back on the table, which carries it.
   EXPECT_NEAR(grasp.table_force.z(), grasp.weight, 0.05 * grasp.weight);
+}
+
+// A ball made from its surface is squeezed by its grid, which stands 5 mm outside the surface:
+// the fingers start 2 mm off the surface and close by 4 mm, 2 mm into the surface and 7 mm into
+// the grid. It rises with the fingers, is swung and hangs still, carried by them alone. Closing on
+// its round grid lifts it off the table by a few millimetres first.
+TEST(FrictionGrasp, ABallMadeFromItsSurfaceIsLiftedByFriction) {
+  const Grasp grasp = squeezeAndLift(0.002, 0.5, Object::kSurfaceBall);
+  EXPECT_GT(grasp.rise, 0.98 * kLift);
+  EXPECT_LT(grasp.rise, kLift + 0.01);
+  EXPECT_GT(grasp.finger_points, 0);
+  EXPECT_NEAR(grasp.finger_force.z(), grasp.weight, 0.02 * grasp.weight);
+  EXPECT_NEAR(grasp.finger_force.x(), 0.0, 0.02 * grasp.weight);
+  EXPECT_NEAR(grasp.finger_force.y(), 0.0, 0.02 * grasp.weight);
+  EXPECT_TRUE(grasp.table_force.isZero(0.0));
 }

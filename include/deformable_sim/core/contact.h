@@ -1,17 +1,16 @@
 // Contact with rigid obstacles (the `contact` effect). After each step, nodes that ended up inside
-// an obstacle (deeper than their inset, see setInsets) are put back on its surface and their
-// velocity into it, relative to the obstacle's, removed. A node that touches an obstacle without
-// sliding on it is then held in the next step's implicit solve, at its point of the obstacle (which
-// may move: a robot's finger), so the obstacle supports and carries the body through the solve (a
-// resting body is not over-compressed, a squeezed one is lifted by friction). It is let go when the
-// constraint would pull it into the obstacle or, by Coulomb's law applied to the body's held nodes
-// on that obstacle together, when their tangential force exceeds μ times their normal force (they
+// an obstacle are put back on its surface and their velocity into it, relative to the obstacle's,
+// removed. A node that touches an obstacle without sliding on it is then held in the next step's
+// implicit solve, at its point of the obstacle (which may move: a robot's finger), so the
+// obstacle supports and carries the body through the solve (a resting body is not
+// over-compressed, a squeezed one is lifted by friction). It is let go when the constraint would
+// pull it into the obstacle or, by Coulomb's law applied to the body's held nodes on that
+// obstacle together, when their tangential force exceeds μ times their normal force (they
 // slide). Stable at any stiffness and step; costs nothing when the scene does not enable it.
 #pragma once
 
 #include <Eigen/Geometry>
 #include <cstdint>
-#include <utility>
 #include <vector>
 
 #include "deformable_sim/core/body.h"
@@ -31,7 +30,7 @@ struct ContactLoad {
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();  ///< on the body about the world origin, N m
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< mean of the touching nodes, m
   int points = 0;                                    ///< nodes touching it after the step
-  double penetration = 0.0;  ///< deepest a node was found inside it (beyond its inset), m
+  double penetration = 0.0;  ///< deepest a node was found inside it before being put back, m
 };
 
 /// Which nodes touch which obstacle, from step to step. Sized once per body and per number of
@@ -58,9 +57,6 @@ class ContactState {
   const std::vector<ContactLoad>& obstacleContacts() const { return contacts_; }
   /// The obstacles were replaced by others: no node touches any.
   void forget();
-  /// Per node, how far an obstacle lets it in (m; core/surface_inset.h): a body made from a
-  /// surface touches with that surface, not with the grid around it. None: every node 0.
-  void setInsets(std::vector<double> insets) { insets_ = std::move(insets); }
 
  private:
   /// A body's held nodes on one obstacle, judged together by Coulomb's law.
@@ -82,7 +78,6 @@ class ContactState {
   void addForce(int k, const Eigen::Vector3d& at, const Eigen::Vector3d& force);
   Eigen::Vector3d worldNormal(const std::vector<PlacedShape>& obstacles, int i) const;
 
-  std::vector<double> insets_;           ///< see setInsets(); empty: none
   std::vector<int> obstacle_;            ///< the obstacle node i touches, -1: none
   std::vector<Eigen::Vector3d> point_;   ///< node i's point of it, in the obstacle's frame
   std::vector<Eigen::Vector3d> normal_;  ///< outward normal there, in the obstacle's frame
