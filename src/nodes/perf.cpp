@@ -297,14 +297,14 @@ void MachineRead(benchmark::State& state) {
   std::vector<double> values(count, 1.0);
   for (auto _ : state) benchmark::DoNotOptimize(perf::sumArray(values.data(), count));
   state.counters["GB"] = benchmark::Counter(static_cast<double>(count * sizeof(double)) / 1e9,
-                                              benchmark::Counter::kIsIterationInvariantRate);
+                                            benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void MachineFma(benchmark::State& state) {
   constexpr long kRounds = 1000000;
   for (auto _ : state) benchmark::DoNotOptimize(perf::multiplyAddChains(kRounds));
   state.counters["GFlop"] = benchmark::Counter(kRounds * perf::kFlopsPerRound / 1e9,
-                                                 benchmark::Counter::kIsIterationInvariantRate);
+                                               benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void meshSizes(benchmark::internal::Benchmark* b, bool with_preconditioners) {
