@@ -1,7 +1,7 @@
 // Grasping by friction: two finger obstacles squeeze a soft block (or a ball made from its
-// surface) on a table and lift it. Held by
-// friction alone it rises with them, and what the fingers feel, summed, carries its weight; too
-// light a squeeze lets it slip out. Obstacles that move carry the nodes that stick to them.
+// surface) on a table and lift it. Held by friction alone it rises with them, and what the
+// fingers feel, summed, carries its weight; too light a squeeze lets it slip out. Obstacles that
+// move carry the nodes that stick to them.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
