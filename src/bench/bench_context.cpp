@@ -7,9 +7,9 @@ BenchContext::BenchContext(const std::string& reference_dir)
 
 const ReferenceBeam& BenchContext::beam(const std::string& mesh) {
   std::unique_ptr<ReferenceBeam>& slot = beams_[mesh];
+  if (slot) return *slot;
   double turn_degrees = 0.0;
   int cells = 0;
-  if (slot) return *slot;
   if (ReferenceBeam::parseSurfaceId(mesh, &turn_degrees, &cells)) {
     slot = std::make_unique<ReferenceBeam>(ReferenceBeam::fromSurface(turn_degrees, cells));
   } else {
