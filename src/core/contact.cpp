@@ -4,13 +4,51 @@
 
 namespace deformable_sim::core {
 
+namespace {
+
+/// Passes over a body's touching vertices on one obstacle: their cells share nodes, so putting
+/// one back moves its neighbours.
+constexpr int kEmbeddedPasses = 8;
+
+}  // namespace
+
 ContactState::ContactState(int num_nodes)
-    : obstacle_(num_nodes, -1),
-      point_(num_nodes, Eigen::Vector3d::Zero()),
-      normal_(num_nodes, Eigen::Vector3d::Zero()),
-      sticking_(num_nodes, 0),
-      held_flag_(num_nodes, 0) {
+    : points_(num_nodes),
+      node_obstacle_(num_nodes, -1),
+      node_place_(num_nodes, Eigen::Vector3d::Zero()),
+      held_flag_(num_nodes, 0),
+      held_weight_(num_nodes, 0.0) {
+  for (int i = 0; i < num_nodes; ++i) {
+    points_[i].nodes[0] = i;
+    points_[i].weights[0] = 1.0;
+    points_[i].count = 1;
+  }
   held_.reserve(num_nodes);
+  resizePoints();
+}
+
+void ContactState::embed(const EmbeddedSurface& surface) {
+  points_.assign(surface.numVertices(), Point{});
+  for (int v = 0; v < surface.numVertices(); ++v) {
+    Point& point = points_[v];
+    for (int k = 0; k < 8; ++k) {
+      if (surface.weights(v)[k] == 0.0) continue;  // on a face or edge of its cell
+      point.nodes[point.count] = surface.nodes(v)[k];
+      point.weights[point.count++] = surface.weights(v)[k];
+    }
+  }
+  embedded_ = true;
+  resizePoints();
+}
+
+void ContactState::resizePoints() {
+  const size_t n = points_.size();
+  obstacle_.assign(n, -1);
+  point_.assign(n, Eigen::Vector3d::Zero());
+  normal_.assign(n, Eigen::Vector3d::Zero());
+  sticking_.assign(n, 0);
+  point_held_.assign(n, 0);
+  point_force_.assign(n, Eigen::Vector3d::Zero());
 }
 
 void ContactState::forget() {
@@ -27,8 +65,8 @@ void ContactState::resizeForObstacles(size_t count) {
   std::fill(patches_.begin(), patches_.end(), Patch{});
 }
 
-Eigen::Vector3d ContactState::worldNormal(const std::vector<PlacedShape>& obstacles, int i) const {
-  return obstacles[obstacle_[i]].pose.linear() * normal_[i];
+Eigen::Vector3d ContactState::worldNormal(const std::vector<PlacedShape>& obstacles, int p) const {
+  return obstacles[obstacle_[p]].pose.linear() * normal_[p];
 }
 
 void ContactState::addForce(int k, const Eigen::Vector3d& at, const Eigen::Vector3d& force) {
@@ -36,33 +74,104 @@ void ContactState::addForce(int k, const Eigen::Vector3d& at, const Eigen::Vecto
   contacts_[k].torque += at.cross(force);
 }
 
+Eigen::Vector3d ContactState::position(const Body& body, int p) const {
+  const Point& point = points_[p];
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  for (int k = 0; k < point.count; ++k) {
+    x += point.weights[k] * body.positions().segment<3>(3 * point.nodes[k]);
+  }
+  return x;
+}
+
+double ContactState::freeWeight(const Body& body, int p) const {
+  const Point& point = points_[p];
+  double free = 0.0;
+  for (int k = 0; k < point.count; ++k) {
+    if (!body.isConstrained(point.nodes[k])) free += point.weights[k];
+  }
+  return free;
+}
+
+double ContactState::pointMass(const Body& body, int p) const {
+  const Point& point = points_[p];
+  const double free = freeWeight(body, p);
+  if (point.count > 1 && free < kMovable) return 0.0;
+  if (!(free > 0.0)) return 0.0;
+  double mass = 0.0;
+  for (int k = 0; k < point.count; ++k) {
+    if (!body.isConstrained(point.nodes[k])) mass += body.nodalMasses()[point.nodes[k]];
+  }
+  return mass / free;
+}
+
+void ContactState::spread(const Body& body, int p, const Eigen::Vector3d& change,
+                          Eigen::VectorXd& state) const {
+  // A vertex's free nodes all move by the same amount, which moves it by `change`: its cell is
+  // shifted, not strained (moving each node by its weight, the least change of the nodes that
+  // moves the vertex, strained the cells under a resting tube by a tenth, and held so, they
+  // pushed it off the floor).
+  const Point& point = points_[p];
+  const Eigen::Vector3d shift = change / freeWeight(body, p);
+  for (int k = 0; k < point.count; ++k) {
+    const int i = point.nodes[k];
+    if (!body.isConstrained(i)) state.segment<3>(3 * i) += shift;
+  }
+}
+
 void ContactState::hold(Body& body, const std::vector<PlacedShape>& obstacles) {
   held_.clear();
-  for (int i = 0; i < body.numNodes(); ++i) {
-    // Only a node that sticks: holding a sliding node would stop it for a whole step, and a
+  for (size_t p = 0; p < points_.size(); ++p) {
+    point_held_[p] = 0;
+    // Only a point that sticks: holding a sliding one would stop it for a whole step, and a
     // frictionless block on a slope would creep down instead of sliding with g sin θ.
-    const int k = obstacle_[i];
-    if (k < 0 || !sticking_[i] || body.isConstrained(i)) continue;
-    body.holdNodeAt(i, obstacles[k].pose * point_[i]);
-    held_.push_back(i);
-    held_flag_[i] = 1;
+    const int k = obstacle_[p];
+    if (k < 0 || !sticking_[p]) continue;
+    const Point& point = points_[p];
+    for (int j = 0; j < point.count; ++j) {
+      const int i = point.nodes[j];
+      if (node_obstacle_[i] != k) continue;  // its place was taken on another obstacle
+      if (held_flag_[i]) {                   // by a neighbouring vertex in the same cell
+        held_weight_[i] += point.weights[j];
+        point_held_[p] = 1;
+        continue;
+      }
+      if (body.isConstrained(i)) continue;
+      body.holdNodeAt(i, obstacles[k].pose * node_place_[i]);
+      held_.push_back(i);
+      held_flag_[i] = 1;
+      held_weight_[i] = point.weights[j];
+      point_held_[p] = 1;
+    }
   }
 }
 
 void ContactState::judgePatches(const Body& body, const std::vector<PlacedShape>& obstacles,
                                 const ContactSettings& settings, double dt) {
-  // Coulomb's law for the held nodes on one obstacle together: single nodes carry uneven parts
+  // Coulomb's law for the held points on one obstacle together: single points carry uneven parts
   // of the load, and judging each by itself lets some slip while the body sticks (it creeps) and
   // keeps others held while it slides (it stops).
   const Eigen::VectorXd& reactions = body.reactionForces();
-  for (int i : held_) {
-    const Eigen::Vector3d n = worldNormal(obstacles, i), r = reactions.segment<3>(3 * i);
+  for (size_t p = 0; p < points_.size(); ++p) {
+    if (!point_held_[p]) continue;
+    // Its share of the forces on the nodes it holds, by its weight among the points holding them.
+    const Point& point = points_[p];
+    Eigen::Vector3d& r = point_force_[p];
+    r.setZero();
+    double mass = 0.0;
+    for (int j = 0; j < point.count; ++j) {
+      const int i = point.nodes[j];
+      if (!held_flag_[i] || node_obstacle_[i] != obstacle_[p]) continue;
+      const double part = point.weights[j] / held_weight_[i];
+      r += part * reactions.segment<3>(3 * i);
+      mass += part * body.nodalMasses()[i];
+    }
+    const Eigen::Vector3d n = worldNormal(obstacles, static_cast<int>(p));
     const double pushing = r.dot(n);
     if (!(pushing > 0.0)) continue;
-    Patch& patch = patches_[obstacle_[i]];
+    Patch& patch = patches_[obstacle_[p]];
     patch.pushing += pushing;
     patch.sliding += r - pushing * n;
-    patch.mass += body.nodalMasses()[i];
+    patch.mass += mass;
   }
   for (Patch& patch : patches_) {
     const double sliding = patch.sliding.norm(), friction = settings.friction * patch.pushing;
@@ -79,37 +188,50 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
                            const ContactSettings& settings, double dt) {
   resizeForObstacles(obstacles.size());
   judgePatches(body, obstacles, settings, dt);
-  // Nodes not held touch only if project() finds them inside again.
-  for (int i = 0; i < body.numNodes(); ++i) {
-    if (!held_flag_[i]) obstacle_[i] = -1, sticking_[i] = 0;
-  }
-  for (int i : held_) {
-    const int k = obstacle_[i];
+  for (size_t p = 0; p < points_.size(); ++p) {
+    // Points not held touch only if project() finds them inside again.
+    if (!point_held_[p]) {
+      obstacle_[p] = -1, sticking_[p] = 0;
+      continue;
+    }
+    const int k = obstacle_[p];
     const Patch& patch = patches_[k];
-    const Eigen::Vector3d n = worldNormal(obstacles, i);
-    const Eigen::Vector3d r = body.reactionForces().segment<3>(3 * i);
+    const Eigen::Vector3d n = worldNormal(obstacles, static_cast<int>(p));
+    const Eigen::Vector3d& r = point_force_[p];
     const double pushing = r.dot(n);
     if (pushing > 0.0) {
-      addForce(k, body.positions().segment<3>(3 * i),
+      addForce(k, position(body, static_cast<int>(p)),
                pushing * n + patch.transmitted * (r - pushing * n));
-      if (!patch.sticks) body.mutableVelocities().segment<3>(3 * i) += patch.slip;
+      if (!patch.sticks) slideHeldNodes(body, static_cast<int>(p), patch.slip);
     }
-    sticking_[i] = patch.sticks && pushing > 0.0;
-    if (!sticking_[i]) obstacle_[i] = -1;  // it lifts off or slides: free
+    sticking_[p] = patch.sticks && pushing > 0.0;
+    if (!sticking_[p]) obstacle_[p] = -1;  // it lifts off or slides: free
+    point_held_[p] = 0;
+  }
+  for (int i : held_) {
     body.releaseNode(i);
     held_flag_[i] = 0;
   }
   held_.clear();
 }
 
-void ContactState::applyFriction(Body& body, int i, const Eigen::Vector3d& obstacle_velocity,
+void ContactState::slideHeldNodes(Body& body, int p, const Eigen::Vector3d& slip) const {
+  const Point& point = points_[p];
+  for (int j = 0; j < point.count; ++j) {
+    const int i = point.nodes[j];
+    if (!held_flag_[i] || node_obstacle_[i] != obstacle_[p]) continue;
+    body.mutableVelocities().segment<3>(3 * i) += point.weights[j] / held_weight_[i] * slip;
+  }
+}
+
+void ContactState::applyFriction(Body& body, int p, const Eigen::Vector3d& obstacle_velocity,
                                  const Eigen::Vector3d& normal, const ContactSettings& settings,
                                  double dt) {
-  Eigen::Ref<Eigen::Vector3d> velocity = body.mutableVelocities().segment<3>(3 * i);
+  const Eigen::Vector3d velocity = pointVelocity(body, p);
   Eigen::Vector3d relative = velocity - obstacle_velocity;
   const double into = -relative.dot(normal);
   if (!(into > 0.0)) {  // resting or leaving: it sticks if it does not slide
-    sticking_[i] = sticking_[i] || (relative - relative.dot(normal) * normal).isZero(0.0);
+    sticking_[p] = sticking_[p] || (relative - relative.dot(normal) * normal).isZero(0.0);
     return;
   }
   relative += into * normal;
@@ -119,47 +241,94 @@ void ContactState::applyFriction(Body& body, int i, const Eigen::Vector3d& obsta
                                  : Eigen::Vector3d(relative * (1.0 - slowed / sliding));
   }
   const Eigen::Vector3d change = obstacle_velocity + relative - velocity;
-  velocity += change;
-  addForce(obstacle_[i], body.positions().segment<3>(3 * i), body.nodalMasses()[i] * change / dt);
-  sticking_[i] = relative.isZero(0.0);
+  spread(body, p, change, body.mutableVelocities());
+  addForce(obstacle_[p], position(body, p), pointMass(body, p) * change / dt);
+  sticking_[p] = relative.isZero(0.0);
+}
+
+Eigen::Vector3d ContactState::pointVelocity(const Body& body, int p) const {
+  const Point& point = points_[p];
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  for (int k = 0; k < point.count; ++k) {
+    v += point.weights[k] * body.velocities().segment<3>(3 * point.nodes[k]);
+  }
+  return v;
+}
+
+void ContactState::settleEmbedded(Body& body, const PlacedShape& obstacle, int k) {
+  const Eigen::Isometry3d to_shape = obstacle.pose.inverse();
+  for (int pass = 0; pass < kEmbeddedPasses; ++pass) {
+    bool inside = false;
+    for (size_t p = 0; p < points_.size(); ++p) {
+      if (obstacle_[p] != k) continue;
+      const int q = static_cast<int>(p);
+      Eigen::Vector3d surface, normal;
+      const Eigen::Vector3d x = position(body, q);
+      if (!(signedDistance(obstacle.shape, to_shape * x, &surface, &normal) < 0.0)) continue;
+      inside = true;
+      spread(body, q, obstacle.pose * surface - x, body.mutablePositions());
+    }
+    if (!inside) return;
+  }
+}
+
+void ContactState::recordNodePlaces(const Body& body, const std::vector<PlacedShape>& obstacles) {
+  for (size_t p = 0; p < points_.size(); ++p) {
+    const int k = obstacle_[p];
+    if (k < 0) continue;
+    const Point& point = points_[p];
+    if (point.count == 1) {  // a node: exactly its place on the surface
+      node_obstacle_[point.nodes[0]] = k;
+      node_place_[point.nodes[0]] = point_[p];
+      continue;
+    }
+    const Eigen::Isometry3d to_shape = obstacles[k].pose.inverse();
+    for (int j = 0; j < point.count; ++j) {
+      const int i = point.nodes[j];
+      node_obstacle_[i] = k;
+      node_place_[i] = to_shape * body.positions().segment<3>(3 * i);
+    }
+  }
 }
 
 int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
                           const std::vector<Eigen::Isometry3d>& start_poses,
                           const ContactSettings& settings, double dt) {
-  Eigen::VectorXd& x = body.mutablePositions();
   for (size_t k = 0; k < obstacles.size(); ++k) {
     const PlacedShape& obstacle = obstacles[k];
     const Eigen::Isometry3d to_shape = obstacle.pose.inverse();
     const Eigen::Isometry3d to_start = start_poses[k] * to_shape;  // the point a step ago
-    for (int i = 0; i < body.numNodes(); ++i) {
-      if (body.isConstrained(i)) continue;
+    for (size_t p = 0; p < points_.size(); ++p) {
+      const int q = static_cast<int>(p);
+      if (!(pointMass(body, q) > 0.0)) continue;  // held: by the user or a grasp
       Eigen::Vector3d surface, normal;
-      const double distance =
-          signedDistance(obstacle.shape, to_shape * x.segment<3>(3 * i), &surface, &normal);
+      const Eigen::Vector3d x = position(body, q);
+      const double distance = signedDistance(obstacle.shape, to_shape * x, &surface, &normal);
       if (!(distance < 0.0)) continue;
       contacts_[k].penetration = std::max(contacts_[k].penetration, -distance);
       const Eigen::Vector3d on_surface = obstacle.pose * surface;
-      x.segment<3>(3 * i) = on_surface;
-      // A node held at its point of this obstacle moved with it: it is inside by round-off only,
-      // and still sticks.
-      const bool stuck = obstacle_[i] == static_cast<int>(k) && sticking_[i];
-      if (obstacle_[i] != static_cast<int>(k)) sticking_[i] = 0;  // a new contact
-      obstacle_[i] = static_cast<int>(k);
-      point_[i] = surface;
-      normal_[i] = normal;
+      spread(body, q, on_surface - x, body.mutablePositions());
+      // A point held at its place on this obstacle moved with it: it is inside by round-off
+      // only, and still sticks.
+      const bool stuck = obstacle_[p] == static_cast<int>(k) && sticking_[p];
+      if (obstacle_[p] != static_cast<int>(k)) sticking_[p] = 0;  // a new contact
+      obstacle_[p] = static_cast<int>(k);
+      point_[p] = surface;
+      normal_[p] = normal;
       if (stuck) continue;
-      applyFriction(body, i, (on_surface - to_start * on_surface) / dt,
+      applyFriction(body, q, (on_surface - to_start * on_surface) / dt,
                     obstacle.pose.linear() * normal, settings, dt);
     }
+    if (embedded_) settleEmbedded(body, obstacle, static_cast<int>(k));
   }
+  recordNodePlaces(body, obstacles);
   int touching = 0;
   for (ContactLoad& c : contacts_) c.points = 0, c.centre.setZero();
-  for (int i = 0; i < body.numNodes(); ++i) {
-    if (obstacle_[i] < 0) continue;
+  for (size_t p = 0; p < points_.size(); ++p) {
+    if (obstacle_[p] < 0) continue;
     ++touching;
-    ++contacts_[obstacle_[i]].points;
-    contacts_[obstacle_[i]].centre += x.segment<3>(3 * i);
+    ++contacts_[obstacle_[p]].points;
+    contacts_[obstacle_[p]].centre += position(body, static_cast<int>(p));
   }
   for (ContactLoad& c : contacts_) {
     if (c.points > 0) c.centre /= c.points;

@@ -274,6 +274,8 @@ void Simulation::setEmbeddedSurface(int b, EmbeddedSurface surface) {
   }
   embedded_surfaces_.resize(bodies_.size());
   surface.update(bodies_[b].positions());
+  // Obstacles touch the user's surface, not the grid's boundary up to a cell outside it.
+  if (contact_states_[b]) contact_states_[b]->embed(surface);
   embedded_surfaces_[b] = std::move(surface);
 }
 

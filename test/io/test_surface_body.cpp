@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numeric>
 
 #include "../core/surface_test_helpers.h"
@@ -239,4 +241,35 @@ TEST_F(SurfaceBodyTest, ABodyFromALinksVisualMesh) {
   EXPECT_EQ(surfaces[0]->numVertices(), 8);
   EXPECT_THROW(dio::readVisualMesh(R"(<robot name="r"><link name="base"/></robot>)", "base"),
                dio::UrdfError);
+}
+
+// The shipped soft objects (a sponge, a ball and a tube lying on a floor) settle on their own
+// surfaces: none inverts an element, each one's lowest vertex ends on the floor (put back to
+// 1e-6 m, held by its cells up to a fraction of a millimetre above it), and the floor carries
+// each one's weight.
+TEST(ShippedSoftObjects, SettleOnTheirSurfacesAndTheFloorCarriesThem) {
+  const dc::SceneSpec spec =
+      dio::readSceneFile(DEFORMABLE_SIM_SOURCE_DIR "/config/scenes/soft_objects.yaml");
+  dc::Simulation sim = dio::buildSimulation(spec, nullptr);
+  std::vector<dc::StepReport> reports;
+  int inverted = 0;
+  for (int s = 0; s < 300; ++s) {
+    sim.step(reports);
+    for (const dc::StepReport& r : reports) inverted += r.inverted_elements;
+  }
+  EXPECT_EQ(inverted, 0);
+  const double gravity = -spec.effects.gravity->z();
+  for (size_t b = 0; b < sim.bodies().size(); ++b) {
+    const dc::Body& body = sim.bodies()[b];
+    SCOPED_TRACE(body.name());
+    dc::EmbeddedSurface& surface = *sim.embeddedSurface(static_cast<int>(b));
+    surface.update(body.positions());
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& v : surface.positions()) lowest = std::min(lowest, v.z());
+    EXPECT_GT(lowest, -1e-6);
+    EXPECT_LT(lowest, 5e-4);
+    const double weight =
+        gravity * std::accumulate(body.nodalMasses().begin(), body.nodalMasses().end(), 0.0);
+    EXPECT_NEAR(sim.obstacleContacts(static_cast<int>(b))[0].force.z(), weight, 0.01 * weight);
+  }
 }

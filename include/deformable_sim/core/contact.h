@@ -1,19 +1,25 @@
-// Contact with rigid obstacles (the `contact` effect). After each step, nodes that ended up inside
-// an obstacle are put back on its surface and their velocity into it, relative to the obstacle's,
-// removed. A node that touches an obstacle without sliding on it is then held in the next step's
-// implicit solve, at its point of the obstacle (which may move: a robot's finger), so the
-// obstacle supports and carries the body through the solve (a resting body is not
-// over-compressed, a squeezed one is lifted by friction). It is let go when the constraint would
-// pull it into the obstacle or, by Coulomb's law applied to the body's held nodes on that
-// obstacle together, when their tangential force exceeds μ times their normal force (they
-// slide). Stable at any stiffness and step; costs nothing when the scene does not enable it.
+// Contact with rigid obstacles (the `contact` effect). After each step, points of a body that
+// ended up inside an obstacle are put back on its surface and their velocity into it, relative to
+// the obstacle's, removed. The points are the body's nodes or, for a body made from a surface
+// (core/embedded_surface.h), the vertices of that surface, each moving with its cell's nodes: a
+// vertex is moved by moving its cell's free nodes alike (the cell shifts, unstrained). A point that
+// touches an obstacle without sliding on it is then held in the next step's implicit solve (a
+// node at its point of the obstacle, a vertex by its cell's nodes moving with the obstacle, which
+// may move: a robot's finger), so the obstacle supports and carries the body through the solve
+// (a resting body is not over-compressed, a squeezed one is lifted by friction). It is let go
+// when the constraint would pull it into the obstacle or, by Coulomb's law applied to the body's
+// held points on that obstacle together, when their tangential force exceeds μ times their
+// normal force (they slide). Stable at any stiffness and step; costs nothing when the scene does
+// not enable it.
 #pragma once
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "deformable_sim/core/body.h"
+#include "deformable_sim/core/embedded_surface.h"
 #include "deformable_sim/core/shape.h"
 
 namespace deformable_sim::core {
@@ -28,38 +34,50 @@ struct ContactSettings {
 struct ContactLoad {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();   ///< on the body, world frame, N
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();  ///< on the body about the world origin, N m
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< mean of the touching nodes, m
-  int points = 0;                                    ///< nodes touching it after the step
-  double penetration = 0.0;  ///< deepest a node was found inside it before being put back, m
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< mean of the touching points, m
+  int points =
+      0;  ///< points (nodes, or vertices of an embedded surface) touching it after the step
+  double penetration = 0.0;  ///< deepest a point was found inside it before being put back, m
 };
 
 /// Which nodes touch which obstacle, from step to step. Sized once per body and per number of
 /// obstacles; allocates nothing while that number stays the same.
 class ContactState {
  public:
+  /// The body's nodes touch the obstacles.
   explicit ContactState(int num_nodes);
+  /// The vertices of `surface` touch them instead (a body made from a surface): its nodes lie up
+  /// to a cell outside the surface. Allocates.
+  void embed(const EmbeddedSurface& surface);
 
-  /// Before a step, with the obstacles where they will be at its end: holds the free nodes that
-  /// stick to an obstacle at their point of it.
+  /// Before a step, with the obstacles where they will be at its end: holds the free points that
+  /// stick to an obstacle at their place on it.
   void hold(Body& body, const std::vector<PlacedShape>& obstacles);
-  /// After the step of `dt` s: lets the held nodes go. While the constraint forces of a body's
-  /// nodes held on one obstacle together push out of it within the friction cone, those that
+  /// After the step of `dt` s: lets the held points go. While the constraint forces of a body's
+  /// points held on one obstacle together push out of it within the friction cone, those that
   /// push stay touching (held in the next step); else they all start to slide.
   void release(Body& body, const std::vector<PlacedShape>& obstacles,
                const ContactSettings& settings, double dt);
-  /// Projects the free nodes out of every obstacle and records them as touching; an obstacle's
+  /// Projects the free points out of every obstacle and records them as touching; an obstacle's
   /// velocity is that of its rigid motion from `start_poses[k]` to its pose within the step.
-  /// Returns the number of nodes touching an obstacle.
+  /// Returns the number of points touching an obstacle.
   int project(Body& body, const std::vector<PlacedShape>& obstacles,
               const std::vector<Eigen::Isometry3d>& start_poses, const ContactSettings& settings,
               double dt);
   /// Per obstacle (as given to project()), what the body felt from it in the last step.
   const std::vector<ContactLoad>& obstacleContacts() const { return contacts_; }
-  /// The obstacles were replaced by others: no node touches any.
+  /// The obstacles were replaced by others: no point touches any.
   void forget();
 
  private:
-  /// A body's held nodes on one obstacle, judged together by Coulomb's law.
+  /// A point that touches obstacles: a node (one, weight 1) or a vertex of an embedded surface
+  /// (the nodes of its cell that carry weight).
+  struct Point {
+    std::array<int, 8> nodes{};
+    std::array<double, 8> weights{};
+    int count = 0;
+  };
+  /// A body's held points on one obstacle, judged together by Coulomb's law.
   struct Patch {
     double pushing = 0.0, mass = 0.0;
     Eigen::Vector3d sliding = Eigen::Vector3d::Zero();
@@ -68,22 +86,53 @@ class ContactState {
     double transmitted = 1.0;  ///< fraction of the tangential force the obstacle exerts
   };
 
-  /// Sums the held nodes' constraint forces per obstacle and judges each patch.
+  /// Sizes the per-point state for points_ (allocates).
+  void resizePoints();
+  /// Sums the held points' constraint forces per obstacle and judges each patch.
   void judgePatches(const Body& body, const std::vector<PlacedShape>& obstacles,
                     const ContactSettings& settings, double dt);
-  /// The force of the obstacle on node i, its contact from here on, and the node's velocity.
-  void applyFriction(Body& body, int i, const Eigen::Vector3d& obstacle_velocity,
+  Eigen::Vector3d position(const Body& body, int p) const;
+  Eigen::Vector3d pointVelocity(const Body& body, int p) const;
+  /// The weight of point p on nodes free to move.
+  double freeWeight(const Body& body, int p) const;
+  /// The momentum a unit change of point p's velocity takes (spread()); 0 when it is held (a
+  /// vertex: when less than kMovable of its weight is free).
+  double pointMass(const Body& body, int p) const;
+  /// Changes point p's part of `state` (positions or velocities) by `change`: its free nodes
+  /// all by the same amount.
+  void spread(const Body& body, int p, const Eigen::Vector3d& change, Eigen::VectorXd& state) const;
+  /// Adds a sliding patch's `slip` to the nodes point p holds, by its share of each.
+  void slideHeldNodes(Body& body, int p, const Eigen::Vector3d& slip) const;
+  /// The force of the obstacle on point p, its contact from here on, and the point's velocity.
+  void applyFriction(Body& body, int p, const Eigen::Vector3d& obstacle_velocity,
                      const Eigen::Vector3d& normal, const ContactSettings& settings, double dt);
+  /// Puts the points of obstacle k that are still inside (their cells share nodes) back out.
+  void settleEmbedded(Body& body, const PlacedShape& obstacle, int k);
+  /// Where each node of a touching point is in its obstacle's frame: it is held there.
+  void recordNodePlaces(const Body& body, const std::vector<PlacedShape>& obstacles);
   void resizeForObstacles(size_t count);
   void addForce(int k, const Eigen::Vector3d& at, const Eigen::Vector3d& force);
-  Eigen::Vector3d worldNormal(const std::vector<PlacedShape>& obstacles, int i) const;
+  Eigen::Vector3d worldNormal(const std::vector<PlacedShape>& obstacles, int p) const;
 
-  std::vector<int> obstacle_;            ///< the obstacle node i touches, -1: none
-  std::vector<Eigen::Vector3d> point_;   ///< node i's point of it, in the obstacle's frame
-  std::vector<Eigen::Vector3d> normal_;  ///< outward normal there, in the obstacle's frame
-  std::vector<std::uint8_t> sticking_;   ///< touching without sliding: held in the next step
-  std::vector<int> held_;                ///< nodes held in the present step
-  std::vector<std::uint8_t> held_flag_;  ///< the same, per node
+  /// A vertex lying mostly on held nodes counts as held: moving it by the rest would take shifts
+  /// of 1 / free weight times what it needs.
+  static constexpr double kMovable = 0.2;
+
+  std::vector<Point> points_;
+  bool embedded_ = false;
+  // Per point.
+  std::vector<int> obstacle_;             ///< the obstacle point p touches, -1: none
+  std::vector<Eigen::Vector3d> point_;    ///< its place on the obstacle, in the obstacle's frame
+  std::vector<Eigen::Vector3d> normal_;   ///< outward normal there, in the obstacle's frame
+  std::vector<std::uint8_t> sticking_;    ///< touching without sliding: held in the next step
+  std::vector<std::uint8_t> point_held_;  ///< held in the present step
+  std::vector<Eigen::Vector3d> point_force_;  ///< its share of its nodes' constraint forces
+  // Per node.
+  std::vector<int> node_obstacle_;           ///< the obstacle its place was recorded on
+  std::vector<Eigen::Vector3d> node_place_;  ///< that place, in the obstacle's frame
+  std::vector<int> held_;                    ///< nodes held in the present step
+  std::vector<std::uint8_t> held_flag_;      ///< the same, per node
+  std::vector<double> held_weight_;          ///< sum of the weights of the points holding it
   std::vector<ContactLoad> contacts_;
   std::vector<Patch> patches_;
 };
