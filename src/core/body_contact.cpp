@@ -19,26 +19,9 @@ constexpr double kShallowFraction = 0.25;
 Eigen::Vector3d startOf(const BodySurface& surface, const SurfacePoint& point) {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   for (int k = 0; k < point.count; ++k) {
-    p += point.weights[k] * surface.start().segment<3>(3 * point.nodes[k]);
+    p += point.weights[k] * surface.nodeStart().segment<3>(3 * point.nodes[k]);
   }
   return p;
-}
-
-SurfacePoint nodePoint(int i) {
-  SurfacePoint point;
-  point.nodes = {i, i, i};
-  point.weights = {1.0, 0.0, 0.0};
-  point.count = 1;
-  return point;
-}
-
-/// The point a fraction s along an edge.
-SurfacePoint edgePoint(const SurfaceEdge& edge, double s) {
-  SurfacePoint point;
-  point.nodes = {edge.nodes[0], edge.nodes[1], edge.nodes[1]};
-  point.weights = {1.0 - s, s, 0.0};
-  point.count = 2;
-  return point;
 }
 
 }  // namespace
@@ -46,18 +29,29 @@ SurfacePoint edgePoint(const SurfaceEdge& edge, double s) {
 BodyContact::BodyContact(const std::vector<Body>& bodies, const ContactSettings& settings,
                          const std::vector<bool>& with_bodies, const std::vector<bool>& with_self)
     : settings_(settings), with_bodies_(with_bodies), with_self_(with_self) {
-  size_t surface_points = 0;
   for (size_t b = 0; b < bodies.size(); ++b) {
     surfaces_.emplace_back();
     participants_.emplace_back();
     if (!with_bodies_[b] && !with_self_[b]) continue;
     surfaces_.back().emplace(bodies[b].mesh(), bodies[b].positions(), with_self_[b]);
     participants_.back().emplace(bodies[b]);
-    surface_points +=
-        surfaces_.back()->nodes().size() + kEdgeHits * surfaces_.back()->edges().size();
   }
-  contacts_.reserve(surface_points);
+  reserveContacts();
   loads_.resize(bodies.size() * bodies.size());
+}
+
+void BodyContact::embed(int b, const EmbeddedSurface& surface, const Body& body) {
+  if (!surfaces_[b]) return;
+  surfaces_[b].emplace(surface, body.positions());
+  reserveContacts();
+}
+
+void BodyContact::reserveContacts() {
+  size_t points = 0;
+  for (const std::optional<BodySurface>& surface : surfaces_) {
+    if (surface) points += surface->nodes().size() + kEdgeHits * surface->edges().size();
+  }
+  contacts_.reserve(points);
 }
 
 double BodyContact::tolerance(int a, int b) const {
@@ -69,8 +63,8 @@ bool BodyContact::touches(int a, int b) const {
 }
 
 void BodyContact::findContact(int a, int i) {
-  const ContactParticipant& nodes = *participants_[a];
-  SweptNode node{surfaces_[a]->start().segment<3>(3 * i), nodes.position(nodePoint(i))};
+  const BodySurface& mine = *surfaces_[a];
+  SweptNode node{mine.start().segment<3>(3 * i), participants_[a]->position(mine.corner(i))};
   Contact best;
   double best_depth = std::numeric_limits<double>::infinity();
   int best_rank = 3;
@@ -90,7 +84,7 @@ void BodyContact::findContact(int a, int i) {
       SweptTriangle swept;
       for (int k = 0; k < 3; ++k) {
         swept.start[k] = other.start().segment<3>(3 * tri[k]);
-        swept.end[k] = corners.position(nodePoint(tri[k]));
+        swept.end[k] = corners.position(other.corner(tri[k]));
       }
       NodeTriangleHit hit;
       const double shallow = kShallowFraction * other.shortestEdge();
@@ -102,15 +96,13 @@ void BodyContact::findContact(int a, int i) {
       best_rank = rank;
       best_depth = std::abs(hit.depth);
       best.triangle_body = b;
-      best.triangle.nodes = tri;
-      best.triangle.weights = {hit.weights[0], hit.weights[1], hit.weights[2]};
-      best.triangle.count = 3;
+      best.triangle = other.trianglePoint(tri, {hit.weights[0], hit.weights[1], hit.weights[2]});
       best.normal = hit.normal;
     });
   }
   if (best_depth == std::numeric_limits<double>::infinity()) return;
   best.node_body = a;
-  best.node = nodePoint(i);
+  best.node = mine.corner(i);
   add(best);
 }
 
@@ -125,9 +117,10 @@ Eigen::Vector3d BodyContact::outwardAt(int b, const SurfaceEdge& edge) const {
   for (int k = 0; k < 2; ++k) {
     const Triangle& t = surfaces_[b]->triangles()[edge.triangles[k]];
     const ContactParticipant& body = *participants_[b];
-    const Eigen::Vector3d corner = body.position(nodePoint(t[0]));
-    const Eigen::Vector3d normal =
-        (body.position(nodePoint(t[1])) - corner).cross(body.position(nodePoint(t[2])) - corner);
+    const BodySurface& surface = *surfaces_[b];
+    const Eigen::Vector3d corner = body.position(surface.corner(t[0]));
+    const Eigen::Vector3d normal = (body.position(surface.corner(t[1])) - corner)
+                                       .cross(body.position(surface.corner(t[2])) - corner);
     if (normal.norm() > 0.0) outward += normal.normalized();
   }
   return outward;
@@ -139,7 +132,7 @@ void BodyContact::findEdgeContacts(int a, int e) {
   SweptEdge swept;
   for (int k = 0; k < 2; ++k) {
     swept.start[k] = mine.start().segment<3>(3 * edge.nodes[k]);
-    swept.end[k] = participants_[a]->position(nodePoint(edge.nodes[k]));
+    swept.end[k] = participants_[a]->position(mine.corner(edge.nodes[k]));
   }
   const Eigen::Vector3d outward = outwardAt(a, edge);
   int hits = 0;
@@ -162,7 +155,7 @@ void BodyContact::findEdgeContacts(int a, int e) {
       SweptEdge them;
       for (int k = 0; k < 2; ++k) {
         them.start[k] = other.start().segment<3>(3 * across.nodes[k]);
-        them.end[k] = participants_[b]->position(nodePoint(across.nodes[k]));
+        them.end[k] = participants_[b]->position(other.corner(across.nodes[k]));
       }
       EdgeEdgeHit hit;
       const double shallow = kShallowFraction * std::min(mine.shortestEdge(), other.shortestEdge());
@@ -170,8 +163,8 @@ void BodyContact::findEdgeContacts(int a, int e) {
       Contact c;
       c.node_body = a;
       c.triangle_body = b;
-      c.node = edgePoint(edge, hit.s);
-      c.triangle = edgePoint(across, hit.t);
+      c.node = mine.edgePoint(edge, hit.s);
+      c.triangle = other.edgePoint(across, hit.t);
       c.normal = hit.normal;
       add(c);
       ++hits;

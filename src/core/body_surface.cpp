@@ -26,25 +26,8 @@ void forEachElement(const Mesh& mesh, Visit&& visit) {
 }  // namespace
 
 BodySurface::BodySurface(const Mesh& mesh, const Eigen::VectorXd& positions, bool with_neighbours)
-    : triangles_(extractSurface(mesh)), start_(positions), boxes_(triangles_.size()) {
-  Box3 rest;
-  for (const Eigen::Vector3d& p : mesh.positions) rest.extend(p);
-  size_ = mesh.positions.empty() ? 0.0 : rest.diagonal().norm();
-  shortest_edge_ = std::numeric_limits<double>::infinity();
-  for (const Triangle& t : triangles_) {
-    for (int k = 0; k < 3; ++k) {
-      nodes_.push_back(t[k]);
-      const double edge = (mesh.positions[t[k]] - mesh.positions[t[(k + 1) % 3]]).norm();
-      shortest_edge_ = std::min(shortest_edge_, edge);
-    }
-  }
-  std::sort(nodes_.begin(), nodes_.end());
-  nodes_.erase(std::unique(nodes_.begin(), nodes_.end()), nodes_.end());
-  for (size_t k = 0; k < triangles_.size(); ++k) boxes_[k] = boxOf(positions, triangles_[k]);
-  tree_.build(boxes_);
-  findEdges(mesh.positions);
-  for (const SurfaceEdge& edge : edges_) edge_boxes_.push_back(boxOf(positions, edge.nodes));
-  edge_tree_.build(edge_boxes_);
+    : triangles_(extractSurface(mesh)), start_(positions) {
+  build(mesh.positions, positions);
   if (!with_neighbours) return;
   std::vector<std::vector<int>> lists(mesh.numNodes());
   forEachElement(mesh, [&](const int* nodes, int count) {
@@ -60,6 +43,83 @@ BodySurface::BodySurface(const Mesh& mesh, const Eigen::VectorXd& positions, boo
     neighbours_.insert(neighbours_.end(), list.begin(), list.end());
     offsets_.push_back(static_cast<int>(neighbours_.size()));
   }
+}
+
+BodySurface::BodySurface(const EmbeddedSurface& surface, const Eigen::VectorXd& positions)
+    : start_(positions), embedded_(true), vertices_(surface.numVertices()) {
+  for (const Eigen::Vector3i& t : surface.triangles()) triangles_.push_back({t[0], t[1], t[2]});
+  for (int v = 0; v < surface.numVertices(); ++v) {
+    SurfacePoint& vertex = vertices_[v];
+    vertex.shifts_cells = true;
+    for (int k = 0; k < 8; ++k) {
+      if (surface.weights(v)[k] == 0.0) continue;  // on a face or an edge of its cell
+      vertex.nodes[vertex.count] = surface.nodes(v)[k];
+      vertex.weights[vertex.count++] = surface.weights(v)[k];
+    }
+  }
+  corner_start_.resize(3 * surface.numVertices());
+  corners_now_.resize(3 * surface.numVertices());
+  placeCorners(positions, corner_start_);
+  build(surface.restPositions(), corner_start_);
+}
+
+void BodySurface::build(const std::vector<Eigen::Vector3d>& rest, const Eigen::VectorXd& corners) {
+  Box3 box;
+  for (const Eigen::Vector3d& p : rest) box.extend(p);
+  size_ = rest.empty() ? 0.0 : box.diagonal().norm();
+  shortest_edge_ = std::numeric_limits<double>::infinity();
+  for (const Triangle& t : triangles_) {
+    for (int k = 0; k < 3; ++k) {
+      nodes_.push_back(t[k]);
+      shortest_edge_ = std::min(shortest_edge_, (rest[t[k]] - rest[t[(k + 1) % 3]]).norm());
+    }
+  }
+  std::sort(nodes_.begin(), nodes_.end());
+  nodes_.erase(std::unique(nodes_.begin(), nodes_.end()), nodes_.end());
+  for (const Triangle& t : triangles_) boxes_.push_back(boxOf(corners, t));
+  tree_.build(boxes_);
+  findEdges(rest);
+  for (const SurfaceEdge& edge : edges_) edge_boxes_.push_back(boxOf(corners, edge.nodes));
+  edge_tree_.build(edge_boxes_);
+}
+
+void BodySurface::placeCorners(const Eigen::VectorXd& positions, Eigen::VectorXd& corners) const {
+  for (size_t v = 0; v < vertices_.size(); ++v) {
+    const SurfacePoint& vertex = vertices_[v];
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int k = 0; k < vertex.count; ++k) {
+      x += vertex.weights[k] * positions.segment<3>(3 * vertex.nodes[k]);
+    }
+    corners.segment<3>(3 * v) = x;
+  }
+}
+
+SurfacePoint BodySurface::corner(int c) const {
+  if (embedded_) return vertices_[c];
+  SurfacePoint point;
+  point.nodes[0] = c;
+  point.weights[0] = 1.0;
+  point.count = 1;
+  return point;
+}
+
+SurfacePoint BodySurface::trianglePoint(const Triangle& t,
+                                        const std::array<double, 3>& weights) const {
+  SurfacePoint point;
+  for (int k = 0; k < 3; ++k) point.add(corner(t[k]), weights[k]);
+  return point;
+}
+
+SurfacePoint BodySurface::edgePoint(const SurfaceEdge& edge, double s) const {
+  SurfacePoint point;
+  point.add(corner(edge.nodes[0]), 1.0 - s);
+  point.add(corner(edge.nodes[1]), s);
+  return point;
+}
+
+void BodySurface::setStart(const Eigen::VectorXd& positions) {
+  start_ = positions;
+  if (embedded_) placeCorners(positions, corner_start_);
 }
 
 void BodySurface::findEdges(const std::vector<Eigen::Vector3d>& rest) {
@@ -89,20 +149,32 @@ void BodySurface::findEdges(const std::vector<Eigen::Vector3d>& rest) {
 }
 
 void BodySurface::sweep(const Eigen::VectorXd& positions, double margin) {
+  if (embedded_) placeCorners(positions, corners_now_);
+  const Eigen::VectorXd& now = embedded_ ? corners_now_ : positions;
+  const Eigen::VectorXd& start = this->start();
   const Eigen::Vector3d widen = Eigen::Vector3d::Constant(margin);
   for (size_t k = 0; k < triangles_.size(); ++k) {
-    const Box3 box = boxOf(start_, triangles_[k]).extend(boxOf(positions, triangles_[k]));
+    const Box3 box = boxOf(start, triangles_[k]).extend(boxOf(now, triangles_[k]));
     boxes_[k] = Box3(box.min() - widen, box.max() + widen);
   }
   tree_.refit(boxes_);
   for (size_t k = 0; k < edges_.size(); ++k) {
-    const Box3 box = boxOf(start_, edges_[k].nodes).extend(boxOf(positions, edges_[k].nodes));
+    const Box3 box = boxOf(start, edges_[k].nodes).extend(boxOf(now, edges_[k].nodes));
     edge_boxes_[k] = Box3(box.min() - widen, box.max() + widen);
   }
   edge_tree_.refit(edge_boxes_);
 }
 
 bool BodySurface::adjacent(int a, int b) const {
+  if (embedded_) {  // vertices whose cells share a node
+    const SurfacePoint &p = vertices_[a], &q = vertices_[b];
+    for (int i = 0; i < p.count; ++i) {
+      for (int j = 0; j < q.count; ++j) {
+        if (p.nodes[i] == q.nodes[j]) return true;
+      }
+    }
+    return a == b;
+  }
   if (offsets_.empty()) return a == b;
   return std::binary_search(neighbours_.begin() + offsets_[a],
                             neighbours_.begin() + offsets_[a + 1], b);

@@ -168,16 +168,33 @@ void ContactParticipant::nudge(const SurfacePoint& point, const Eigen::Vector3d&
 
 void ContactParticipant::addLumped(const SurfacePoint& point, const Eigen::Vector3d& amount,
                                    Eigen::VectorXd& state) const {
+  const double cluster = point.shifts_cells ? clusterMass(point) : 0.0;
   for (int k = 0; k < point.count; ++k) {
     const int i = point.nodes[k];
     if (body_->isConstrained(i)) continue;
-    state.segment<3>(3 * i) += point.weights[k] / body_->nodalMasses()[i] * amount;
+    state.segment<3>(3 * i) +=
+        point.shifts_cells ? Eigen::Vector3d(amount / cluster)
+                           : Eigen::Vector3d(point.weights[k] / body_->nodalMasses()[i] * amount);
   }
+}
+
+double ContactParticipant::clusterMass(const SurfacePoint& point) const {
+  double mass = 0.0;
+  for (int k = 0; k < point.count; ++k) {
+    if (!body_->isConstrained(point.nodes[k])) mass += body_->nodalMasses()[point.nodes[k]];
+  }
+  return mass;
 }
 
 double ContactParticipant::nudgeCompliance(const SurfacePoint& point,
                                            const Eigen::Vector3d& normal) const {
   if (body_->reduced()) return inverseMass(point, normal);
+  // Node by node: w_i / m_i of the impulse moves node i, and so the point by sum w_i^2 / m_i of
+  // it; a point that shifts its cells moves them as one mass, and itself by its free weight.
+  if (point.shifts_cells) {
+    const double mass = clusterMass(point);
+    return mass > 0.0 ? movable(point) / mass : 0.0;
+  }
   double w = 0.0;
   for (int k = 0; k < point.count; ++k) {
     const int i = point.nodes[k];

@@ -274,8 +274,9 @@ void Simulation::setEmbeddedSurface(int b, EmbeddedSurface surface) {
   }
   embedded_surfaces_.resize(bodies_.size());
   surface.update(bodies_[b].positions());
-  // Obstacles touch the user's surface, not the grid's boundary up to a cell outside it.
+  // Obstacles and bodies touch the user's surface, not the grid's boundary up to a cell outside.
   if (contact_states_[b]) contact_states_[b]->embed(surface);
+  if (body_contact_) body_contact_->embed(b, surface, bodies_[b]);
   embedded_surfaces_[b] = std::move(surface);
 }
 

@@ -9,7 +9,9 @@ SurfaceBody bodyFromSurface(TriangleMesh surface, const VoxelSettings& settings,
   Voxelization voxels = voxelize(surface, voxelGridFor(surface, settings), settings.levels);
   const std::string pieces = piecesWarning(voxels.piece_sizes);
   if (warnings && !pieces.empty()) warnings->push_back(pieces);
-  EmbeddedSurface embedded(std::move(surface), voxels);
+  // Embedded as a recording embeds it again from the grid alone, to the same bits: contact acts
+  // on the vertices, and a replay must step them alike.
+  EmbeddedSurface embedded = embedInGrid(std::move(surface), voxels.mesh, "the voxelized grid");
   return {std::move(voxels), std::move(embedded)};
 }
 

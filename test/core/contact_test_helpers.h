@@ -53,21 +53,25 @@ inline double windingNumber(const Eigen::Vector3d& p, const Eigen::VectorXd& x,
   return total / (4.0 * M_PI);
 }
 
+/// Distance from p to the closed surface (`x`: 3 per corner), negative inside, m.
+inline double signedDistanceTo(const Eigen::Vector3d& p, const Eigen::VectorXd& x,
+                               const std::vector<core::Triangle>& triangles) {
+  double distance = std::numeric_limits<double>::infinity();
+  for (const core::Triangle& t : triangles) {
+    distance =
+        std::min(distance, distanceToTriangle(p, x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
+                                              x.segment<3>(3 * t[2])));
+  }
+  return windingNumber(p, x, triangles) < 0.5 ? distance : -distance;
+}
+
 /// The deepest any node of `nodes` is inside the closed surface of `solid`, m (0: none inside).
 inline double deepestInside(const core::Body& nodes, const core::Body& solid) {
   const std::vector<core::Triangle> triangles = core::extractSurface(solid.mesh());
-  const Eigen::VectorXd& x = solid.positions();
   double deepest = 0.0;
   for (int i = 0; i < nodes.numNodes(); ++i) {
     const Eigen::Vector3d p = nodes.positions().segment<3>(3 * i);
-    if (windingNumber(p, x, triangles) < 0.5) continue;
-    double distance = std::numeric_limits<double>::infinity();
-    for (const core::Triangle& t : triangles) {
-      distance =
-          std::min(distance, distanceToTriangle(p, x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
-                                                x.segment<3>(3 * t[2])));
-    }
-    deepest = std::max(deepest, distance);
+    deepest = std::max(deepest, -signedDistanceTo(p, solid.positions(), triangles));
   }
   return deepest;
 }

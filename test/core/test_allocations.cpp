@@ -244,40 +244,48 @@ TEST(Allocations, NoneInContactWithAMeshObstacle) {
   EXPECT_GT(contacts, 0);
 }
 
-// A body made from a surface touches the floor with its surface's vertices, each spread over its
-// cell's nodes: holding, releasing and putting them back allocates nothing either.
-TEST(Allocations, NoneInContactOfASurfaceWithAnObstacle) {
+// Bodies made from a surface touch the floor and each other with their surfaces' vertices, each
+// on its cell's nodes: holding, releasing and putting them back allocates nothing either.
+TEST(Allocations, NoneInContactOfSurfacesWithAnObstacleAndEachOther) {
   dc::SceneSpec spec;
   spec.dt = 0.01;
   spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
   spec.effects.warping = true;
-  spec.contact = dc::ContactSettings{0.5};
+  spec.contact = dc::ContactSettings{0.5, true, false};
   dc::PlacedShape floor;
   floor.shape.size = Eigen::Vector3d(1, 1, 0.1);
   floor.pose.translation() = Eigen::Vector3d(0, 0, -0.05);
   spec.obstacles.push_back(floor);
-  dc::BodySpec ball;
-  ball.name = "ball";
-  ball.material = {1e5, 0.3, 300};
-  spec.bodies.push_back(ball);
   dc::VoxelSettings settings;
   settings.longest_side_cells = 6;
-  dc::SurfaceBody made = dc::bodyFromSurface(
-      deformable_sim::test::sphereSurface(0.05, Eigen::Vector3d(0, 0, 0.051), 12, 24), settings,
-      nullptr);
-  std::vector<dc::Mesh> meshes = {made.voxels.mesh};
+  std::vector<dc::Mesh> meshes;
+  std::vector<dc::EmbeddedSurface> surfaces;
+  for (double z : {0.051, 0.152}) {  // the upper ball 1 mm above the lower one
+    dc::BodySpec ball;
+    ball.name = "ball" + std::to_string(spec.bodies.size());
+    ball.material = {1e5, 0.3, 300};
+    spec.bodies.push_back(ball);
+    dc::SurfaceBody made = dc::bodyFromSurface(
+        deformable_sim::test::sphereSurface(0.05, Eigen::Vector3d(0, 0, z), 12, 24), settings,
+        nullptr);
+    meshes.push_back(made.voxels.mesh);
+    surfaces.push_back(std::move(made.surface));
+  }
   dc::Simulation sim(spec, std::move(meshes));
-  sim.setEmbeddedSurface(0, std::move(made.surface));
+  for (int b = 0; b < 2; ++b) sim.setEmbeddedSurface(b, std::move(surfaces[b]));
   std::vector<dc::StepReport> reports;
-  for (int s = 0; s < 10; ++s) sim.step(reports);  // it lands: contacts exist from here on
+  for (int s = 0; s < 10; ++s) sim.step(reports);  // they land: contacts exist from here on
+  ASSERT_GT(reports[1].body_contacts, 0);
   const long before = g_allocations.load();
-  int contacts = 0;
+  int contacts = 0, body_contacts = 0;
   for (int s = 0; s < 20; ++s) {
     sim.step(reports);
     contacts += reports[0].contacts;
+    body_contacts += reports[1].body_contacts;
   }
   EXPECT_EQ(g_allocations.load() - before, 0);
   EXPECT_GT(contacts, 0);
+  EXPECT_GT(body_contacts, 0);
 }
 
 // Contact between bodies of every model and of a body with itself: once the bodies touch, their

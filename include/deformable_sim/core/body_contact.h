@@ -13,7 +13,8 @@
 // its own matrix (core/implicit_response.h), so a body resting on a soft body is carried, and what
 // presses on a body goes through it to what holds it. Against a surface held all over the free side
 // answers node by node. A last round finds the contacts again and puts back, node by node, what
-// the impulses pressed in elsewhere. Momentum is kept (doc/physics.md).
+// the impulses pressed in elsewhere. Momentum is kept (doc/physics.md). A body made from a surface
+// takes part with that surface (embed()): its points are on its cells' nodes.
 #pragma once
 
 #include <optional>
@@ -32,6 +33,10 @@ class BodyContact {
   /// itself. Builds the surfaces of those bodies; allocates only here.
   BodyContact(const std::vector<Body>& bodies, const ContactSettings& settings,
               const std::vector<bool>& with_bodies, const std::vector<bool>& with_self);
+
+  /// Body b was made from `surface`: it touches with that surface, not its grid's boundary, which
+  /// stands up to a cell outside it. Allocates.
+  void embed(int b, const EmbeddedSurface& surface, const Body& body);
 
   /// After every body's step of length dt: finds and resolves the contacts, and adds to
   /// reports[b] the counts and the depth left. Allocates nothing.
@@ -80,6 +85,8 @@ class BodyContact {
   };
 
   bool touches(int a, int b) const;
+  /// Room for a contact per surface corner and kEdgeHits per edge.
+  void reserveContacts();
   /// Sweeps the surfaces from the step's start to the bodies' positions now and finds every
   /// contact; `new_step`: the bodies have just stepped (else a later round of the same step).
   void findContacts(std::vector<Body>& bodies, bool new_step);

@@ -1,8 +1,10 @@
 // The collision surface of a body: its boundary triangles (core/mesh.h extractSurface) and its
 // feature edges (where the surface folds outwards), moving with its nodes, whatever its model
-// (finite-element, pseudo-rigid or rigid). Each step it is swept from where the nodes were at the
-// step's start to where they are now, and bounding-volume trees over the swept triangles and edges
-// are refitted: the broad phase of contact between bodies and of a body with itself.
+// (finite-element, pseudo-rigid or rigid); for a body made from a surface, the triangles of that
+// surface, whose corners are its vertices, each moving with its cell's nodes
+// (core/embedded_surface.h). Each step it is swept from where the corners were at the step's
+// start to where they are now, and bounding-volume trees over the swept triangles and edges are
+// refitted: the broad phase of contact between bodies and of a body with itself.
 #pragma once
 
 #include <Eigen/Core>
@@ -10,11 +12,13 @@
 #include <vector>
 
 #include "deformable_sim/core/aabb_tree.h"
+#include "deformable_sim/core/embedded_surface.h"
 #include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/surface_point.h"
 
 namespace deformable_sim::core {
 
-/// A feature edge of the surface: its two nodes, and the two triangles that share it.
+/// A feature edge of the surface: its two corners, and the two triangles that share it.
 struct SurfaceEdge {
   std::array<int, 2> nodes{};
   std::array<int, 2> triangles{};
@@ -22,46 +26,69 @@ struct SurfaceEdge {
 
 class BodySurface {
  public:
-  /// The surface of `mesh` at `positions` (3n). With `with_neighbours`, also which nodes share an
-  /// element, so that self-contact can leave a node's own elements alone. Allocates.
+  /// The surface of `mesh` at `positions` (3n): its corners are the nodes. With
+  /// `with_neighbours`, also which nodes share an element, so that self-contact can leave a
+  /// node's own elements alone. Allocates.
   BodySurface(const Mesh& mesh, const Eigen::VectorXd& positions, bool with_neighbours);
+  /// The surface a body was made from, its grid's nodes at `positions` (3n): its corners are the
+  /// surface's vertices. Allocates.
+  BodySurface(const EmbeddedSurface& surface, const Eigen::VectorXd& positions);
 
+  /// Triangles of corners (node numbers, or vertex numbers of an embedded surface).
   const std::vector<Triangle>& triangles() const { return triangles_; }
   /// The edges where the surface folds outwards (a convex ridge between two triangles that meet at
   /// more than kFeatureAngle, at rest): the only edges another surface can cross where neither
-  /// has a node. An edge inside a flat or hollow part of the surface is reached through nodes
+  /// has a corner. An edge inside a flat or hollow part of the surface is reached through corners
   /// and triangles.
   const std::vector<SurfaceEdge>& edges() const { return edges_; }
   /// Cosine of the feature angle: 25 degrees between the triangles' normals.
   static constexpr double kFeatureCosine = 0.9;
-  /// The nodes on the surface, ascending: the only ones that can touch anything.
+  /// The corners on the surface, ascending: the only points that can touch anything first.
   const std::vector<int>& nodes() const { return nodes_; }
+  /// Corner c as a point of the body: a node, or a vertex on its cell's nodes.
+  SurfacePoint corner(int c) const;
+  /// The point of triangle t with barycentric `weights`, and of an edge a fraction s along it.
+  SurfacePoint trianglePoint(const Triangle& t, const std::array<double, 3>& weights) const;
+  SurfacePoint edgePoint(const SurfaceEdge& edge, double s) const;
   /// Diagonal of the rest bounding box, m: the body's size for the contact tolerance.
   double size() const { return size_; }
   /// Shortest rest edge of a surface triangle, m: no part of the body is thinner.
   double shortestEdge() const { return shortest_edge_; }
 
-  /// Sweeps the triangles and edges from the step's start positions to `positions` (3n),
+  /// Sweeps the triangles and edges from the step's start to the body's node positions (3n),
   /// widened by `margin` (m), and refits the trees. Allocates nothing.
   void sweep(const Eigen::VectorXd& positions, double margin);
-  /// The positions the next sweep starts from (3n); e.g. after the contact corrections.
-  void setStart(const Eigen::VectorXd& positions) { start_ = positions; }
-  const Eigen::VectorXd& start() const { return start_; }
+  /// The node positions the next sweep starts from (3n); e.g. after the contact corrections.
+  void setStart(const Eigen::VectorXd& positions);
+  /// Where the corners were at the step's start (3 per corner), and the nodes (3n).
+  const Eigen::VectorXd& start() const { return embedded_ ? corner_start_ : start_; }
+  const Eigen::VectorXd& nodeStart() const { return start_; }
   const AabbTree& tree() const { return tree_; }           ///< over the swept triangles
   const AabbTree& edgeTree() const { return edge_tree_; }  ///< over the swept edges
 
-  /// Whether nodes a and b are one node or share an element (only with `with_neighbours`).
+  /// Whether corners a and b are one or share an element (nodes, only with `with_neighbours`),
+  /// or a cell node (vertices of an embedded surface).
   bool adjacent(int a, int b) const;
 
  private:
+  /// Size, shortest edge, corners, trees and feature edges from the corners' rest positions and
+  /// where they are now (3 per corner).
+  void build(const std::vector<Eigen::Vector3d>& rest, const Eigen::VectorXd& corners);
   /// The feature edges among the triangles' edges, each once, from the rest positions.
   void findEdges(const std::vector<Eigen::Vector3d>& rest);
+  /// Corner positions (3 per corner) from node positions (3n): an embedded surface's vertices.
+  void placeCorners(const Eigen::VectorXd& positions, Eigen::VectorXd& corners) const;
 
   std::vector<Triangle> triangles_;
   std::vector<SurfaceEdge> edges_;
   std::vector<int> nodes_;
   double size_ = 0.0, shortest_edge_ = 0.0;
-  Eigen::VectorXd start_;
+  Eigen::VectorXd start_;  ///< node positions at the step's start
+  /// An embedded surface: each vertex on its cell's nodes; the vertices at the step's start and
+  /// now (scratch of sweep()).
+  bool embedded_ = false;
+  std::vector<SurfacePoint> vertices_;
+  Eigen::VectorXd corner_start_, corners_now_;
   std::vector<Box3> boxes_;       ///< swept box of each triangle
   std::vector<Box3> edge_boxes_;  ///< and of each edge
   AabbTree tree_, edge_tree_;

@@ -95,17 +95,29 @@ class ContactState {
   Eigen::Vector3d pointVelocity(const Body& body, int p) const;
   /// The weight of point p on nodes free to move.
   double freeWeight(const Body& body, int p) const;
-  /// The momentum a unit change of point p's velocity takes (spread()); 0 when it is held (a
-  /// vertex: when less than kMovable of its weight is free).
-  double pointMass(const Body& body, int p) const;
-  /// Changes point p's part of `state` (positions or velocities) by `change`: its free nodes
-  /// all by the same amount.
-  void spread(const Body& body, int p, const Eigen::Vector3d& change, Eigen::VectorXd& state) const;
+  /// Whether point p can be moved: a free node, or a vertex with at least kMovable of its
+  /// weight on free nodes.
+  bool movable(const Body& body, int p) const;
+  /// Changes of a body's nodes that its vertices ask for (positions or velocities), granted
+  /// together; sized once.
+  struct Requests {
+    explicit Requests(int num_nodes);
+    std::vector<double> weight;
+    std::vector<Eigen::Vector3d> sum;
+    std::vector<int> touched;
+  };
+  /// Vertex p asks that it change by `change`: its free nodes alike.
+  void request(const Body& body, int p, const Eigen::Vector3d& change, Requests& requests) const;
+  /// Changes each node asked by the weighted mean of what it was asked, and clears the asks.
+  void grant(Requests& requests, Eigen::VectorXd& state) const;
+  /// Grants the velocity asks from obstacle k, adding the forces they take to its load.
+  void grantVelocities(Body& body, int k, double dt);
   /// Adds a sliding patch's `slip` to the nodes point p holds, by its share of each.
   void slideHeldNodes(Body& body, int p, const Eigen::Vector3d& slip) const;
-  /// The force of the obstacle on point p, its contact from here on, and the point's velocity.
-  void applyFriction(Body& body, int p, const Eigen::Vector3d& obstacle_velocity,
-                     const Eigen::Vector3d& normal, const ContactSettings& settings, double dt);
+  /// The velocity change that the obstacle gives point p (zero when it rests or leaves), and
+  /// whether it sticks from here on.
+  Eigen::Vector3d frictionChange(const Body& body, int p, const Eigen::Vector3d& obstacle_velocity,
+                                 const Eigen::Vector3d& normal, const ContactSettings& settings);
   /// Puts the points of obstacle k that are still inside (their cells share nodes) back out.
   void settleEmbedded(Body& body, const PlacedShape& obstacle, int k);
   /// Where each node of a touching point is in its obstacle's frame: it is held there.
@@ -135,6 +147,7 @@ class ContactState {
   std::vector<double> held_weight_;          ///< sum of the weights of the points holding it
   std::vector<ContactLoad> contacts_;
   std::vector<Patch> patches_;
+  Requests position_requests_, velocity_requests_;
 };
 
 }  // namespace deformable_sim::core

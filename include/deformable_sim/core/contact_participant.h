@@ -11,15 +11,9 @@
 
 #include "deformable_sim/core/body.h"
 #include "deformable_sim/core/implicit_response.h"
+#include "deformable_sim/core/surface_point.h"
 
 namespace deformable_sim::core {
-
-/// A point of a body's surface: a node (count 1) or a point of a triangle (count 3, barycentric).
-struct SurfacePoint {
-  std::array<int, 3> nodes{};
-  std::array<double, 3> weights{};
-  int count = 1;
-};
 
 class ContactParticipant {
  public:
@@ -64,10 +58,12 @@ class ContactParticipant {
   /// the gradient (or its rate) by the returned matrix.
   Eigen::Matrix3d gradientChange(const Eigen::Vector3d& arm, const Eigen::Vector3d& amount) const;
 
-  /// A finite-element body: `amount` at the point, answered by its nodes alone (lumped masses),
-  /// added to `state`.
+  /// A finite-element body: `amount` at the point, answered by its nodes alone (lumped masses;
+  /// a point that shifts its cells, by them as one mass), added to `state`.
   void addLumped(const SurfacePoint& point, const Eigen::Vector3d& amount,
                  Eigen::VectorXd& state) const;
+  /// The mass of the point's free nodes (a point that shifts its cells moves them as one).
+  double clusterMass(const SurfacePoint& point) const;
   /// A finite-element body: `amount` at the point, answered by the whole body, added to `state`.
   void addAnswer(const SurfacePoint& point, const Eigen::Vector3d& amount,
                  Eigen::VectorXd& state) const;
