@@ -1,7 +1,8 @@
 // A body touching itself (the `self` key of the contact effect): a thin strip folded over and
-// pressed flat onto itself, and a U whose arms are pushed into each other. Each is checked with
-// a measure of its own (winding numbers and distances, brute force) and against the same scene
-// without self-contact, in which the body does pass through itself.
+// pressed flat onto itself, and a U whose arms are pushed into each other (also one made from its
+// surface). Each is checked with a measure of its own (winding numbers and distances, brute
+// force) and against the same scene without self-contact, in which the body does pass through
+// itself.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -11,7 +12,9 @@
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/selection.h"
 #include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/surface_body.h"
 #include "simulation_test_helpers.h"
+#include "surface_test_helpers.h"
 
 namespace dc = deformable_sim::core;
 using deformable_sim::test::boxSelection;
@@ -24,15 +27,13 @@ namespace {
 /// cross each other between its nodes (two arms crossing like an X), which the nodes alone miss.
 constexpr int kSampleDivisions = 4;
 
-/// How deep any point of the body's surface is inside its own volume, m. Each point is taken a
-/// hair inside its own triangle (on the surface its winding number is ill-defined): there it
-/// winds once, and twice when it is also inside another part of the body. Its depth is the
-/// distance to the nearest triangle whose corners were all more than `away` from it at rest:
-/// another part's, not its own neighbourhood's.
-double deepestInsideItself(const dc::Body& body, double away) {
-  const std::vector<dc::Triangle> triangles = dc::extractSurface(body.mesh());
-  const Eigen::VectorXd& x = body.positions();
-  const Eigen::VectorXd& rest = body.restPositions();
+/// How deep any point of a closed surface (corners at `x`, at rest at `rest`; or a body's) is
+/// inside its own volume, m. Each point is taken a hair inside its own triangle (on the surface
+/// its winding number is ill-defined): there it winds once, and twice when it is also inside
+/// another part of the body. Its depth is the distance to the nearest triangle whose corners were
+/// all more than `away` from it at rest: another part's, not its own neighbourhood's.
+double deepestInsideItself(const std::vector<dc::Triangle>& triangles, const Eigen::VectorXd& x,
+                           const Eigen::VectorXd& rest, double away) {
   const auto at = [](const Eigen::VectorXd& v, const dc::Triangle& t, const Eigen::Vector3d& w) {
     return Eigen::Vector3d(w[0] * v.segment<3>(3 * t[0]) + w[1] * v.segment<3>(3 * t[1]) +
                            w[2] * v.segment<3>(3 * t[2]));
@@ -62,6 +63,11 @@ double deepestInsideItself(const dc::Body& body, double away) {
     }
   }
   return deepest;
+}
+
+double deepestInsideItself(const dc::Body& body, double away) {
+  return deepestInsideItself(dc::extractSurface(body.mesh()), body.positions(),
+                             body.restPositions(), away);
 }
 
 /// The hexahedra of a box mesh whose centres `keep` accepts, with the nodes they use.
@@ -181,6 +187,91 @@ TEST(SelfContact, TheArmsOfAUPushedIntoEachOtherMeetAndStayApart) {
   EXPECT_LT(with.right_tip, 0.2);
   EXPECT_EQ(with.run.inverted, 0);
   EXPECT_TRUE(with.run.finite);
+}
+
+namespace {
+
+// --- The same U made from its surface, on a grid not aligned with it ----------------------------
+
+/// The U of uMesh as a closed surface: its outline in the x-z plane (counter-clockwise), 5 cm
+/// deep along y.
+dc::TriangleMesh uSurface() {
+  const double outline[10][2] = {{0, 0},       {0.3, 0},     {0.3, 0.05}, {0.3, 0.3}, {0.25, 0.3},
+                                 {0.25, 0.05}, {0.05, 0.05}, {0.05, 0.3}, {0, 0.3},   {0, 0.05}};
+  dc::TriangleMesh mesh;
+  for (double y : {0.0, 0.05}) {
+    for (const auto& p : outline) mesh.vertices.emplace_back(p[0], y, p[1]);
+  }
+  // The face y = 0 looks along -y: counter-clockwise in x-z, as x cross z = -y. The far face
+  // (+10) the other way round.
+  const int faces[][3] = {{0, 1, 2}, {0, 2, 5}, {0, 5, 6}, {0, 6, 9},
+                          {9, 6, 7}, {9, 7, 8}, {5, 2, 3}, {5, 3, 4}};
+  for (const auto& f : faces) {
+    mesh.triangles.emplace_back(f[0], f[1], f[2]);
+    mesh.triangles.emplace_back(f[0] + 10, f[2] + 10, f[1] + 10);
+  }
+  for (int i = 0; i < 10; ++i) {
+    const int j = (i + 1) % 10;
+    deformable_sim::test::addQuad(mesh, i, i + 10, j + 10, j);
+  }
+  return mesh;
+}
+
+}  // namespace
+
+// Voxelized on 4 cm cells, the U's grid stands up to 2 cm out of its surface, and its arms are
+// two partial cells wide. Pushed as the mesh U is, its arms meet surface to surface. (Without
+// self-contact its surface ends 1.8 cm inside itself and the arms cross.)
+TEST(SelfContact, TheArmsOfAUMadeFromItsSurfaceMeetAndStayApart) {
+  dc::VoxelSettings cells;
+  cells.cell_size = 0.04;
+  dc::SurfaceBody u = dc::bodyFromSurface(uSurface(), cells, nullptr);
+  ASSERT_NEAR(u.voxels.enclosed_volume, (0.3 * 0.05 + 2 * 0.25 * 0.05) * 0.05, 1e-9);
+  dc::SceneSpec spec = selfContactScene(true);
+  spec.bodies[0].fixed.push_back(boxSelection({-1, -1, -1}, {1, 1, 0.0}));  // its lowest nodes
+  dc::Simulation sim(spec, {u.voxels.mesh});
+  sim.setEmbeddedSurface(0, u.surface);
+  dc::Body& body = sim.bodies()[0];
+  const std::vector<int> left =
+      dc::selectNodes(body.mesh(), boxSelection({-1, -1, 0.28}, {0.1, 1, 1}));
+  const std::vector<int> right =
+      dc::selectNodes(body.mesh(), boxSelection({0.2, -1, 0.28}, {1, 1, 1}));
+  ASSERT_FALSE(left.empty());
+  ASSERT_FALSE(right.empty());
+  std::vector<dc::Triangle> triangles;
+  for (const Eigen::Vector3i& t : u.surface.triangles()) triangles.push_back({t[0], t[1], t[2]});
+  Eigen::VectorXd rest(3 * u.surface.numVertices()), x(rest.size());
+  for (int v = 0; v < u.surface.numVertices(); ++v) {
+    rest.segment<3>(3 * v) = u.surface.restPositions()[v];
+  }
+  const double tolerance = sim.bodyContact()->tolerance(0, 0);
+  std::vector<dc::StepReport> reports;
+  long self_contacts = 0;
+  double deepest = 0.0;
+  for (int s = 1; s <= 200; ++s) {
+    const double force = 2.0 * std::min(1.0, s / 100.0);
+    Eigen::VectorXd& f = body.externalForces();
+    for (int i : left) f[3 * i] = force / left.size();
+    for (int i : right) f[3 * i] = -force / right.size();
+    sim.step(reports);
+    self_contacts += reports[0].self_contacts;
+    if (s % 5 != 0) continue;
+    dc::EmbeddedSurface& surface = *sim.embeddedSurface(0);
+    surface.update(body.positions());
+    for (int v = 0; v < surface.numVertices(); ++v) x.segment<3>(3 * v) = surface.positions()[v];
+    deepest = std::max(deepest, deepestInsideItself(triangles, x, rest, 0.06));
+  }
+  const auto tip = [&](const std::vector<int>& nodes) {
+    double sum = 0.0;
+    for (int i : nodes) sum += body.positions()[3 * i] / nodes.size();
+    return sum;
+  };
+  EXPECT_GT(self_contacts, 0);
+  EXPECT_LE(deepest, tolerance);
+  EXPECT_LT(tip(left), tip(right));
+  EXPECT_GT(tip(left), 0.1);  // really pushed: each tip went most of the way to the middle
+  EXPECT_EQ(reports[0].inverted_elements, 0);
+  EXPECT_TRUE(body.stateIsFinite());
 }
 
 namespace {
