@@ -212,19 +212,13 @@ double BodyContact::startGap(const Contact& c) const {
                       startOf(*surfaces_[c.triangle_body], c.triangle));
 }
 
-void BodyContact::apply(Contact& c, const Eigen::Vector3d& impulse, double dt) {
-  // An impulse changes the step's velocities, and so its end positions by dt times as much:
-  // the step stays an implicit Euler step, x = x0 + dt v.
+void BodyContact::apply(Contact& c, const Eigen::Vector3d& impulse) {
+  // An impulse changes the step's velocities, and so its end positions by dt times as much
+  // (ContactParticipant::push): the step stays an implicit Euler step, x = x0 + dt v.
   ContactParticipant& node = *participants_[c.node_body];
   ContactParticipant& triangle = *participants_[c.triangle_body];
-  if (c.node_moves) {
-    node.push(c.node, impulse, c.local);
-    node.displace(c.node, dt * impulse, c.local);
-  }
-  if (c.triangle_moves) {
-    triangle.push(c.triangle, -impulse, c.local);
-    triangle.displace(c.triangle, -dt * impulse, c.local);
-  }
+  if (c.node_moves) node.push(c.node, impulse, c.local);
+  if (c.triangle_moves) triangle.push(c.triangle, -impulse, c.local);
 }
 
 double BodyContact::compliance(const Contact& c, const Eigen::Vector3d& direction) const {
@@ -243,10 +237,10 @@ void BodyContact::pushApart(Contact& c, double dt) {
   const double impulse = std::max(0.0, c.impulse + (target - separating) / w);
   const double change = impulse - c.impulse;
   c.impulse = impulse;
-  if (change != 0.0) apply(c, change * c.normal, dt);
+  if (change != 0.0) apply(c, change * c.normal);
 }
 
-void BodyContact::holdByFriction(Contact& c, double dt) {
+void BodyContact::holdByFriction(Contact& c) {
   const ContactParticipant& node = *participants_[c.node_body];
   const ContactParticipant& triangle = *participants_[c.triangle_body];
   Eigen::Vector3d sliding = node.velocity(c.node) - triangle.velocity(c.triangle);
@@ -264,7 +258,7 @@ void BodyContact::holdByFriction(Contact& c, double dt) {
       wanted.norm() <= cone ? wanted : Eigen::Vector3d(cone / wanted.norm() * wanted);
   const Eigen::Vector3d change = friction - c.friction;
   c.friction = friction;
-  apply(c, change, dt);
+  apply(c, change);
 }
 
 void BodyContact::settleVelocities(double dt) {
@@ -285,12 +279,13 @@ void BodyContact::settleVelocities(double dt) {
   for (int pass = 0; pass < kVelocityPasses; ++pass) {
     for (Contact& c : contacts_) {
       pushApart(c, dt);
-      if (settings_.friction > 0.0) holdByFriction(c, dt);
+      if (settings_.friction > 0.0) holdByFriction(c);
     }
   }
 }
 
 void BodyContact::resolve(std::vector<Body>& bodies, double dt, std::vector<StepReport>& reports) {
+  dt_ = dt;
   // An impulse moves the whole body, so nodes that were clear when the contacts were found can
   // be pressed into another surface by it (a cube's sides bulging as its top is pushed). A last
   // round finds the contacts again and only puts back what is inside, node by node.
@@ -317,7 +312,7 @@ void BodyContact::findContacts(std::vector<Body>& bodies, bool new_step) {
   const int n = static_cast<int>(bodies.size());
   for (int b = 0; b < n; ++b) {
     if (!surfaces_[b]) continue;
-    participants_[b]->begin(bodies[b], new_step);
+    participants_[b]->begin(bodies[b], dt_, new_step);
     double skin = std::numeric_limits<double>::infinity();
     for (int o = 0; o < n; ++o) {
       if (surfaces_[o] && touches(b, o)) skin = std::min(skin, tolerance(b, o));

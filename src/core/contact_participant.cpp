@@ -28,8 +28,9 @@ ContactParticipant::ContactParticipant(const Body& body) : body_(&body) {
   inverse_mass_ = 1.0 / mass.mass;
 }
 
-void ContactParticipant::begin(Body& body, bool new_step) {
+void ContactParticipant::begin(Body& body, double dt, bool new_step) {
   body_ = &body;
+  dt_ = dt;
   const ReducedDynamics* reduced = body.reduced();
   if (!reduced) {
     x_ = &body.mutablePositions();
@@ -58,6 +59,8 @@ void ContactParticipant::begin(Body& body, bool new_step) {
 
 void ContactParticipant::end(Body& body) {
   if (!body.reduced()) {
+    *v_ += velocity_change_of_nodes_;
+    *x_ += dt_ * velocity_change_of_nodes_;
     body.addConstraintForces(velocity_change_of_nodes_);
     return;
   }
@@ -73,18 +76,33 @@ Eigen::Vector3d ContactParticipant::arm(const SurfacePoint& point) const {
 }
 
 Eigen::Vector3d ContactParticipant::position(const SurfacePoint& point) const {
-  const Eigen::VectorXd& x = body_->reduced() ? base_x_ : *x_;
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (int k = 0; k < point.count; ++k) p += point.weights[k] * x.segment<3>(3 * point.nodes[k]);
-  if (body_->reduced()) p += centre_change_ + gradient_change_ * arm(point);
+  if (body_->reduced()) {
+    for (int k = 0; k < point.count; ++k) {
+      p += point.weights[k] * base_x_.segment<3>(3 * point.nodes[k]);
+    }
+    return p + centre_change_ + gradient_change_ * arm(point);
+  }
+  // The whole-body answers so far moved the nodes by dt times their velocity change.
+  for (int k = 0; k < point.count; ++k) {
+    const int i = 3 * point.nodes[k];
+    p += point.weights[k] * (x_->segment<3>(i) + dt_ * velocity_change_of_nodes_.segment<3>(i));
+  }
   return p;
 }
 
 Eigen::Vector3d ContactParticipant::velocity(const SurfacePoint& point) const {
-  const Eigen::VectorXd& v = body_->reduced() ? base_v_ : *v_;
   Eigen::Vector3d u = Eigen::Vector3d::Zero();
-  for (int k = 0; k < point.count; ++k) u += point.weights[k] * v.segment<3>(3 * point.nodes[k]);
-  if (body_->reduced()) u += velocity_change_ + rate_change_ * arm(point);
+  if (body_->reduced()) {
+    for (int k = 0; k < point.count; ++k) {
+      u += point.weights[k] * base_v_.segment<3>(3 * point.nodes[k]);
+    }
+    return u + velocity_change_ + rate_change_ * arm(point);
+  }
+  for (int k = 0; k < point.count; ++k) {
+    const int i = 3 * point.nodes[k];
+    u += point.weights[k] * (v_->segment<3>(i) + velocity_change_of_nodes_.segment<3>(i));
+  }
   return u;
 }
 
@@ -137,33 +155,28 @@ void ContactParticipant::push(const SurfacePoint& point, const Eigen::Vector3d& 
                               bool local) {
   if (local && !body_->reduced()) {
     addLumped(point, impulse, *v_);
+    addLumped(point, dt_ * impulse, *x_);
     return;
   }
   if (!body_->reduced()) {
-    addAnswer(point, impulse, *v_);
+    // Kept apart until end(): one pass over the body per node, where adding the answer to the
+    // velocities, the positions and the constraint forces each took three.
     addAnswer(point, impulse, velocity_change_of_nodes_);
     return;
   }
   velocity_change_ += inverse_mass_ * impulse;
   rate_change_ += gradientChange(arm(point), impulse);
+  centre_change_ += dt_ * inverse_mass_ * impulse;
+  gradient_change_ += gradientChange(arm(point), dt_ * impulse);
 }
 
-void ContactParticipant::displace(const SurfacePoint& point, const Eigen::Vector3d& shift,
-                                  bool local) {
-  if (local && !body_->reduced()) {
-    addLumped(point, shift, *x_);
-    return;
-  }
+void ContactParticipant::nudge(const SurfacePoint& point, const Eigen::Vector3d& shift) {
   if (!body_->reduced()) {
-    addAnswer(point, shift, *x_);
+    addLumped(point, shift, *x_);
     return;
   }
   centre_change_ += inverse_mass_ * shift;
   gradient_change_ += gradientChange(arm(point), shift);
-}
-
-void ContactParticipant::nudge(const SurfacePoint& point, const Eigen::Vector3d& shift) {
-  displace(point, shift, true);
 }
 
 void ContactParticipant::addLumped(const SurfacePoint& point, const Eigen::Vector3d& amount,

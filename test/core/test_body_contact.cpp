@@ -340,7 +340,7 @@ TEST(ContactParticipant, ComplianceIsOneSymmetricPositiveMatrixForEveryModel) {
     sim.step(reports);  // a finite-element body answers through its last step's matrix
     dc::Body& body = sim.bodies()[0];
     dc::ContactParticipant participant(body);
-    participant.begin(body);
+    participant.begin(body, spec.dt);
     dc::SurfacePoint point;  // on a vertical edge at a corner, off its nodes
     point.nodes = {17, 26, 26};
     point.weights = {0.3, 0.7, 0.0};

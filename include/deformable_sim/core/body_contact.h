@@ -111,15 +111,16 @@ class BodyContact {
   /// How fast the pair's points part along `direction` per unit impulse there.
   double compliance(const Contact& c, const Eigen::Vector3d& direction) const;
   /// Equal and opposite impulses on the pair, their end positions moved with them.
-  void apply(Contact& c, const Eigen::Vector3d& impulse, double dt);
+  void apply(Contact& c, const Eigen::Vector3d& impulse);
   void pushApart(Contact& c, double dt);
-  void holdByFriction(Contact& c, double dt);
+  void holdByFriction(Contact& c);
   double gap(const Contact& c) const;
   /// Sets which sides of a contact just found take impulses, and adds it.
   void add(Contact c);
   void shift(Contact& c, const Eigen::Vector3d& amount);
 
   ContactSettings settings_;
+  double dt_ = 0.0;  ///< of the step being resolved
   std::vector<bool> with_bodies_, with_self_;
   std::vector<std::optional<BodySurface>> surfaces_;
   std::vector<std::optional<ContactParticipant>> participants_;

@@ -20,11 +20,11 @@ class ContactParticipant {
   /// Sizes the scratch for `body`; allocates only here.
   explicit ContactParticipant(const Body& body);
 
-  /// Takes the body's state after its step; a rigid or pseudo-rigid body starts with no change.
-  /// `new_step`: false for a later round of the same step, whose answers are still good.
-  void begin(Body& body, bool new_step = true);
-  /// Gives a rigid or pseudo-rigid body the change of its coordinates; a finite-element body,
-  /// changed in place, the constraint forces its impulses asked of its held nodes.
+  /// Takes the body's state after its step of `dt`; a rigid or pseudo-rigid body starts with no
+  /// change. `new_step`: false for a later round of the same step, whose answers are still good.
+  void begin(Body& body, double dt, bool new_step = true);
+  /// Gives the body the change of its coordinates (a finite-element body's whole-body answers
+  /// are kept apart until here), and the constraint forces its impulses asked of its held nodes.
   void end(Body& body);
 
   Eigen::Vector3d position(const SurfacePoint& point) const;
@@ -37,14 +37,13 @@ class ContactParticipant {
   Eigen::Matrix3d compliance(const SurfacePoint& point, bool local = false) const;
   /// Linear solves a finite-element body took in this step to answer impulses.
   int solves() const { return response_ ? response_->solves() : 0; }
-  /// The point's body takes `impulse` (N s) there: its velocities change by W impulse (`local`:
-  /// see compliance()).
+  /// The point's body takes `impulse` (N s) there within the step: its velocities change by
+  /// W impulse and, the step being x = x0 + dt v, its positions by dt W impulse (`local`: see
+  /// compliance()).
   void push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool local = false);
-  /// The same for the positions: they change by W `shift` (kg m), momentum untouched.
-  void displace(const SurfacePoint& point, const Eigen::Vector3d& shift, bool local = false);
-  /// A small correction of positions only (what is left inside after the impulses): a
-  /// finite-element body's nodes move by their lumped inverse masses alone, so that the
-  /// correction stays where it is needed; other bodies as displace().
+  /// A small correction of positions only (what is left inside after the impulses), momentum
+  /// untouched: a finite-element body's nodes move by their lumped inverse masses alone, so that
+  /// the correction stays where it is needed; other bodies with their whole motion.
   void nudge(const SurfacePoint& point, const Eigen::Vector3d& shift);
   double nudgeCompliance(const SurfacePoint& point, const Eigen::Vector3d& normal) const;
   /// The part of the point's weight on nodes free to move: 1 for a rigid or pseudo-rigid body,
@@ -71,7 +70,9 @@ class ContactParticipant {
   const Body* body_ = nullptr;
   Eigen::VectorXd* x_ = nullptr;  ///< a finite-element body's own state, changed in place
   Eigen::VectorXd* v_ = nullptr;
-  /// Finite elements: columns solved lazily, so `mutable`; and the velocity change so far.
+  double dt_ = 0.0;  ///< of the step
+  /// Finite elements: columns solved lazily, so `mutable`; and the velocity change the
+  /// whole-body answers made so far (not yet in the state).
   mutable std::optional<ImplicitResponse> response_;
   Eigen::VectorXd velocity_change_of_nodes_;
   Eigen::Vector3d rest_centre_ = Eigen::Vector3d::Zero();
