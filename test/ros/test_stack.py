@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Five soft cubes stacked on a floor, through the node (config/scenes/stack.yaml): stepped five
 seconds, they stand where they were put, none sinks into the one below by more than the contact's
-tolerance, and ~contacts gives each pair the weight of what rests on it."""
+tolerance, and ~contacts gives each pair the weight of what rests on it (averaged over the last
+ten ticks: a tick's force jitters by about 2 %, doc/physics.md)."""
 import math
 import unittest
 
@@ -16,6 +17,7 @@ SIDE = 0.1                                 # m
 WEIGHT = 100.0 * SIDE ** 3 * 9.81          # N, of one cube
 TOLERANCE = 0.01 * math.sqrt(3.0) * SIDE   # 1 % of a cube's size (its diagonal)
 STEPS = 500
+AVERAGED = 10                              # last ticks whose contact forces are averaged
 
 
 class Stack(unittest.TestCase):
@@ -23,14 +25,16 @@ class Stack(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('test_stack')
         cls.sim = SimClient()
-        cls.contacts = None
-        rospy.Subscriber('/deformable_sim/contacts', Contacts, cls.on_contacts, queue_size=10)
-        response = cls.sim.step(STEPS)
+        cls.contacts = {}  # step -> message
+        rospy.Subscriber('/deformable_sim/contacts', Contacts, cls.on_contacts, queue_size=100)
+        response = cls.sim.step(STEPS - AVERAGED)
+        for _ in range(AVERAGED):  # a tick each, so that each publishes its contacts
+            response = cls.sim.step(1)
         assert response.success and response.step == STEPS, response
 
     @classmethod
     def on_contacts(cls, message):
-        cls.contacts = message
+        cls.contacts[message.step] = message
 
     def cube(self, k):
         return positions(self.sim.wait('state', lambda m: m.step == STEPS, body='cube%d' % k))
@@ -48,24 +52,31 @@ class Stack(unittest.TestCase):
             below_top = max(p[2] for p in points)
 
     def test_each_pair_carries_the_weight_of_what_rests_on_it(self):
+        last = range(STEPS - AVERAGED + 1, STEPS + 1)
         deadline = rospy.Time.now() + rospy.Duration(10.0)
-        while (self.contacts is None or self.contacts.step != STEPS) and rospy.Time.now() < deadline:
+        while any(s not in self.contacts for s in last) and rospy.Time.now() < deadline:
             rospy.sleep(0.05)
-        self.assertEqual(self.contacts.step, STEPS)
-        pairs = {(p.body, p.other): p for p in self.contacts.pairs}
+        self.assertEqual([s for s in last if s not in self.contacts], [])
+        ticks = [{(p.body, p.other): p for p in self.contacts[s].pairs} for s in last]
+
+        def mean_z(key):
+            return sum(pairs[key].force.z for pairs in ticks) / len(ticks)
+        pairs = ticks[-1]
         floor = pairs[('cube0', 'floor')]
         self.assertEqual(floor.kind, ContactPair.OBSTACLE)
-        self.assertAlmostEqual(floor.force.z, CUBES * WEIGHT, delta=0.02 * CUBES * WEIGHT)
+        self.assertAlmostEqual(mean_z(('cube0', 'floor')), CUBES * WEIGHT,
+                               delta=0.02 * CUBES * WEIGHT)
         for k in range(1, CUBES):
             above = pairs[('cube%d' % k, 'cube%d' % (k - 1))]
             below = pairs[('cube%d' % (k - 1), 'cube%d' % k)]
             carried = (CUBES - k) * WEIGHT
             self.assertEqual(above.kind, ContactPair.BODY)
-            self.assertAlmostEqual(above.force.z, carried, delta=0.02 * carried, msg='cube%d' % k)
+            self.assertAlmostEqual(mean_z(('cube%d' % k, 'cube%d' % (k - 1))), carried,
+                                   delta=0.02 * carried, msg='cube%d' % k)
             self.assertAlmostEqual(below.force.z, -above.force.z, delta=1e-9 * carried)
             self.assertLessEqual(above.penetration, TOLERANCE)
             self.assertGreater(above.points, 0)
-        for pair in self.contacts.pairs:  # nothing else touches: no cube reaches two below
+        for pair in self.contacts[STEPS].pairs:  # nothing else touches: no cube reaches two below
             self.assertIn((pair.body, pair.other),
                           [('cube0', 'floor')] +
                           [('cube%d' % k, 'cube%d' % (k + d)) for k in range(CUBES) for d in (-1, 1)])
