@@ -136,6 +136,22 @@ struct UEnd {
   double left_tip = 0.0, right_tip = 0.0;  ///< m, the mean x of each arm's top face
 };
 
+/// Step s of pushing the tops of a U's arms (`left`, `right`) towards each other with 2 N each,
+/// ramped up over the first second.
+void pushTips(dc::Body& body, const std::vector<int>& left, const std::vector<int>& right, int s) {
+  const double force = 2.0 * std::min(1.0, s / 100.0);
+  Eigen::VectorXd& f = body.externalForces();
+  for (int i : left) f[3 * i] = force / left.size();
+  for (int i : right) f[3 * i] = -force / right.size();
+}
+
+/// The mean x of the nodes, m.
+double meanX(const dc::Body& body, const std::vector<int>& nodes) {
+  double x = 0.0;
+  for (int i : nodes) x += body.positions()[3 * i] / nodes.size();
+  return x;
+}
+
 /// The base held by its underside; the tops of the arms pushed towards each other with 2 N each,
 /// ramped up over a second and held for one more: enough to bend each arm past the middle.
 UEnd pushArmsTogether(bool self) {
@@ -147,25 +163,17 @@ UEnd pushArmsTogether(bool self) {
       dc::selectNodes(body.mesh(), boxSelection({-1, -1, 0.3 - 1e-9}, {0.05 + 1e-9, 1, 1}));
   const std::vector<int> right =
       dc::selectNodes(body.mesh(), boxSelection({0.25 - 1e-9, -1, 0.3 - 1e-9}, {1, 1, 1}));
-  const auto tip = [&](const std::vector<int>& nodes) {
-    double x = 0.0;
-    for (int i : nodes) x += body.positions()[3 * i] / nodes.size();
-    return x;
-  };
   UEnd end;
   end.run.tolerance = toleranceOf(body);
   std::vector<dc::StepReport> reports;
   for (int s = 1; s <= 200; ++s) {
-    const double force = 2.0 * std::min(1.0, s / 100.0);
-    Eigen::VectorXd& f = body.externalForces();
-    for (int i : left) f[3 * i] = force / left.size();
-    for (int i : right) f[3 * i] = -force / right.size();
+    pushTips(body, left, right, s);
     sim.step(reports);
     end.run.self_contacts += reports[0].self_contacts;
     if (s % 5 == 0) end.run.deepest = std::max(end.run.deepest, deepestInsideItself(body, 0.06));
   }
-  end.left_tip = tip(left);
-  end.right_tip = tip(right);
+  end.left_tip = meanX(body, left);
+  end.right_tip = meanX(body, right);
   end.run.inverted = reports[0].inverted_elements;
   end.run.finite = body.stateIsFinite();
   return end;
@@ -249,10 +257,7 @@ TEST(SelfContact, TheArmsOfAUMadeFromItsSurfaceMeetAndStayApart) {
   long self_contacts = 0;
   double deepest = 0.0;
   for (int s = 1; s <= 200; ++s) {
-    const double force = 2.0 * std::min(1.0, s / 100.0);
-    Eigen::VectorXd& f = body.externalForces();
-    for (int i : left) f[3 * i] = force / left.size();
-    for (int i : right) f[3 * i] = -force / right.size();
+    pushTips(body, left, right, s);
     sim.step(reports);
     self_contacts += reports[0].self_contacts;
     if (s % 5 != 0) continue;
@@ -261,15 +266,10 @@ TEST(SelfContact, TheArmsOfAUMadeFromItsSurfaceMeetAndStayApart) {
     for (int v = 0; v < surface.numVertices(); ++v) x.segment<3>(3 * v) = surface.positions()[v];
     deepest = std::max(deepest, deepestInsideItself(triangles, x, rest, 0.06));
   }
-  const auto tip = [&](const std::vector<int>& nodes) {
-    double sum = 0.0;
-    for (int i : nodes) sum += body.positions()[3 * i] / nodes.size();
-    return sum;
-  };
   EXPECT_GT(self_contacts, 0);
   EXPECT_LE(deepest, tolerance);
-  EXPECT_LT(tip(left), tip(right));
-  EXPECT_GT(tip(left), 0.1);  // really pushed: each tip went most of the way to the middle
+  EXPECT_LT(meanX(body, left), meanX(body, right));
+  EXPECT_GT(meanX(body, left), 0.1);  // really pushed: each tip went most of the way to the middle
   EXPECT_EQ(reports[0].inverted_elements, 0);
   EXPECT_TRUE(body.stateIsFinite());
 }
