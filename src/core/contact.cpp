@@ -316,6 +316,27 @@ void ContactState::recordNodePlaces(const Body& body, const std::vector<PlacedSh
   }
 }
 
+void ContactState::putBack(Body& body, int p, const Eigen::Vector3d& x,
+                           const Eigen::Vector3d& on_surface, const Eigen::Vector3d& change,
+                           double dt) {
+  const int k = obstacle_[p];
+  if (embedded_) {
+    // The positions are granted together (project()); the velocities one vertex after another
+    // (granted together too, the patch held under the shipped tube after its first step slid,
+    // and it was kicked 12 cm aside).
+    request(body, p, on_surface - x, position_requests_);
+    if (change.isZero(0.0)) return;
+    request(body, p, change, velocity_requests_);
+    grantVelocities(body, k, dt);
+    return;
+  }
+  const int i = points_[p].nodes[0];
+  body.mutablePositions().segment<3>(3 * i) = on_surface;
+  if (change.isZero(0.0)) return;
+  body.mutableVelocities().segment<3>(3 * i) += change;
+  addForce(k, on_surface, body.nodalMasses()[i] * change / dt);
+}
+
 int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
                           const std::vector<Eigen::Isometry3d>& start_poses,
                           const ContactSettings& settings, double dt) {
@@ -343,21 +364,7 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
           stuck ? Eigen::Vector3d::Zero()
                 : frictionChange(body, q, (on_surface - to_start * on_surface) / dt,
                                  obstacle.pose.linear() * normal, settings);
-      if (embedded_) {
-        // The positions are granted together below; the velocities one vertex after another
-        // (granted together too, the patch held under the shipped tube after its first step
-        // slid, and it was kicked 12 cm aside).
-        request(body, q, on_surface - x, position_requests_);
-        if (change.isZero(0.0)) continue;
-        request(body, q, change, velocity_requests_);
-        grantVelocities(body, static_cast<int>(k), dt);
-        continue;
-      }
-      const int i = points_[p].nodes[0];
-      body.mutablePositions().segment<3>(3 * i) = on_surface;
-      if (change.isZero(0.0)) continue;
-      body.mutableVelocities().segment<3>(3 * i) += change;
-      addForce(obstacle_[p], on_surface, body.nodalMasses()[i] * change / dt);
+      putBack(body, q, x, on_surface, change, dt);
     }
     if (!embedded_) continue;
     grant(position_requests_, body.mutablePositions());

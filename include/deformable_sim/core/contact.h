@@ -118,6 +118,10 @@ class ContactState {
   /// whether it sticks from here on.
   Eigen::Vector3d frictionChange(const Body& body, int p, const Eigen::Vector3d& obstacle_velocity,
                                  const Eigen::Vector3d& normal, const ContactSettings& settings);
+  /// Puts point p, found at x inside its obstacle, at `on_surface` and changes its velocity by
+  /// `change` (a vertex: asks it of its nodes), adding the force that takes to the load.
+  void putBack(Body& body, int p, const Eigen::Vector3d& x, const Eigen::Vector3d& on_surface,
+               const Eigen::Vector3d& change, double dt);
   /// Puts the points of obstacle k that are still inside (their cells share nodes) back out.
   void settleEmbedded(Body& body, const PlacedShape& obstacle, int k);
   /// Where each node of a touching point is in its obstacle's frame: it is held there.
