@@ -48,15 +48,7 @@ BodySurface::BodySurface(const Mesh& mesh, const Eigen::VectorXd& positions, boo
 BodySurface::BodySurface(const EmbeddedSurface& surface, const Eigen::VectorXd& positions)
     : start_(positions), embedded_(true), vertices_(surface.numVertices()) {
   for (const Eigen::Vector3i& t : surface.triangles()) triangles_.push_back({t[0], t[1], t[2]});
-  for (int v = 0; v < surface.numVertices(); ++v) {
-    SurfacePoint& vertex = vertices_[v];
-    vertex.shifts_cells = true;
-    for (int k = 0; k < 8; ++k) {
-      if (surface.weights(v)[k] == 0.0) continue;  // on a face or an edge of its cell
-      vertex.nodes[vertex.count] = surface.nodes(v)[k];
-      vertex.weights[vertex.count++] = surface.weights(v)[k];
-    }
-  }
+  for (int v = 0; v < surface.numVertices(); ++v) vertices_[v] = vertexPoint(surface, v);
   corner_start_.resize(3 * surface.numVertices());
   corners_now_.resize(3 * surface.numVertices());
   placeCorners(positions, corner_start_);

@@ -32,12 +32,11 @@ ContactState::ContactState(int num_nodes)
 void ContactState::embed(const EmbeddedSurface& surface) {
   points_.assign(surface.numVertices(), Point{});
   for (int v = 0; v < surface.numVertices(); ++v) {
+    const SurfacePoint vertex = vertexPoint(surface, v);
     Point& point = points_[v];
-    for (int k = 0; k < 8; ++k) {
-      if (surface.weights(v)[k] == 0.0) continue;  // on a face or edge of its cell
-      point.nodes[point.count] = surface.nodes(v)[k];
-      point.weights[point.count++] = surface.weights(v)[k];
-    }
+    point.count = vertex.count;
+    std::copy_n(vertex.nodes.begin(), vertex.count, point.nodes.begin());
+    std::copy_n(vertex.weights.begin(), vertex.count, point.weights.begin());
   }
   embedded_ = true;
   resizePoints();
@@ -76,13 +75,12 @@ void ContactState::addForce(int k, const Eigen::Vector3d& at, const Eigen::Vecto
   contacts_[k].torque += at.cross(force);
 }
 
-Eigen::Vector3d ContactState::position(const Body& body, int p) const {
+Eigen::Vector3d ContactState::weighted(const Eigen::VectorXd& state, int p) const {
   const Point& point = points_[p];
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();
-  for (int k = 0; k < point.count; ++k) {
-    x += point.weights[k] * body.positions().segment<3>(3 * point.nodes[k]);
-  }
-  return x;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int k = 0; k < point.count; ++k)
+    sum += point.weights[k] * state.segment<3>(3 * point.nodes[k]);
+  return sum;
 }
 
 double ContactState::freeWeight(const Body& body, int p) const {
@@ -217,7 +215,7 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
     const Eigen::Vector3d& r = point_force_[p];
     const double pushing = r.dot(n);
     if (pushing > 0.0) {
-      addForce(k, position(body, static_cast<int>(p)),
+      addForce(k, weighted(body.positions(), static_cast<int>(p)),
                pushing * n + patch.transmitted * (r - pushing * n));
       if (!patch.sticks) slideHeldNodes(body, static_cast<int>(p), patch.slip);
     }
@@ -245,7 +243,7 @@ Eigen::Vector3d ContactState::frictionChange(const Body& body, int p,
                                              const Eigen::Vector3d& obstacle_velocity,
                                              const Eigen::Vector3d& normal,
                                              const ContactSettings& settings) {
-  const Eigen::Vector3d velocity = pointVelocity(body, p);
+  const Eigen::Vector3d velocity = weighted(body.velocities(), p);
   Eigen::Vector3d relative = velocity - obstacle_velocity;
   const double into = -relative.dot(normal);
   if (!(into > 0.0)) {  // resting or leaving: it sticks if it does not slide
@@ -262,15 +260,6 @@ Eigen::Vector3d ContactState::frictionChange(const Body& body, int p,
   return obstacle_velocity + relative - velocity;
 }
 
-Eigen::Vector3d ContactState::pointVelocity(const Body& body, int p) const {
-  const Point& point = points_[p];
-  Eigen::Vector3d v = Eigen::Vector3d::Zero();
-  for (int k = 0; k < point.count; ++k) {
-    v += point.weights[k] * body.velocities().segment<3>(3 * point.nodes[k]);
-  }
-  return v;
-}
-
 void ContactState::settleEmbedded(Body& body, const PlacedShape& obstacle, int k) {
   const Eigen::Isometry3d to_shape = obstacle.pose.inverse();
   for (int pass = 0; pass < kEmbeddedPasses; ++pass) {
@@ -278,7 +267,7 @@ void ContactState::settleEmbedded(Body& body, const PlacedShape& obstacle, int k
       if (obstacle_[p] != k) continue;
       const int q = static_cast<int>(p);
       Eigen::Vector3d surface, normal;
-      const Eigen::Vector3d x = position(body, q);
+      const Eigen::Vector3d x = weighted(body.positions(), q);
       if (signedDistance(obstacle.shape, to_shape * x, &surface, &normal) < 0.0) {
         request(body, q, obstacle.pose * surface - x, position_requests_);
       }
@@ -348,7 +337,7 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
       const int q = static_cast<int>(p);
       if (!movable(body, q)) continue;  // held: by the user or a grasp
       Eigen::Vector3d surface, normal;
-      const Eigen::Vector3d x = position(body, q);
+      const Eigen::Vector3d x = weighted(body.positions(), q);
       const double distance = signedDistance(obstacle.shape, to_shape * x, &surface, &normal);
       if (!(distance < 0.0)) continue;
       contacts_[k].penetration = std::max(contacts_[k].penetration, -distance);
@@ -377,7 +366,7 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
     if (obstacle_[p] < 0) continue;
     ++touching;
     ++contacts_[obstacle_[p]].points;
-    contacts_[obstacle_[p]].centre += position(body, static_cast<int>(p));
+    contacts_[obstacle_[p]].centre += weighted(body.positions(), static_cast<int>(p));
   }
   for (ContactLoad& c : contacts_) {
     if (c.points > 0) c.centre /= c.points;

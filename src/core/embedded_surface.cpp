@@ -108,6 +108,17 @@ void EmbeddedSurface::updateNormals() {
   }
 }
 
+SurfacePoint vertexPoint(const EmbeddedSurface& surface, int v) {
+  SurfacePoint point;
+  point.shifts_cells = true;
+  for (int k = 0; k < 8; ++k) {
+    if (surface.weights(v)[k] == 0.0) continue;
+    point.nodes[point.count] = surface.nodes(v)[k];
+    point.weights[point.count++] = surface.weights(v)[k];
+  }
+  return point;
+}
+
 EmbeddedSurface embedInGrid(TriangleMesh surface, const Mesh& grid_mesh, const std::string& what) {
   const auto notAGrid = [&what]() {
     return std::invalid_argument(what + " is not a grid of cubes to embed a surface in");

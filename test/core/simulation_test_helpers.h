@@ -9,6 +9,7 @@
 #include "deformable_sim/core/default_scene.h"
 #include "deformable_sim/core/scene.h"
 #include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/surface_body.h"
 
 namespace deformable_sim::test {
 
@@ -20,6 +21,23 @@ inline core::Simulation boxMeshSimulation(const core::SceneSpec& spec) {
     meshes.push_back(core::makeBoxMesh(box.min, box.max, box.cells, box.element));
   }
   return core::Simulation(spec, std::move(meshes));
+}
+
+/// The simulation of `spec` whose first bodies are made from the surfaces of `made` (their grids,
+/// their surfaces embedded), the rest from their box_mesh.
+inline core::Simulation surfaceSimulation(const core::SceneSpec& spec,
+                                          std::vector<core::SurfaceBody> made) {
+  std::vector<core::Mesh> meshes;
+  for (const core::SurfaceBody& body : made) meshes.push_back(body.voxels.mesh);
+  for (size_t b = made.size(); b < spec.bodies.size(); ++b) {
+    const core::BoxMeshSpec& box = *spec.bodies[b].box_mesh;
+    meshes.push_back(core::makeBoxMesh(box.min, box.max, box.cells, box.element));
+  }
+  core::Simulation sim(spec, std::move(meshes));
+  for (size_t b = 0; b < made.size(); ++b) {
+    sim.setEmbeddedSurface(static_cast<int>(b), std::move(made[b].surface));
+  }
+  return sim;
 }
 
 /// Selects the nodes whose rest positions lie in the box [min, max].

@@ -258,21 +258,17 @@ TEST(Allocations, NoneInContactOfSurfacesWithAnObstacleAndEachOther) {
   spec.obstacles.push_back(floor);
   dc::VoxelSettings settings;
   settings.longest_side_cells = 6;
-  std::vector<dc::Mesh> meshes;
-  std::vector<dc::EmbeddedSurface> surfaces;
+  std::vector<dc::SurfaceBody> made;
   for (double z : {0.051, 0.152}) {  // the upper ball 1 mm above the lower one
     dc::BodySpec ball;
     ball.name = "ball" + std::to_string(spec.bodies.size());
     ball.material = {1e5, 0.3, 300};
     spec.bodies.push_back(ball);
-    dc::SurfaceBody made = dc::bodyFromSurface(
+    made.push_back(dc::bodyFromSurface(
         deformable_sim::test::sphereSurface(0.05, Eigen::Vector3d(0, 0, z), 12, 24), settings,
-        nullptr);
-    meshes.push_back(made.voxels.mesh);
-    surfaces.push_back(std::move(made.surface));
+        nullptr));
   }
-  dc::Simulation sim(spec, std::move(meshes));
-  for (int b = 0; b < 2; ++b) sim.setEmbeddedSurface(b, std::move(surfaces[b]));
+  dc::Simulation sim = deformable_sim::test::surfaceSimulation(spec, std::move(made));
   std::vector<dc::StepReport> reports;
   for (int s = 0; s < 10; ++s) sim.step(reports);  // they land: contacts exist from here on
   ASSERT_GT(reports[1].body_contacts, 0);

@@ -67,11 +67,7 @@ dc::Simulation withObject(dc::SceneSpec spec, Object object) {
   cells.cell_size = 0.014;
   dc::SurfaceBody ball = dc::bodyFromSurface(
       deformable_sim::test::sphereSurface(kHalfWidth, {0, 0, kHalfWidth}, 16, 32), cells, nullptr);
-  spec.bodies.back().box_mesh.reset();
-  std::vector<dc::Mesh> meshes = {ball.voxels.mesh};
-  dc::Simulation sim(spec, std::move(meshes));
-  sim.setEmbeddedSurface(0, std::move(ball.surface));
-  return sim;
+  return deformable_sim::test::surfaceSimulation(spec, {std::move(ball)});
 }
 
 // Fingers 1 cm thick close on the object's sides by `squeeze` each in 0.5 s, rise kLift in 1 s,
@@ -134,18 +130,22 @@ Grasp squeezeAndLift(double squeeze, double friction, Object object = Object::kB
   return grasp;
 }
 
+// Hanging still, the fingers' forces on it balance its weight; the table no longer touches it.
+void expectHangingFromTheFingers(const Grasp& grasp) {
+  EXPECT_GT(grasp.finger_points, 0);
+  EXPECT_NEAR(grasp.finger_force.z(), grasp.weight, 0.02 * grasp.weight);
+  EXPECT_NEAR(grasp.finger_force.x(), 0.0, 0.02 * grasp.weight);
+  EXPECT_NEAR(grasp.finger_force.y(), 0.0, 0.02 * grasp.weight);
+  EXPECT_TRUE(grasp.table_force.isZero(0.0));
+}
+
 }  // namespace
 
 TEST(FrictionGrasp, ASqueezedBlockRisesWithTheFingersAndTheyCarryItsWeight) {
   const Grasp grasp = squeezeAndLift(0.002, 0.5);
   // It rises with the fingers, less only the little it sags and slips while it starts to hang.
   EXPECT_NEAR(grasp.rise, kLift, 0.001);
-  EXPECT_GT(grasp.finger_points, 0);
-  // Hanging still, the fingers' forces on it balance its weight; the table no longer touches it.
-  EXPECT_NEAR(grasp.finger_force.z(), grasp.weight, 0.02 * grasp.weight);
-  EXPECT_NEAR(grasp.finger_force.x(), 0.0, 0.02 * grasp.weight);
-  EXPECT_NEAR(grasp.finger_force.y(), 0.0, 0.02 * grasp.weight);
-  EXPECT_TRUE(grasp.table_force.isZero(0.0));
+  expectHangingFromTheFingers(grasp);
 }
 
 TEST(FrictionGrasp, TooLightASqueezeLetsTheBlockSlipOut) {
@@ -163,9 +163,5 @@ TEST(FrictionGrasp, TooLightASqueezeLetsTheBlockSlipOut) {
 TEST(FrictionGrasp, ABallMadeFromItsSurfaceIsLiftedByFriction) {
   const Grasp grasp = squeezeAndLift(0.002, 0.5, Object::kSurfaceBall);
   EXPECT_NEAR(grasp.rise, kLift, 0.002);
-  EXPECT_GT(grasp.finger_points, 0);
-  EXPECT_NEAR(grasp.finger_force.z(), grasp.weight, 0.02 * grasp.weight);
-  EXPECT_NEAR(grasp.finger_force.x(), 0.0, 0.02 * grasp.weight);
-  EXPECT_NEAR(grasp.finger_force.y(), 0.0, 0.02 * grasp.weight);
-  EXPECT_TRUE(grasp.table_force.isZero(0.0));
+  expectHangingFromTheFingers(grasp);
 }

@@ -237,8 +237,7 @@ TEST(SelfContact, TheArmsOfAUMadeFromItsSurfaceMeetAndStayApart) {
   ASSERT_NEAR(u.voxels.enclosed_volume, (0.3 * 0.05 + 2 * 0.25 * 0.05) * 0.05, 1e-9);
   dc::SceneSpec spec = selfContactScene(true);
   spec.bodies[0].fixed.push_back(boxSelection({-1, -1, -1}, {1, 1, 0.0}));  // its lowest nodes
-  dc::Simulation sim(spec, {u.voxels.mesh});
-  sim.setEmbeddedSurface(0, u.surface);
+  dc::Simulation sim = deformable_sim::test::surfaceSimulation(spec, {u});
   dc::Body& body = sim.bodies()[0];
   const std::vector<int> left =
       dc::selectNodes(body.mesh(), boxSelection({-1, -1, 0.28}, {0.1, 1, 1}));

@@ -8,9 +8,9 @@
 #include <limits>
 
 #include "contact_test_helpers.h"
-#include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/simulation.h"
 #include "deformable_sim/core/surface_body.h"
+#include "simulation_test_helpers.h"
 #include "surface_test_helpers.h"
 
 namespace dc = deformable_sim::core;
@@ -48,22 +48,6 @@ dc::SurfaceBody ball(double radius, const Eigen::Vector3d& centre, double cell) 
   return dc::bodyFromSurface(dt::sphereSurface(radius, centre, 16, 32), cells, nullptr);
 }
 
-/// The simulation of `spec`: its first bodies made from the surfaces of `made`, the rest box
-/// meshes.
-dc::Simulation withSurfaceBodies(const dc::SceneSpec& spec, std::vector<dc::SurfaceBody> made) {
-  std::vector<dc::Mesh> meshes;
-  for (const dc::SurfaceBody& body : made) meshes.push_back(body.voxels.mesh);
-  for (size_t b = made.size(); b < spec.bodies.size(); ++b) {
-    const dc::BoxMeshSpec& box = *spec.bodies[b].box_mesh;
-    meshes.push_back(dc::makeBoxMesh(box.min, box.max, box.cells, box.element));
-  }
-  dc::Simulation sim(spec, std::move(meshes));
-  for (size_t b = 0; b < made.size(); ++b) {
-    sim.setEmbeddedSurface(static_cast<int>(b), std::move(made[b].surface));
-  }
-  return sim;
-}
-
 }  // namespace
 
 TEST(SurfaceBodyContact, ABallRestsOnASoftSlabOnItsSurfaceNotOnItsGrid) {
@@ -88,7 +72,7 @@ TEST(SurfaceBodyContact, ABallRestsOnASoftSlabOnItsSurfaceNotOnItsGrid) {
   slab.material = {3.0e4, 0.3, 150.0};
   spec.bodies = {ball_spec, slab};
   // Its grid of 14 mm cells stands about 5 mm outside the surface; it starts 3 mm above the slab.
-  dc::Simulation sim = withSurfaceBodies(spec, {ball(0.03, {0.01, 0.005, 0.073}, 0.014)});
+  dc::Simulation sim = dt::surfaceSimulation(spec, {ball(0.03, {0.01, 0.005, 0.073}, 0.014)});
   std::vector<dc::StepReport> reports;
   int touching = 0;
   for (int s = 0; s < 200; ++s) {
@@ -126,7 +110,7 @@ TEST(SurfaceBodyContact, TwoBallsThrownAtEachOtherMeetSurfaceToSurfaceWithMoment
   }
   // Radius 10 cm on 4.5 cm cells: the grids stand out by more than a centimetre; 2 cm apart,
   // off-centre by 3 cm.
-  dc::Simulation sim = withSurfaceBodies(
+  dc::Simulation sim = dt::surfaceSimulation(
       spec, {ball(0.1, {-0.11, 0, 0}, 0.045), ball(0.1, {0.11, 0.03, 0.0}, 0.045)});
   for (int b = 0; b < 2; ++b) {
     dc::Body& body = sim.bodies()[b];

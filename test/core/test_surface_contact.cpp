@@ -8,6 +8,7 @@
 
 #include "deformable_sim/core/simulation.h"
 #include "deformable_sim/core/surface_body.h"
+#include "simulation_test_helpers.h"
 #include "surface_test_helpers.h"
 
 namespace dc = deformable_sim::core;
@@ -51,9 +52,7 @@ Rest dropBall(double tilt) {
   const Eigen::Vector3d centre = floor.pose.linear() * Eigen::Vector3d(0, 0, kRadius + 0.005);
   dc::SurfaceBody ball = dc::bodyFromSurface(
       deformable_sim::test::sphereSurface(kRadius, centre, 16, 32), cells, nullptr);
-  std::vector<dc::Mesh> meshes = {ball.voxels.mesh};
-  dc::Simulation sim(spec, std::move(meshes));
-  sim.setEmbeddedSurface(0, std::move(ball.surface));
+  dc::Simulation sim = deformable_sim::test::surfaceSimulation(spec, {std::move(ball)});
   std::vector<dc::StepReport> reports;
   for (int s = 0; s < 300; ++s) sim.step(reports);
 

@@ -91,8 +91,8 @@ class ContactState {
   /// Sums the held points' constraint forces per obstacle and judges each patch.
   void judgePatches(const Body& body, const std::vector<PlacedShape>& obstacles,
                     const ContactSettings& settings, double dt);
-  Eigen::Vector3d position(const Body& body, int p) const;
-  Eigen::Vector3d pointVelocity(const Body& body, int p) const;
+  /// Point p's part of a state of the body's nodes (3n): its position or velocity.
+  Eigen::Vector3d weighted(const Eigen::VectorXd& state, int p) const;
   /// The weight of point p on nodes free to move.
   double freeWeight(const Body& body, int p) const;
   /// Whether point p can be moved: a free node, or a vertex with at least kMovable of its

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "deformable_sim/core/surface_point.h"
 #include "deformable_sim/core/triangle_mesh.h"
 #include "deformable_sim/core/voxelization.h"
 
@@ -54,6 +55,10 @@ class EmbeddedSurface {
   std::vector<Embedding> embeddings_;
   int largest_node_ = -1;
 };
+
+/// Vertex v as a point of the grid: the nodes of its cell that carry weight (a vertex on a face
+/// or an edge of its cell has fewer than eight); it shifts its cells (SurfacePoint).
+SurfacePoint vertexPoint(const EmbeddedSurface& surface, int v);
 
 /// Embeds `surface` in a mesh that voxelize made (hexahedral cubes of one size on a grid, node 0
 /// of each its lowest corner): a surface body's mesh read back from a recording. Throws
