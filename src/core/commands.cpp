@@ -8,15 +8,11 @@
 
 namespace deformable_sim::core {
 
-namespace {
-
 std::string vectorText(const Eigen::Vector3d& v) {
   char text[96];
   std::snprintf(text, sizeof text, "(%g, %g, %g)", v.x(), v.y(), v.z());
   return text;
 }
-
-}  // namespace
 
 CommandProcessor::CommandProcessor(Simulation& simulation, CommandLimits limits)
     : simulation_(simulation), limits_(limits) {

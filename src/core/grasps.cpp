@@ -67,8 +67,19 @@ bool CommandProcessor::releaseGrasp(const std::string& name) {
 
 void CommandProcessor::moveGrasp(const std::string& name, const Eigen::Isometry3d& frame) {
   ActiveGrasp& grasp = grasps_.at(name);
-  grasp.frame = frame;
   Body& body = simulation_.bodies()[grasp.body];
+  // A frame that jumps across the world (a pose of 1e300 m) would throw the nodes with it.
+  for (size_t k = 0; k < grasp.nodes.size(); ++k) {
+    const Eigen::Vector3d target = frame * grasp.local[k];
+    const Eigen::Vector3d here = body.positions().segment<3>(3 * grasp.nodes[k]);
+    if (!((target - here).norm() <= limits_.max_target_distance)) {
+      throw CommandError("grasp '" + name + "': the frame would take node " +
+                         std::to_string(body.mesh().node_numbers[grasp.nodes[k]]) + " to " +
+                         vectorText(target) + ", more than " +
+                         std::to_string(limits_.max_target_distance) + " m from where it is");
+    }
+  }
+  grasp.frame = frame;
   // Into the grasp's own buffer: a grasp moves every tick, and allocates nothing doing so.
   for (size_t k = 0; k < grasp.nodes.size(); ++k) grasp.targets[k] = frame * grasp.local[k];
   body.setNodeTargets(grasp.nodes, grasp.targets);

@@ -221,8 +221,13 @@ void Simulation::step(std::vector<StepReport>& reports) {
     reports[b].contacts =
         contact_states_[b]->project(bodies_[b], obstacles_, obstacle_starts_, *contact_, dt_);
   });
-  for (const std::optional<ContactState>& state : contact_states_) {
-    if (state) ++contact_steps_;
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    if (contact_states_[b]) ++contact_steps_;
+    // Contact too may be handed what no step can take (a grasp thrown 1e300 m away).
+    if ((contact_states_[b] || body_contact_) && !bodies_[b].stateIsFinite()) {
+      undoStep(static_cast<int>(b), reports[b]);
+      if (contact_states_[b]) contact_states_[b]->forget();
+    }
   }
   for (size_t k = 0; k < obstacle_starts_.size(); ++k) obstacle_starts_[k] = obstacles_[k].pose;
   ++step_count_;
@@ -237,10 +242,14 @@ void Simulation::stepBody(int b, StepReport& report) {
   // Constraint forces too: a tiny dt (1e-320 s) divides a finite solve into infinite forces.
   if (!std::isfinite(report.solve.relative_residual) || !body.stateIsFinite() ||
       !body.reactionForces().allFinite()) {
-    body.returnToRememberedState();
-    report.recovered = true;
-    ++recoveries_[b];
+    undoStep(b, report);
   }
+}
+
+void Simulation::undoStep(int b, StepReport& report) {
+  bodies_[b].returnToRememberedState();
+  report.recovered = true;
+  ++recoveries_[b];
 }
 
 const std::vector<ContactLoad>& Simulation::obstacleContacts(int b) const {

@@ -26,7 +26,7 @@ constexpr const char* kUsage =
     "  ~stats_rate HZ, ~marker_rate HZ, ~strain_colour_scale S\n"
     "  ~max_force N, ~max_torque NM   wrench bounds (default: 10 x the body's weight, and that\n"
     "                           force times the body's size)\n"
-    "  ~max_target_distance M   how far a fixed-node target may be (default 10)\n"
+    "  ~max_target_distance M   how far a fixed-node target or grasp move may be (default 10)\n"
     "  ~max_steps_per_call N    the most ~step takes in one call (default 1000)\n"
     "Subscribes: ~wrench ~node_wrench ~fixed_nodes ~grasp\n"
     "Publishes:  ~state ~stats ~mesh ~markers ~applied ~scene ~reactions/<body>\n"

@@ -105,7 +105,13 @@ void NodeGrasps::planMoves(const core::CommandProcessor& commands) {
 }
 
 void NodeGrasps::move(int s, int steps) {
-  for (const core::MoveGraspCommand& move : follower_.moves(s, steps)) apply_(move);
+  for (const core::MoveGraspCommand& move : follower_.moves(s, steps)) {
+    try {
+      apply_(move);
+    } catch (const core::CommandError& e) {
+      ROS_WARN_THROTTLE(1.0, "%s; holding its last pose", e.what());
+    }
+  }
 }
 
 void NodeGrasps::publish(const core::Session& session, const ros::Time& stamp,

@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <limits>
 
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/commands.h"
 #include "deformable_sim/core/default_scene.h"
 #include "deformable_sim/core/rigid_frame.h"
+#include "deformable_sim/core/session.h"
 #include "deformable_sim/core/simulation.h"
 #include "deformable_sim/core/wrench.h"
 #include "deformable_sim/io/scene_file.h"
@@ -231,8 +233,9 @@ TEST(DefaultScene, TheShippedSceneFileIsTheBuiltInScene) {
 
 namespace {
 
-// A soft block, 0.1 m on a side, hanging from nothing yet: no clamp, gravity on, heavy damping.
-dc::Simulation makeBlock() {
+// A soft block, 0.1 m on a side, hanging from nothing yet: no clamp, gravity on, heavy damping;
+// with `floor`, standing on one.
+dc::Simulation makeBlock(bool floor = false) {
   dc::SceneSpec spec;
   spec.dt = 0.01;
   spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
@@ -244,6 +247,13 @@ dc::Simulation makeBlock() {
   block.box_mesh = dc::BoxMeshSpec{{0, 0, 0}, {0.1, 0.1, 0.1}, {4, 4, 4}};
   block.material = {5.0e4, 0.3, 200.0};
   spec.bodies.push_back(block);
+  if (floor) {
+    spec.contact = dc::ContactSettings{0.5, false, false};
+    dc::PlacedShape slab;
+    slab.shape.size = Eigen::Vector3d(1, 1, 0.1);
+    slab.pose.translation() = Eigen::Vector3d(0, 0, -0.05);
+    spec.obstacles.push_back(slab);
+  }
   return boxMeshSimulation(spec);
 }
 
@@ -357,6 +367,73 @@ TEST(Grasps, RefusesEmptyRegionsAndNodesHeldElsewhere) {
     EXPECT_NE(std::string(e.what()).find("release the grasp instead"), std::string::npos);
   }
   EXPECT_EQ(sim.bodies()[0].numConstrained(), 8);
+}
+
+// A frame that jumps across the world (a tf pose of 1e300 m) is refused like a fixed-node
+// target that far, and the grasp holds where it was.
+TEST(Grasps, AFrameThatJumpsFartherThanTheTargetLimitIsRefused) {
+  dc::Simulation sim = makeBlock(true);
+  dc::CommandProcessor commands(sim);
+  commands.apply(graspTopCorner(Eigen::Isometry3d::Identity()));
+  Eigen::Isometry3d far = Eigen::Isometry3d::Identity();
+  far.translation() << 0.0, 0.0, 1e300;
+  try {
+    commands.moveGrasp("hand", far);
+    ADD_FAILURE() << "a grasp was moved 1e300 m";
+  } catch (const dc::CommandError& e) {
+    EXPECT_NE(std::string(e.what()).find("grasp 'hand': the frame would take node"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("more than 10.0"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(commands.grasps().at("hand").frame.isApprox(Eigen::Isometry3d::Identity()));
+  std::vector<dc::StepReport> reports;
+  sim.step(reports);
+  EXPECT_FALSE(reports[0].recovered);
+  EXPECT_TRUE(sim.bodies()[0].stateIsFinite());
+}
+
+// With no limit on targets, seven of a one-cell block's eight nodes sent 1e300 m away overflow
+// its own step or, the step undone, the contact of the eighth with a floor put over it; the
+// watchdog undoes either (a fuzz finding).
+TEST(Watchdog, UndoesAStepThatContactLeftNonFinite) {
+  const dc::SceneSpec spec = deformable_sim::io::parseScene(R"(
+dt: 0.01
+effects:
+  gravity: [0, 0, -9.81]
+  warping: true
+  damping: {mass: 1.0, stiffness: 0.002}
+  contact: {friction: 0.5}
+obstacles: [{name: floor, box: {size: [2, 2, 0.1]}, position: [0, 0, -0.1]}]
+bodies:
+  - name: block
+    mesh: {box: {min: [0.3, 0, 0], max: [0.35, 0.05, 0.05], cells: [1, 1, 1]}}
+    material: {youngs_modulus: 3.0e4, poisson_ratio: 0.3, density: 150.0}
+)",
+                                                            "test scene", ".");
+  dc::CommandLimits unlimited;
+  unlimited.max_target_distance = std::numeric_limits<double>::infinity();
+  dc::Session session(spec, deformable_sim::io::readMeshes(spec, nullptr), unlimited);
+  dc::GraspCommand grasp;
+  grasp.name = "hand";
+  grasp.nodes.sphere = dc::Sphere{{0.328, 0.031, 0.031}, 0.05};  // all but the node at (0.3, 0, 0)
+  grasp.frame.translation() << 0.328, 0.031, 0.031;
+  EXPECT_EQ(session.apply(grasp), 7);
+  std::vector<dc::StepReport> reports;
+  session.step(reports);
+  Eigen::Isometry3d far = grasp.frame;
+  far.translation().z() = 1e300;
+  session.apply(dc::MoveGraspCommand{"hand", far});
+  dc::PlacedShape floor;
+  floor.name = "floor";
+  floor.shape.size = Eigen::Vector3d(1, 1, 0.05);
+  session.apply(dc::SetObstaclesCommand{{floor}});
+  for (int s = 1; s <= 3; ++s) {
+    session.step(reports);
+    EXPECT_TRUE(reports[0].recovered);
+    EXPECT_EQ(session.simulation().recoveries(0), s);
+    EXPECT_TRUE(session.simulation().bodies()[0].stateIsFinite()) << "step " << s;
+  }
 }
 
 TEST(Commands, SphereWithANonFiniteCentreIsRefusedInAMultiBodyScene) {

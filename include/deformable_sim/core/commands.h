@@ -98,6 +98,9 @@ struct ActiveWrench {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
 };
 
+/// "(x, y, z)", for messages that name a point.
+std::string vectorText(const Eigen::Vector3d& v);
+
 class CommandProcessor {
  public:
   /// Keeps a reference to `simulation`; the scene's own loads are kept as the base load.

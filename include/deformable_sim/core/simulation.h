@@ -82,6 +82,8 @@ class Simulation {
   void followObstacles();
   /// Body b's own step, undone by the watchdog when it leaves a non-finite value.
   void stepBody(int b, StepReport& report);
+  /// The watchdog: body b back where it started the step, at rest.
+  void undoStep(int b, StepReport& report);
 
   double dt_;
   int threads_ = 1;  ///< the scene's solver threads: bodies step side by side on them
