@@ -1,6 +1,7 @@
 #include "deformable_sim/core/contact.h"
 
 #include <algorithm>
+#include <numeric>
 
 namespace deformable_sim::core {
 
@@ -47,14 +48,15 @@ void ContactState::resizePoints() {
   obstacle_.assign(n, -1);
   point_.assign(n, Eigen::Vector3d::Zero());
   normal_.assign(n, Eigen::Vector3d::Zero());
-  sticking_.assign(n, 0);
+  holds_.assign(n, 0);
+  slip_.assign(n, Eigen::Vector3d::Zero());
   point_held_.assign(n, 0);
   point_force_.assign(n, Eigen::Vector3d::Zero());
 }
 
 void ContactState::forget() {
   std::fill(obstacle_.begin(), obstacle_.end(), -1);
-  std::fill(sticking_.begin(), sticking_.end(), 0);
+  std::fill(holds_.begin(), holds_.end(), 0);
 }
 
 void ContactState::resizeForObstacles(size_t count) {
@@ -133,15 +135,26 @@ void ContactState::grant(Requests& requests, Eigen::VectorXd& state) const {
   requests.touched.clear();
 }
 
-void ContactState::hold(Body& body, const std::vector<PlacedShape>& obstacles) {
+void ContactState::hold(Body& body, const std::vector<PlacedShape>& obstacles, double dt) {
+  // A body that one obstacle holds, and nothing else, takes a slip's correction as a whole.
+  int touched = -1;
+  whole_ = body.numConstrained() == 0;
+  for (size_t p = 0; p < points_.size() && whole_; ++p) {
+    if (obstacle_[p] < 0 || !holds_[p]) continue;
+    whole_ = touched < 0 || touched == obstacle_[p];
+    touched = obstacle_[p];
+  }
   held_.clear();
   for (size_t p = 0; p < points_.size(); ++p) {
     point_held_[p] = 0;
-    // Only a point that sticks: holding a sliding one would stop it for a whole step, and a
-    // frictionless block on a slope would creep down instead of sliding with g sin θ.
     const int k = obstacle_[p];
-    if (k < 0 || !sticking_[p]) continue;
+    if (k < 0 || !holds_[p]) continue;
     const Point& point = points_[p];
+    // A sliding point is held where its slip takes it along the obstacle in the step: the
+    // obstacle carries the body's weight through the solve whether it slides or not.
+    const Eigen::Vector3d slide =
+        whole_ ? Eigen::Vector3d(obstacles[k].pose.linear().transpose() * slip_[p] * dt)
+               : Eigen::Vector3d::Zero();
     for (int j = 0; j < point.count; ++j) {
       const int i = point.nodes[j];
       if (node_obstacle_[i] != k) continue;  // its place was taken on another obstacle
@@ -151,7 +164,7 @@ void ContactState::hold(Body& body, const std::vector<PlacedShape>& obstacles) {
         continue;
       }
       if (body.isConstrained(i)) continue;
-      body.holdNodeAt(i, obstacles[k].pose * node_place_[i]);
+      body.holdNodeAt(i, obstacles[k].pose * (node_place_[i] + slide));
       held_.push_back(i);
       held_flag_[i] = 1;
       held_weight_[i] = point.weights[j];
@@ -185,17 +198,51 @@ void ContactState::judgePatches(const Body& body, const std::vector<PlacedShape>
     if (!(pushing > 0.0)) continue;
     Patch& patch = patches_[obstacle_[p]];
     patch.pushing += pushing;
+    patch.normal += pushing * n;
     patch.sliding += r - pushing * n;
+    patch.momentum += mass * slip_[p];
     patch.mass += mass;
   }
+  decideSlides(body, settings, dt);
+}
+
+void ContactState::decideSlides(const Body& body, const ContactSettings& settings, double dt) {
+  // Sliding, an obstacle resists with μ times the push, against the slip (or, starting, the
+  // tangential force it would have taken to hold it). What it resisted beyond that in the solve
+  // goes back to the body: to a body on one obstacle, held by nothing else, as a whole, the
+  // patch sliding on with it (kicked alone, a patch's few nodes had the body stick and slip in
+  // turn); to a body that touches several or is held otherwise (clamped, grasped), at the
+  // patch's own nodes, which are let go and land again: a kick of the whole by each patch takes
+  // their forces on one another (a block squeezed between fingers bulging against them) for a
+  // push, and threw a squeezed block off its table.
+  kick_.setZero();
+  int touching = 0;
+  for (const Patch& patch : patches_) touching += patch.mass > 0.0;
+  whole_ = whole_ && touching <= 1;
   for (Patch& patch : patches_) {
-    const double sliding = patch.sliding.norm(), friction = settings.friction * patch.pushing;
-    patch.sticks = sliding <= friction * (1.0 + 1e-12);
-    if (patch.sticks) continue;
-    // Held, they did not move although the obstacle resisted only `friction` of `sliding`: the
-    // velocity the rest would have given them in the step, so that they slide on.
-    patch.slip = -(sliding - friction) * dt / patch.mass * patch.sliding / sliding;
-    patch.transmitted = friction / sliding;
+    if (!(patch.mass > 0.0)) continue;
+    const Eigen::Vector3d slip = patch.momentum / patch.mass;
+    const double resisted = patch.sliding.norm(), friction = settings.friction * patch.pushing;
+    if (slip.isZero(0.0) && resisted <= friction * (1.0 + 1e-12)) continue;  // it sticks
+    patch.friction = slip.isZero(0.0) ? Eigen::Vector3d(friction / resisted * patch.sliding)
+                                      : Eigen::Vector3d(-friction * slip.normalized());
+    patch.slides = true;
+    patch.sticks = false;
+    const Eigen::Vector3d impulse = (patch.friction - patch.sliding) * dt;
+    if (!whole_) {
+      patch.slip = impulse / patch.mass;
+      continue;
+    }
+    kick_ = impulse / std::accumulate(body.nodalMasses().begin(), body.nodalMasses().end(), 0.0);
+    // Along the obstacle only: points on an edge or a corner push along other normals, and a
+    // kick into the obstacle sank the body into it.
+    const Eigen::Vector3d n = patch.normal.normalized();
+    kick_ -= kick_.dot(n) * n;
+    // Friction that would turn its slip back stops it instead, within the step.
+    if (!slip.isZero(0.0) && (slip + kick_).dot(slip) <= 0.0) {
+      kick_ = -slip;
+      patch.sticks = true;
+    }
   }
 }
 
@@ -206,7 +253,7 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
   for (size_t p = 0; p < points_.size(); ++p) {
     // Points not held touch only if project() finds them inside again.
     if (!point_held_[p]) {
-      obstacle_[p] = -1, sticking_[p] = 0;
+      obstacle_[p] = -1, holds_[p] = 0;
       continue;
     }
     const int k = obstacle_[p];
@@ -214,20 +261,37 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
     const Eigen::Vector3d n = worldNormal(obstacles, static_cast<int>(p));
     const Eigen::Vector3d& r = point_force_[p];
     const double pushing = r.dot(n);
-    if (pushing > 0.0) {
-      addForce(k, weighted(body.positions(), static_cast<int>(p)),
-               pushing * n + patch.transmitted * (r - pushing * n));
-      if (!patch.sticks) slideHeldNodes(body, static_cast<int>(p), patch.slip);
-    }
-    sticking_[p] = patch.sticks && pushing > 0.0;
-    if (!sticking_[p]) obstacle_[p] = -1;  // it lifts off or slides: free
     point_held_[p] = 0;
+    if (!(pushing > 0.0)) {  // it pulls: it lifts off
+      obstacle_[p] = -1, holds_[p] = 0;
+      continue;
+    }
+    const Eigen::Vector3d x = weighted(body.positions(), static_cast<int>(p));
+    if (!patch.slides) {
+      addForce(k, x, r);
+      continue;
+    }
+    // Its share of the friction by its push; it slides on from where the step took it.
+    addForce(k, x, pushing * n + pushing / patch.pushing * patch.friction);
+    if (!whole_) {
+      slideHeldNodes(body, static_cast<int>(p), patch.slip);
+      obstacle_[p] = -1, holds_[p] = 0;
+      continue;
+    }
+    const Eigen::Vector3d slip = slip_[p] + kick_;
+    slip_[p] = patch.sticks ? Eigen::Vector3d::Zero() : Eigen::Vector3d(slip - slip.dot(n) * n);
+    point_[p] = obstacles[k].pose.inverse() * x;
   }
   for (int i : held_) {
     body.releaseNode(i);
     held_flag_[i] = 0;
   }
   held_.clear();
+  if (kick_.isZero(0.0)) return;
+  Eigen::VectorXd& v = body.mutableVelocities();
+  for (int i = 0; i < body.numNodes(); ++i) {
+    if (!body.isConstrained(i)) v.segment<3>(3 * i) += kick_;
+  }
 }
 
 void ContactState::slideHeldNodes(Body& body, int p, const Eigen::Vector3d& slip) const {
@@ -239,25 +303,27 @@ void ContactState::slideHeldNodes(Body& body, int p, const Eigen::Vector3d& slip
   }
 }
 
-Eigen::Vector3d ContactState::frictionChange(const Body& body, int p,
-                                             const Eigen::Vector3d& obstacle_velocity,
-                                             const Eigen::Vector3d& normal,
-                                             const ContactSettings& settings) {
-  const Eigen::Vector3d velocity = weighted(body.velocities(), p);
-  Eigen::Vector3d relative = velocity - obstacle_velocity;
+Eigen::Vector3d ContactState::landingChange(const Body& body, int p,
+                                            const Eigen::Vector3d& obstacle_velocity,
+                                            const Eigen::Vector3d& normal,
+                                            const ContactSettings& settings) {
+  // It touches from here on, held in the next step and sliding at what it keeps along the
+  // surface (the held step then takes friction from that, with the body behind it). Landing,
+  // the impulse that stops it going in allows μ times itself of friction.
+  const Eigen::Vector3d relative = weighted(body.velocities(), p) - obstacle_velocity;
   const double into = -relative.dot(normal);
-  if (!(into > 0.0)) {  // resting or leaving: it sticks if it does not slide
-    sticking_[p] = sticking_[p] || (relative - relative.dot(normal) * normal).isZero(0.0);
+  const Eigen::Vector3d along = relative + into * normal;
+  if (!(into > 0.0)) {  // resting or leaving
+    slip_[p] = whole_ ? along : Eigen::Vector3d::Zero();
+    holds_[p] = whole_ || holds_[p] || along.isZero(0.0);
     return Eigen::Vector3d::Zero();
   }
-  relative += into * normal;
-  if (settings.friction > 0.0) {
-    const double sliding = relative.norm(), slowed = settings.friction * into;
-    relative = sliding <= slowed ? Eigen::Vector3d::Zero()
-                                 : Eigen::Vector3d(relative * (1.0 - slowed / sliding));
-  }
-  sticking_[p] = relative.isZero(0.0);
-  return obstacle_velocity + relative - velocity;
+  const double speed = along.norm(), slowed = settings.friction * into;
+  slip_[p] =
+      speed <= slowed ? Eigen::Vector3d::Zero() : Eigen::Vector3d(along * (1.0 - slowed / speed));
+  // A body held otherwise slides free in the solve, and lands again.
+  holds_[p] = whole_ || slip_[p].isZero(0.0);
+  return into * normal + slip_[p] - along;
 }
 
 void ContactState::settleEmbedded(Body& body, const PlacedShape& obstacle, int k) {
@@ -342,17 +408,17 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
       if (!(distance < 0.0)) continue;
       contacts_[k].penetration = std::max(contacts_[k].penetration, -distance);
       const Eigen::Vector3d on_surface = obstacle.pose * surface;
-      // A point held at its place on this obstacle moved with it: it is inside by round-off
-      // only, and still sticks.
-      const bool stuck = obstacle_[p] == static_cast<int>(k) && sticking_[p];
-      if (obstacle_[p] != static_cast<int>(k)) sticking_[p] = 0;  // a new contact
+      // A point held on this obstacle moved with it (to its place, or as far as it slid): it is
+      // inside by round-off only, and touches on as it did.
+      const bool stuck = obstacle_[p] == static_cast<int>(k) && holds_[p];
+      if (obstacle_[p] != static_cast<int>(k)) holds_[p] = 0;  // a new contact
       obstacle_[p] = static_cast<int>(k);
       point_[p] = surface;
       normal_[p] = normal;
       const Eigen::Vector3d change =
           stuck ? Eigen::Vector3d::Zero()
-                : frictionChange(body, q, (on_surface - to_start * on_surface) / dt,
-                                 obstacle.pose.linear() * normal, settings);
+                : landingChange(body, q, (on_surface - to_start * on_surface) / dt,
+                                obstacle.pose.linear() * normal, settings);
       putBack(body, q, x, on_surface, change, dt);
     }
     if (!embedded_) continue;
@@ -368,8 +434,16 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
     ++contacts_[obstacle_[p]].points;
     contacts_[obstacle_[p]].centre += weighted(body.positions(), static_cast<int>(p));
   }
+  int obstacles_touched = 0;
   for (ContactLoad& c : contacts_) {
-    if (c.points > 0) c.centre /= c.points;
+    if (c.points > 0) c.centre /= c.points, ++obstacles_touched;
+  }
+  // Touching several, or held otherwise, a body is not moved whole: what slides on them slides
+  // free in the next solve.
+  if (obstacles_touched > 1 || body.numConstrained() > 0) {
+    for (size_t p = 0; p < points_.size(); ++p) {
+      if (holds_[p] && !slip_[p].isZero(0.0)) holds_[p] = 0;
+    }
   }
   return touching;
 }

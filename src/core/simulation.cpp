@@ -237,7 +237,7 @@ void Simulation::step(std::vector<StepReport>& reports) {
 void Simulation::stepBody(int b, StepReport& report) {
   Body& body = bodies_[b];
   body.rememberState();
-  if (contact_states_[b]) contact_states_[b]->hold(body, obstacles_);
+  if (contact_states_[b]) contact_states_[b]->hold(body, obstacles_, dt_);
   report = body.step(dt_);
   // Constraint forces too: a tiny dt (1e-320 s) divides a finite solve into infinite forces.
   if (!std::isfinite(report.solve.relative_residual) || !body.stateIsFinite() ||

@@ -239,7 +239,7 @@ void EffectCost(benchmark::State& state) {
   double iterations = 0.0;
   int touching = 0;
   const auto step = [&] {
-    if (contact) contacts.hold(body, obstacles);
+    if (contact) contacts.hold(body, obstacles, c.dt);
     const core::StepReport report = body.step(c.dt);
     if (contact) {
       contacts.release(body, obstacles, friction, c.dt);

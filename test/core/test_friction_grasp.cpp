@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "deformable_sim/core/contact.h"
@@ -39,6 +40,7 @@ struct Grasp {
   Eigen::Vector3d table_force = Eigen::Vector3d::Zero();   ///< on the block from the table, N
   double weight = 0.0;                                     ///< N
   int finger_points = 0;
+  double lowest = 0.0;  ///< m, the lowest node at the end
 };
 
 Eigen::Vector3d centreOfMass(const dc::Body& body) {
@@ -126,6 +128,10 @@ Grasp squeezeAndLift(double squeeze, double friction, Object object = Object::kB
     grasp.finger_points += sim.obstacleContacts(0)[f].points;
   }
   grasp.table_force = sim.obstacleContacts(0)[0].force;
+  const Eigen::VectorXd& x = sim.bodies()[0].positions();
+  grasp.lowest = x[2];
+  for (int i = 0; i < sim.bodies()[0].numNodes(); ++i)
+    grasp.lowest = std::min(grasp.lowest, x[3 * i + 2]);
   for (double m : sim.bodies()[0].nodalMasses()) grasp.weight += m * kGravity;
   return grasp;
 }
@@ -152,8 +158,9 @@ TEST(FrictionGrasp, TooLightASqueezeLetsTheBlockSlipOut) {
   // The same squeeze with a tenth of the friction: μ times the squeeze is less than the weight.
   const Grasp grasp = squeezeAndLift(0.002, 0.05);
   EXPECT_LT(grasp.rise, 0.2 * kLift);
-  // It is back on the table, which carries it.
+  // It is back on the table, which carries it, on its top (the table's top is z = 0).
   EXPECT_NEAR(grasp.table_force.z(), grasp.weight, 0.05 * grasp.weight);
+  EXPECT_GT(grasp.lowest, -1e-9);
 }
 
 // A ball made from its surface is squeezed through its surface (core/contact.h): the fingers

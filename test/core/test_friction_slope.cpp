@@ -1,12 +1,14 @@
 // A block on a plane tilted at theta, on a primitive box, a triangle mesh and a soft slab: by
 // Coulomb's law it stays where tan(theta) < mu and otherwise slides down with
 // g (sin(theta) - mu cos(theta)).
-// Released unstressed, the block lands with a wave that can tip it out of the friction cone close
-// below the friction angle; damped, it stays up to 0.95 mu (see DISABLED_ below).
+// Released unstressed, the block lands with a small slip and a wave; lightly damped it stays up
+// to 0.9 mu, its wave damped up to 0.97 mu.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "deformable_sim/core/contact.h"
@@ -174,36 +176,62 @@ TEST(FrictionSlope, BlockOnASoftSlabStaysBelowTheFrictionAngleAndSlidesAbove) {
   expectSlides(Plane::kSoftSlab, 0.5, 0.3);
 }
 
-// Close below the friction angle: up to tan = 0.85 mu on an obstacle, 0.95 mu on the soft slab.
+// Close below the friction angle: up to tan = 0.9 mu on an obstacle, 0.95 mu on the soft slab,
+// with light damping; it slips a little as it lands (under 1 mm), then stays.
 TEST(FrictionSlope, BlockStaysCloseBelowTheFrictionAngle) {
   const double mu = 0.6;
   for (const Plane plane : {Plane::kPrimitiveBox, Plane::kOpenMesh}) {
-    expectStays(plane, std::atan(0.85 * mu), mu);
+    expectStays(plane, std::atan(0.9 * mu), mu);
   }
   expectStays(Plane::kSoftSlab, std::atan(0.95 * mu), mu);
 }
 
-// Its landing wave damped within a few steps, the block stays up to tan = 0.95 mu on all three
+// Its landing wave damped within a few steps, the block stays up to tan = 0.97 mu on all three
 // planes, and the damping leaves the slide above the friction angle as it was.
-TEST(FrictionSlope, BlockWithItsLandingWaveDampedStaysUpTo95PercentOfTheFrictionAngle) {
+TEST(FrictionSlope, BlockWithItsLandingWaveDampedStaysUpTo97PercentOfTheFrictionAngle) {
   const double mu = 0.6;
   for (const Plane plane : {Plane::kPrimitiveBox, Plane::kOpenMesh, Plane::kSoftSlab}) {
-    expectStays(plane, std::atan(0.95 * mu), mu, kWaveDamping);
+    expectStays(plane, std::atan(0.97 * mu), mu, kWaveDamping);
   }
   expectSlides(Plane::kPrimitiveBox, 0.5, 0.3, kWaveDamping);
   expectSlides(Plane::kOpenMesh, 0.5, 0.3, kWaveDamping);
 }
 
-// Fails today: at tan = 0.97 mu the damped block still creeps 4 to 5 cm in a second on an
-// obstacle (0.7 mm on the soft slab), in a cycle of six steps. The held set shrinks as the uphill
-// nodes lift under the tipping moment (9, 6, then 4 nodes); on the rebound the four left press
-// with 3.4 N where the weight asks 4.2 N and must hold 2.6 N along the slope (T/N 0.76 against
-// tan 0.58), so the patch slips, every node is let go, falls back and lands two steps later with
-// 14 N, and the cycle starts again. A stick or slip decision that keeps a patch through a rebound
-// (judged on its impulse over several steps) would remove it.
-TEST(FrictionSlope, DISABLED_BlockStaysJustBelowTheFrictionAngle) {
+// Just above the friction angle the acceleration is a small difference of large forces: within
+// 5 % from tan = 1.05 mu on the obstacles, from 1.1 mu on the soft slab (whose dent it carries
+// along; 5.6 % over at 1.05 mu).
+TEST(FrictionSlope, BlockSlidesJustAboveTheFrictionAngle) {
   const double mu = 0.6;
-  for (const Plane plane : {Plane::kPrimitiveBox, Plane::kOpenMesh}) {
-    expectStays(plane, std::atan(0.97 * mu), mu, kWaveDamping);
+  for (const Plane plane : {Plane::kPrimitiveBox, Plane::kOpenMesh, Plane::kSoftSlab}) {
+    for (const double ratio : {1.05, 1.1, 1.2}) {
+      if (plane == Plane::kSoftSlab && ratio < 1.1) continue;
+      const double theta = std::atan(ratio * mu);
+      const double expected = kGravity * (std::sin(theta) - mu * std::cos(theta));
+      const Slide slide = slideOnSlope(plane, theta, mu);
+      EXPECT_NEAR(slide.acceleration, expected, 0.05 * expected)
+          << "plane " << static_cast<int>(plane) << " tan " << ratio << " mu";
+    }
+  }
+}
+
+// A report, not a check: the acceleration and distance of a second on either side of the
+// friction angle, on each plane, lightly damped and with the landing wave damped (doc/physics.md):
+//   test_core_hard_cases --gtest_also_run_disabled_tests \
+//     --gtest_filter=FrictionSlope.DISABLED_ReportAroundTheFrictionAngle
+TEST(FrictionSlope, DISABLED_ReportAroundTheFrictionAngle) {
+  const double mu = 0.6;
+  const char* names[] = {"box", "mesh", "slab"};
+  std::printf("plane  damping  tan/mu  distance_m  acceleration  due\n");
+  for (const Plane plane : {Plane::kPrimitiveBox, Plane::kOpenMesh, Plane::kSoftSlab}) {
+    for (const double damping : {kLightDamping, kWaveDamping}) {
+      for (const double ratio : {0.85, 0.9, 0.95, 0.97, 1.02, 1.05, 1.1, 1.2, 1.4}) {
+        const double theta = std::atan(ratio * mu);
+        const double due = std::max(0.0, kGravity * (std::sin(theta) - mu * std::cos(theta)));
+        const Slide slide = slideOnSlope(plane, theta, mu, damping);
+        std::printf("%-5s  %.2f     %.2f    %.4f      %.3f         %.3f\n",
+                    names[static_cast<int>(plane)], damping, ratio, slide.distance,
+                    slide.acceleration, due);
+      }
+    }
   }
 }

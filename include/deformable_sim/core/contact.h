@@ -1,16 +1,20 @@
 // Contact with rigid obstacles (the `contact` effect). After each step, points of a body that
 // ended up inside an obstacle are put back on its surface and their velocity into it, relative to
-// the obstacle's, removed. The points are the body's nodes or, for a body made from a surface
-// (core/embedded_surface.h), the vertices of that surface, each moving with its cell's nodes: a
-// vertex is moved by moving its cell's free nodes alike (the cell shifts, unstrained). A point that
-// touches an obstacle without sliding on it is then held in the next step's implicit solve (a
-// node at its point of the obstacle, a vertex by its cell's nodes moving with the obstacle, which
-// may move: a robot's finger), so the obstacle supports and carries the body through the solve
-// (a resting body is not over-compressed, a squeezed one is lifted by friction). It is let go
-// when the constraint would pull it into the obstacle or, by Coulomb's law applied to the body's
-// held points on that obstacle together, when their tangential force exceeds μ times their
-// normal force (they slide). Stable at any stiffness and step; costs nothing when the scene does
-// not enable it.
+// the obstacle's, removed (friction, up to μ times that impulse, slows their sliding). The points
+// are the body's nodes or, for a body made from a surface (core/embedded_surface.h), the vertices
+// of that surface, each moving with its cell's nodes: a vertex is moved by moving its cell's free
+// nodes alike (the cell shifts, unstrained). A point that touches an obstacle is then held in the
+// next step's implicit solve (a node at its point of the obstacle, a vertex by its cell's nodes
+// moving with the obstacle, which may move: a robot's finger); if it slides, at the place its
+// slip takes it to. So the obstacle carries the body through the solve, sliding or not (a resting
+// body is not over-compressed, a squeezed one is lifted by friction). It is let go when the
+// constraint would pull it into the obstacle. Coulomb's law is applied to the body's held points
+// on one obstacle together (a patch): while their tangential force stays within μ times their
+// normal force they stick; otherwise the obstacle exerts μ times the normal force against the
+// slip, and what it exerted beyond that in the solve is given back to the body as a whole (or,
+// for a body that touches several obstacles or is held otherwise, to the patch's nodes, which
+// then slide free). Stable at any stiffness and step; costs nothing when the scene does not
+// enable it.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -50,12 +54,12 @@ class ContactState {
   /// to a cell outside the surface. Allocates.
   void embed(const EmbeddedSurface& surface);
 
-  /// Before a step, with the obstacles where they will be at its end: holds the free points that
-  /// stick to an obstacle at their place on it.
-  void hold(Body& body, const std::vector<PlacedShape>& obstacles);
-  /// After the step of `dt` s: lets the held points go. While the constraint forces of a body's
-  /// points held on one obstacle together push out of it within the friction cone, those that
-  /// push stay touching (held in the next step); else they all start to slide.
+  /// Before a step of `dt` s, with the obstacles where they will be at its end: holds the free
+  /// points that touch an obstacle at their place on it, moved on by their slip.
+  void hold(Body& body, const std::vector<PlacedShape>& obstacles, double dt);
+  /// After the step of `dt` s: lets the held points go. Those that push out of their obstacle
+  /// stay touching (held in the next step): at rest while the constraint forces of the body's
+  /// points held on that obstacle together stay within the friction cone, else sliding.
   void release(Body& body, const std::vector<PlacedShape>& obstacles,
                const ContactSettings& settings, double dt);
   /// Projects the free points out of every obstacle and records them as touching; an obstacle's
@@ -80,10 +84,14 @@ class ContactState {
   /// A body's held points on one obstacle, judged together by Coulomb's law.
   struct Patch {
     double pushing = 0.0, mass = 0.0;
-    Eigen::Vector3d sliding = Eigen::Vector3d::Zero();
-    bool sticks = true;
-    Eigen::Vector3d slip = Eigen::Vector3d::Zero();  ///< velocity the sliding nodes gain
-    double transmitted = 1.0;  ///< fraction of the tangential force the obstacle exerts
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();    ///< the normals weighed by the push
+    Eigen::Vector3d sliding = Eigen::Vector3d::Zero();   ///< tangential constraint force, N
+    Eigen::Vector3d momentum = Eigen::Vector3d::Zero();  ///< of the held points' slip
+    Eigen::Vector3d friction = Eigen::Vector3d::Zero();  ///< sliding: what the obstacle exerts
+    /// Its points' mean slip; not whole_: the velocity its nodes gain as they are let go, m/s
+    Eigen::Vector3d slip = Eigen::Vector3d::Zero();
+    bool slides = false;  ///< in the step
+    bool sticks = true;   ///< at rest on it after the step
   };
 
   /// Sizes the per-point state for points_ (allocates).
@@ -112,12 +120,16 @@ class ContactState {
   void grant(Requests& requests, Eigen::VectorXd& state) const;
   /// Grants the velocity asks from obstacle k, adding the forces they take to its load.
   void grantVelocities(Body& body, int k, double dt);
-  /// Adds a sliding patch's `slip` to the nodes point p holds, by its share of each.
+  /// Judges each patch sliding or not, and what the body gains from those that slide.
+  void decideSlides(const Body& body, const ContactSettings& settings, double dt);
+  /// A body held otherwise: adds a sliding patch's `slip` to the nodes point p holds, by its
+  /// share of each.
   void slideHeldNodes(Body& body, int p, const Eigen::Vector3d& slip) const;
-  /// The velocity change that the obstacle gives point p (zero when it rests or leaves), and
-  /// whether it sticks from here on.
-  Eigen::Vector3d frictionChange(const Body& body, int p, const Eigen::Vector3d& obstacle_velocity,
-                                 const Eigen::Vector3d& normal, const ContactSettings& settings);
+  /// The velocity change that the obstacle gives point p as it lands (its velocity into it
+  /// removed, its sliding slowed by friction; zero when it rests or leaves); it is held from then
+  /// on, sliding at what is left.
+  Eigen::Vector3d landingChange(const Body& body, int p, const Eigen::Vector3d& obstacle_velocity,
+                                const Eigen::Vector3d& normal, const ContactSettings& settings);
   /// Puts point p, found at x inside its obstacle, at `on_surface` and changes its velocity by
   /// `change` (a vertex: asks it of its nodes), adding the force that takes to the load.
   void putBack(Body& body, int p, const Eigen::Vector3d& x, const Eigen::Vector3d& on_surface,
@@ -140,7 +152,8 @@ class ContactState {
   std::vector<int> obstacle_;             ///< the obstacle point p touches, -1: none
   std::vector<Eigen::Vector3d> point_;    ///< its place on the obstacle, in the obstacle's frame
   std::vector<Eigen::Vector3d> normal_;   ///< outward normal there, in the obstacle's frame
-  std::vector<std::uint8_t> sticking_;    ///< touching without sliding: held in the next step
+  std::vector<std::uint8_t> holds_;       ///< touching: held in the next step
+  std::vector<Eigen::Vector3d> slip_;     ///< its velocity along the obstacle, relative to it
   std::vector<std::uint8_t> point_held_;  ///< held in the present step
   std::vector<Eigen::Vector3d> point_force_;  ///< its share of its nodes' constraint forces
   // Per node.
@@ -151,6 +164,9 @@ class ContactState {
   std::vector<double> held_weight_;          ///< sum of the weights of the points holding it
   std::vector<ContactLoad> contacts_;
   std::vector<Patch> patches_;
+  Eigen::Vector3d kick_ = Eigen::Vector3d::Zero();  ///< velocity the whole body gains, m/s
+  /// One obstacle holds the body, and nothing else: a slip's correction moves it whole.
+  bool whole_ = true;
   Requests position_requests_, velocity_requests_;
 };
 
