@@ -200,7 +200,7 @@ void ContactState::judgePatches(const Body& body, const std::vector<PlacedShape>
     patch.pushing += pushing;
     patch.normal += pushing * n;
     patch.sliding += r - pushing * n;
-    patch.momentum += mass * slip_[p];
+    if (whole_) patch.momentum += mass * slip_[p];  // otherwise it was held where it was
     patch.mass += mass;
   }
   decideSlides(body, settings, dt);
