@@ -136,11 +136,12 @@ void ContactState::grant(Requests& requests, Eigen::VectorXd& state) const {
 }
 
 void ContactState::hold(Body& body, const std::vector<PlacedShape>& obstacles, double dt) {
-  // A body that one obstacle holds, and nothing else, takes a slip's correction as a whole.
+  // A body that touches one obstacle, and that nothing else holds, takes a slip's correction as
+  // a whole.
   int touched = -1;
   whole_ = body.numConstrained() == 0;
   for (size_t p = 0; p < points_.size() && whole_; ++p) {
-    if (obstacle_[p] < 0 || !holds_[p]) continue;
+    if (obstacle_[p] < 0) continue;  // held or not: what touches pushes on the body too
     whole_ = touched < 0 || touched == obstacle_[p];
     touched = obstacle_[p];
   }
@@ -250,6 +251,15 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
                            const ContactSettings& settings, double dt) {
   resizeForObstacles(obstacles.size());
   judgePatches(body, obstacles, settings, dt);
+  if (!kick_.isZero(0.0) || whole_) {
+    double mass = 0.0;
+    centre_velocity_.setZero();
+    for (int i = 0; i < body.numNodes(); ++i) {
+      mass += body.nodalMasses()[i];
+      centre_velocity_ += body.nodalMasses()[i] * body.velocities().segment<3>(3 * i);
+    }
+    centre_velocity_ /= mass;
+  }
   for (size_t p = 0; p < points_.size(); ++p) {
     // Points not held touch only if project() finds them inside again.
     if (!point_held_[p]) {
@@ -278,7 +288,10 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
       obstacle_[p] = -1, holds_[p] = 0;
       continue;
     }
-    const Eigen::Vector3d slip = slip_[p] + kick_;
+    // It slides on with the body's centre, not by what it was given alone: held along a slip of
+    // its own, a corner the body tipped over dragged the body with it.
+    const Eigen::Vector3d slip =
+        centre_velocity_ + kick_ - weighted(body.velocities(), static_cast<int>(p)) + slip_[p];
     slip_[p] = patch.sticks ? Eigen::Vector3d::Zero() : Eigen::Vector3d(slip - slip.dot(n) * n);
     point_[p] = obstacles[k].pose.inverse() * x;
   }

@@ -165,6 +165,7 @@ class ContactState {
   std::vector<ContactLoad> contacts_;
   std::vector<Patch> patches_;
   Eigen::Vector3d kick_ = Eigen::Vector3d::Zero();  ///< velocity the whole body gains, m/s
+  Eigen::Vector3d centre_velocity_ = Eigen::Vector3d::Zero();  ///< the body's, after the solve
   /// One obstacle holds the body, and nothing else: a slip's correction moves it whole.
   bool whole_ = true;
   Requests position_requests_, velocity_requests_;
