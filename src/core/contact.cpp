@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <optional>
 
 namespace deformable_sim::core {
 
@@ -10,6 +11,17 @@ namespace {
 /// Passes over a body's touching vertices on one obstacle: their cells share nodes, so putting
 /// one back moves its neighbours.
 constexpr int kEmbeddedPasses = 8;
+
+/// The velocity of the body's centre of mass.
+Eigen::Vector3d centreVelocity(const Body& body) {
+  double mass = 0.0;
+  Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
+  for (int i = 0; i < body.numNodes(); ++i) {
+    mass += body.nodalMasses()[i];
+    momentum += body.nodalMasses()[i] * body.velocities().segment<3>(3 * i);
+  }
+  return momentum / mass;
+}
 
 }  // namespace
 
@@ -251,15 +263,7 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
                            const ContactSettings& settings, double dt) {
   resizeForObstacles(obstacles.size());
   judgePatches(body, obstacles, settings, dt);
-  if (!kick_.isZero(0.0) || whole_) {
-    double mass = 0.0;
-    centre_velocity_.setZero();
-    for (int i = 0; i < body.numNodes(); ++i) {
-      mass += body.nodalMasses()[i];
-      centre_velocity_ += body.nodalMasses()[i] * body.velocities().segment<3>(3 * i);
-    }
-    centre_velocity_ /= mass;
-  }
+  std::optional<Eigen::Vector3d> centre;  // the body's velocity, found when a patch slides
   for (size_t p = 0; p < points_.size(); ++p) {
     // Points not held touch only if project() finds them inside again.
     if (!point_held_[p]) {
@@ -290,8 +294,9 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
     }
     // It slides on with the body's centre, not by what it was given alone: held along a slip of
     // its own, a corner the body tipped over dragged the body with it.
+    if (!centre) centre = centreVelocity(body);
     const Eigen::Vector3d slip =
-        centre_velocity_ + kick_ - weighted(body.velocities(), static_cast<int>(p)) + slip_[p];
+        *centre + kick_ - weighted(body.velocities(), static_cast<int>(p)) + slip_[p];
     slip_[p] = patch.sticks ? Eigen::Vector3d::Zero() : Eigen::Vector3d(slip - slip.dot(n) * n);
     point_[p] = obstacles[k].pose.inverse() * x;
   }

@@ -88,7 +88,7 @@ class ContactState {
     Eigen::Vector3d sliding = Eigen::Vector3d::Zero();   ///< tangential constraint force, N
     Eigen::Vector3d momentum = Eigen::Vector3d::Zero();  ///< of the held points' slip
     Eigen::Vector3d friction = Eigen::Vector3d::Zero();  ///< sliding: what the obstacle exerts
-    /// Its points' mean slip; not whole_: the velocity its nodes gain as they are let go, m/s
+    /// Not whole_: the velocity its nodes gain as they are let go, m/s
     Eigen::Vector3d slip = Eigen::Vector3d::Zero();
     bool slides = false;  ///< in the step
     bool sticks = true;   ///< at rest on it after the step
@@ -165,8 +165,8 @@ class ContactState {
   std::vector<ContactLoad> contacts_;
   std::vector<Patch> patches_;
   Eigen::Vector3d kick_ = Eigen::Vector3d::Zero();  ///< velocity the whole body gains, m/s
-  Eigen::Vector3d centre_velocity_ = Eigen::Vector3d::Zero();  ///< the body's, after the solve
-  /// One obstacle holds the body, and nothing else: a slip's correction moves it whole.
+  /// One obstacle alone touches the body, and nothing else holds it: a slip's correction moves
+  /// it whole.
   bool whole_ = true;
   Requests position_requests_, velocity_requests_;
 };
