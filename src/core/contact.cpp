@@ -1,8 +1,8 @@
 #include "deformable_sim/core/contact.h"
 
 #include <algorithm>
-#include <numeric>
-#include <optional>
+#include <tuple>
+#include <utility>
 
 namespace deformable_sim::core {
 
@@ -12,15 +12,15 @@ namespace {
 /// one back moves its neighbours.
 constexpr int kEmbeddedPasses = 8;
 
-/// The velocity of the body's centre of mass.
-Eigen::Vector3d centreVelocity(const Body& body) {
+/// The body's mass and the velocity of its centre of mass.
+std::pair<double, Eigen::Vector3d> massAndCentreVelocity(const Body& body) {
   double mass = 0.0;
   Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
   for (int i = 0; i < body.numNodes(); ++i) {
     mass += body.nodalMasses()[i];
     momentum += body.nodalMasses()[i] * body.velocities().segment<3>(3 * i);
   }
-  return momentum / mass;
+  return {mass, momentum / mass};
 }
 
 }  // namespace
@@ -228,10 +228,8 @@ void ContactState::decideSlides(const Body& body, const ContactSettings& setting
   // patch's own nodes, which are let go and land again: a kick of the whole by each patch takes
   // their forces on one another (a block squeezed between fingers bulging against them) for a
   // push, and threw a squeezed block off its table.
+  // (A body taken whole touches one obstacle, hold() saw to it: one patch at most.)
   kick_.setZero();
-  int touching = 0;
-  for (const Patch& patch : patches_) touching += patch.mass > 0.0;
-  whole_ = whole_ && touching <= 1;
   for (Patch& patch : patches_) {
     if (!(patch.mass > 0.0)) continue;
     const Eigen::Vector3d slip = patch.momentum / patch.mass;
@@ -246,7 +244,9 @@ void ContactState::decideSlides(const Body& body, const ContactSettings& setting
       patch.slip = impulse / patch.mass;
       continue;
     }
-    kick_ = impulse / std::accumulate(body.nodalMasses().begin(), body.nodalMasses().end(), 0.0);
+    double mass;
+    std::tie(mass, centre_velocity_) = massAndCentreVelocity(body);
+    kick_ = impulse / mass;
     // Along the obstacle only: points on an edge or a corner push along other normals, and a
     // kick into the obstacle sank the body into it.
     const Eigen::Vector3d n = patch.normal.normalized();
@@ -263,7 +263,6 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
                            const ContactSettings& settings, double dt) {
   resizeForObstacles(obstacles.size());
   judgePatches(body, obstacles, settings, dt);
-  std::optional<Eigen::Vector3d> centre;  // the body's velocity, found when a patch slides
   for (size_t p = 0; p < points_.size(); ++p) {
     // Points not held touch only if project() finds them inside again.
     if (!point_held_[p]) {
@@ -294,9 +293,8 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
     }
     // It slides on with the body's centre, not by what it was given alone: held along a slip of
     // its own, a corner the body tipped over dragged the body with it.
-    if (!centre) centre = centreVelocity(body);
     const Eigen::Vector3d slip =
-        *centre + kick_ - weighted(body.velocities(), static_cast<int>(p)) + slip_[p];
+        centre_velocity_ + kick_ - weighted(body.velocities(), static_cast<int>(p)) + slip_[p];
     slip_[p] = patch.sticks ? Eigen::Vector3d::Zero() : Eigen::Vector3d(slip - slip.dot(n) * n);
     point_[p] = obstacles[k].pose.inverse() * x;
   }

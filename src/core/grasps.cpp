@@ -68,9 +68,10 @@ bool CommandProcessor::releaseGrasp(const std::string& name) {
 void CommandProcessor::moveGrasp(const std::string& name, const Eigen::Isometry3d& frame) {
   ActiveGrasp& grasp = grasps_.at(name);
   Body& body = simulation_.bodies()[grasp.body];
-  // A frame that jumps across the world (a pose of 1e300 m) would throw the nodes with it.
+  // Into the grasp's own buffer: a grasp moves every tick, and allocates nothing doing so.
   for (size_t k = 0; k < grasp.nodes.size(); ++k) {
-    const Eigen::Vector3d target = frame * grasp.local[k];
+    const Eigen::Vector3d& target = grasp.targets[k] = frame * grasp.local[k];
+    // A frame that jumps across the world (a pose of 1e300 m) would throw the nodes with it.
     const Eigen::Vector3d here = body.positions().segment<3>(3 * grasp.nodes[k]);
     if (!((target - here).norm() <= limits_.max_target_distance)) {
       throw CommandError("grasp '" + name + "': the frame would take node " +
@@ -80,8 +81,6 @@ void CommandProcessor::moveGrasp(const std::string& name, const Eigen::Isometry3
     }
   }
   grasp.frame = frame;
-  // Into the grasp's own buffer: a grasp moves every tick, and allocates nothing doing so.
-  for (size_t k = 0; k < grasp.nodes.size(); ++k) grasp.targets[k] = frame * grasp.local[k];
   body.setNodeTargets(grasp.nodes, grasp.targets);
 }
 

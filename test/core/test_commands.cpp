@@ -397,20 +397,22 @@ TEST(Grasps, AFrameThatJumpsFartherThanTheTargetLimitIsRefused) {
 // put over the eighth (a fuzz finding): every step the watchdog undoes ends finite, whether the
 // body's own step or the contact after it overflowed.
 TEST(Watchdog, KeepsABodyThrownFarByAnUnlimitedGraspFinite) {
-  const dc::SceneSpec spec = deformable_sim::io::parseScene(R"(
-dt: 0.01
-effects:
-  gravity: [0, 0, -9.81]
-  warping: true
-  damping: {mass: 1.0, stiffness: 0.002}
-  contact: {friction: 0.5}
-obstacles: [{name: floor, box: {size: [2, 2, 0.1]}, position: [0, 0, -0.1]}]
-bodies:
-  - name: block
-    mesh: {box: {min: [0.3, 0, 0], max: [0.35, 0.05, 0.05], cells: [1, 1, 1]}}
-    material: {youngs_modulus: 3.0e4, poisson_ratio: 0.3, density: 150.0}
-)",
-                                                            "test scene", ".");
+  dc::SceneSpec spec;  // the fuzz scene's block, on its floor
+  spec.dt = 0.01;
+  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
+  spec.effects.warping = true;
+  spec.effects.damping = dc::RayleighDamping{1.0, 0.002};
+  spec.contact = dc::ContactSettings{0.5, false, false};
+  dc::PlacedShape ground;
+  ground.name = "floor";
+  ground.shape.size = Eigen::Vector3d(2, 2, 0.1);
+  ground.pose.translation() = Eigen::Vector3d(0, 0, -0.1);
+  spec.obstacles.push_back(ground);
+  dc::BodySpec block;
+  block.name = "block";
+  block.box_mesh = dc::BoxMeshSpec{{0.3, 0, 0}, {0.35, 0.05, 0.05}, {1, 1, 1}};
+  block.material = {3.0e4, 0.3, 150.0};
+  spec.bodies.push_back(block);
   dc::CommandLimits unlimited;
   unlimited.max_target_distance = std::numeric_limits<double>::infinity();
   dc::Session session(spec, deformable_sim::io::readMeshes(spec, nullptr), unlimited);

@@ -78,7 +78,7 @@ struct ActiveGrasp {
   std::vector<int> nodes;
   std::vector<Eigen::Vector3d> local;  ///< each node's position in the frame when attached, m
   Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();  ///< the frame's last pose, world
-  std::vector<Eigen::Vector3d> targets;  ///< the nodes' world positions for the frame (reused)
+  std::vector<Eigen::Vector3d> targets;  ///< moveGrasp's buffer for the nodes' world targets
 };
 
 /// Force (N) and torque (N m, about `point`) in the world frame.

@@ -165,6 +165,8 @@ class ContactState {
   std::vector<ContactLoad> contacts_;
   std::vector<Patch> patches_;
   Eigen::Vector3d kick_ = Eigen::Vector3d::Zero();  ///< velocity the whole body gains, m/s
+  /// The body's centre, after the solve, when a patch of a body taken whole slides, m/s
+  Eigen::Vector3d centre_velocity_ = Eigen::Vector3d::Zero();
   /// One obstacle alone touches the body, and nothing else holds it: a slip's correction moves
   /// it whole.
   bool whole_ = true;
