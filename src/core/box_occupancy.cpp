@@ -5,12 +5,6 @@
 
 namespace deformable_sim::core {
 
-namespace {
-
-bool inside(const WindingNumber& winding, const Eigen::Vector3d& p) { return winding.at(p) >= 0.5; }
-
-}  // namespace
-
 bool triangleMayCrossCube(const TriangleMesh& surface, int t, const Eigen::Vector3d& min,
                           double size, double margin) {
   const Eigen::Vector3i& tri = surface.triangles[t];

@@ -1,5 +1,7 @@
 #include "deformable_sim/core/triangle_mesh.h"
 
+#include <stdexcept>
+
 namespace deformable_sim::core {
 
 TriangleMesh boxSurface(const Eigen::Vector3d& min, const Eigen::Vector3d& max) {
@@ -15,6 +17,37 @@ TriangleMesh boxSurface(const Eigen::Vector3d& min, const Eigen::Vector3d& max) 
   for (const auto& q : kQuads) {
     mesh.triangles.emplace_back(q[0], q[1], q[2]);
     mesh.triangles.emplace_back(q[0], q[2], q[3]);
+  }
+  return mesh;
+}
+
+void flatten(const TriangleMesh& mesh, std::vector<double>& vertices,
+             std::vector<uint32_t>& triangles) {
+  for (const Eigen::Vector3d& v : mesh.vertices)
+    vertices.insert(vertices.end(), {v.x(), v.y(), v.z()});
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) triangles.push_back(static_cast<uint32_t>(t[k]));
+  }
+}
+
+TriangleMesh unflatten(const std::vector<double>& vertices, const std::vector<uint32_t>& triangles,
+                       const std::string& what) {
+  if (vertices.size() % 3 != 0 || triangles.size() % 3 != 0) {
+    throw std::invalid_argument(what + ": its vertices and triangles must come in threes");
+  }
+  TriangleMesh mesh;
+  for (size_t k = 0; k < vertices.size(); k += 3) {
+    mesh.vertices.emplace_back(vertices[k], vertices[k + 1], vertices[k + 2]);
+  }
+  for (size_t k = 0; k < triangles.size(); k += 3) {
+    for (int c = 0; c < 3; ++c) {
+      if (triangles[k + c] >= mesh.vertices.size()) {
+        throw std::invalid_argument(what + ": a triangle refers to vertex " +
+                                    std::to_string(triangles[k + c]) + " of " +
+                                    std::to_string(mesh.vertices.size()));
+      }
+    }
+    mesh.triangles.emplace_back(triangles[k], triangles[k + 1], triangles[k + 2]);
   }
   return mesh;
 }

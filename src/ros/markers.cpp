@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "deformable_sim/core/strain.h"
 #include "deformable_sim/ros/conversions.h"
 
 namespace deformable_sim::ros_layer {
@@ -41,42 +40,13 @@ std_msgs::ColorRGBA strainColour(double strain, double scale) {
 }  // namespace
 
 SurfaceMarkers::SurfaceMarkers(const core::Simulation& simulation, double strain_scale)
-    : strain_scale_(strain_scale) {
-  for (size_t b = 0; b < simulation.bodies().size(); ++b) {
-    const core::EmbeddedSurface* embedded = simulation.embeddedSurface(static_cast<int>(b));
-    embedded_.push_back(embedded ? std::optional<core::EmbeddedSurface>(*embedded) : std::nullopt);
-    // A body drawn with its own surface needs no boundary of its grid.
-    surfaces_.push_back(embedded ? std::vector<core::Triangle>{}
-                                 : core::extractSurface(simulation.bodies()[b].mesh()));
-  }
-}
-
-void SurfaceMarkers::drawEmbedded(core::EmbeddedSurface& surface, const core::Body& body,
-                                  bool colour) {
-  surface.update(body.positions());
-  const std::vector<Eigen::Vector3i>& triangles = surface.triangles();
-  visualization_msgs::Marker& m = marker_;
-  m.points.resize(3 * triangles.size());
-  m.colors.resize(colour ? 3 * triangles.size() : 0);
-  for (size_t t = 0; t < triangles.size(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const int v = triangles[t][k];
-      m.points[3 * t + k] = toPoint(surface.positions()[v]);
-      if (!colour) continue;
-      // The strain of the cell's nodes, weighted as the vertex's position is.
-      const auto& nodes = surface.nodes(v);
-      double strain = 0.0;
-      for (int n = 0; n < 8; ++n) strain += surface.weights(v)[n] * strain_[nodes[n]];
-      m.colors[3 * t + k] = strainColour(strain, strain_scale_);
-    }
-  }
-}
+    : surfaces_(simulation), strain_scale_(strain_scale) {}
 
 const visualization_msgs::Marker& SurfaceMarkers::marker(const core::Body& body, int index,
                                                          const std_msgs::Header& header) {
-  const bool colour = body.effects().stress_colouring;
-  if (colour) core::nodalStrain(body, strain_);
-  const std::vector<core::Triangle>& surface = surfaces_[index];
+  surfaces_.update(body, index);
+  const std::vector<Eigen::Vector3d>& corners = surfaces_.corners();
+  const std::vector<double>& strains = surfaces_.strains();
   visualization_msgs::Marker& m = marker_;
   m.header = header;
   m.ns = body.name();
@@ -86,22 +56,10 @@ const visualization_msgs::Marker& SurfaceMarkers::marker(const core::Body& body,
   m.pose.orientation.w = 1.0;
   m.scale.x = m.scale.y = m.scale.z = 1.0;
   m.color = rgba(1.0f, 0.55f, 0.1f);
-  if (embedded_[index]) {
-    drawEmbedded(*embedded_[index], body, colour);
-    return m;
-  }
-  m.points.resize(3 * surface.size());
-  m.colors.resize(colour ? 3 * surface.size() : 0);
-  const Eigen::VectorXd& x = body.positions();
-  for (size_t t = 0; t < surface.size(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const int node = surface[t][k];
-      m.points[3 * t + k] = toPoint(x.segment<3>(3 * node));
-      if (colour) {
-        m.colors[3 * t + k] = strainColour(strain_[node], strain_scale_);
-      }
-    }
-  }
+  m.points.resize(corners.size());
+  for (size_t c = 0; c < corners.size(); ++c) m.points[c] = toPoint(corners[c]);
+  m.colors.resize(strains.size());
+  for (size_t c = 0; c < strains.size(); ++c) m.colors[c] = strainColour(strains[c], strain_scale_);
   return m;
 }
 

@@ -8,6 +8,7 @@
 
 #include "deformable_sim/Applied.h"
 #include "deformable_sim/BodyState.h"
+#include "deformable_sim/ros/obstacle_mesh_messages.h"
 #include "deformable_sim/ros/replay.h"
 #include "deformable_sim/ros/session_messages.h"
 
@@ -70,7 +71,7 @@ void addState(const BodyState& message, RecordedSession& session) {
   session.state_headers.push_back(message.header);
 }
 
-void addCommand(const Applied& message, ObstacleMeshCatalogue& meshes, RecordedSession& session) {
+void addCommand(const Applied& message, core::MeshCatalogue& meshes, RecordedSession& session) {
   try {
     session.recording.log.push_back(core::AppliedCommand{static_cast<long>(message.episode),
                                                          static_cast<long>(message.step),
@@ -97,9 +98,9 @@ void readMessages(const rosbag::Bag& bag, const std::string& path, RecordedSessi
       addState(*instantiate<BodyState>(m, path), session);
     }
   }
-  ObstacleMeshCatalogue meshes;
+  core::MeshCatalogue meshes;
   try {
-    meshes.receive(session.scene.obstacle_meshes);
+    receive(session.scene.obstacle_meshes, meshes);
   } catch (const core::CommandError& e) {
     throw ReplayError(path + ": the recorded scene: " + e.what());
   }

@@ -6,6 +6,7 @@
 #include "deformable_sim/core/default_scene.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/io/triangle_mesh_reader.h"
+#include "deformable_sim/ros/obstacle_mesh_messages.h"
 #include "deformable_sim/ros/recorded_session.h"
 #include "deformable_sim/ros/resimulated_bag.h"
 #include "deformable_sim/ros/session_messages.h"

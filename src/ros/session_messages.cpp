@@ -1,65 +1,37 @@
 #include "deformable_sim/ros/session_messages.h"
 
 #include <stdexcept>
+#include <variant>
 
 #include "deformable_sim/core/mesh_arrays.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/ros/conversions.h"
+#include "deformable_sim/ros/obstacle_mesh_messages.h"
 
 namespace deformable_sim::ros_layer {
 
 namespace {
 
-// The rest surface a body was made from, into its mesh's message.
-void addSurface(const core::EmbeddedSurface& surface, MeshData& data) {
-  for (const Eigen::Vector3d& v : surface.restPositions()) {
-    data.surface_vertices.insert(data.surface_vertices.end(), {v.x(), v.y(), v.z()});
+// Gives each mesh its id and lists those the message must carry.
+struct MeshIds {
+  core::MeshCatalogue& catalogue;
+  std::vector<core::MeshCatalogue::Entry> unrecorded;
+  std::string idFor(const core::MeshCatalogue::Mesh& mesh) {
+    return catalogue.idFor(mesh, unrecorded);
   }
-  for (const Eigen::Vector3i& t : surface.triangles()) {
-    for (int k = 0; k < 3; ++k) data.surface_triangles.push_back(static_cast<uint32_t>(t[k]));
-  }
-}
+};
 
-core::TriangleMesh surfaceOf(const MeshData& data, const std::string& what) {
-  const size_t vertices = data.surface_vertices.size() / 3;
-  if (data.surface_vertices.size() % 3 != 0 || data.surface_triangles.size() % 3 != 0) {
-    throw std::invalid_argument(what + ": its surface has arrays of inconsistent sizes");
-  }
-  core::TriangleMesh surface;
-  for (size_t v = 0; v < vertices; ++v) {
-    surface.vertices.emplace_back(data.surface_vertices[3 * v], data.surface_vertices[3 * v + 1],
-                                  data.surface_vertices[3 * v + 2]);
-  }
-  for (size_t t = 0; t < data.surface_triangles.size(); t += 3) {
-    const Eigen::Vector3i tri(data.surface_triangles[t], data.surface_triangles[t + 1],
-                              data.surface_triangles[t + 2]);
-    if (tri.maxCoeff() >= static_cast<int>(vertices)) {
-      throw std::invalid_argument(what + ": its surface refers to a vertex it does not have");
-    }
-    surface.triangles.push_back(tri);
-  }
-  return surface;
-}
+// Obstacle's shape codes are core::Shape::Kind's values, in its order.
+static_assert(Obstacle::BOX == static_cast<int>(core::Shape::Kind::kBox) &&
+              Obstacle::SPHERE == static_cast<int>(core::Shape::Kind::kSphere) &&
+              Obstacle::CYLINDER == static_cast<int>(core::Shape::Kind::kCylinder) &&
+              Obstacle::MESH == static_cast<int>(core::Shape::Kind::kMesh));
 
-Obstacle toMessage(const core::PlacedShape& placed, ObstacleMeshCatalogue& catalogue,
-                   std::vector<ObstacleMesh>& unrecorded) {
+Obstacle toMessage(const core::PlacedShape& placed, MeshIds& ids) {
   Obstacle m;
   m.name = placed.name;
-  switch (placed.shape.kind) {
-    case core::Shape::Kind::kBox:
-      m.shape = Obstacle::BOX;
-      break;
-    case core::Shape::Kind::kSphere:
-      m.shape = Obstacle::SPHERE;
-      break;
-    case core::Shape::Kind::kCylinder:
-      m.shape = Obstacle::CYLINDER;
-      break;
-    case core::Shape::Kind::kMesh:
-      m.shape = Obstacle::MESH;
-      m.mesh_id = catalogue.idFor(placed.shape.mesh, unrecorded);
-      break;
-  }
+  m.shape = static_cast<uint8_t>(placed.shape.kind);
+  if (placed.shape.kind == core::Shape::Kind::kMesh) m.mesh_id = ids.idFor(placed.shape.mesh);
   m.size = toVector3(placed.shape.size);
   m.radius = placed.shape.radius;
   m.length = placed.shape.length;
@@ -67,27 +39,14 @@ Obstacle toMessage(const core::PlacedShape& placed, ObstacleMeshCatalogue& catal
   return m;
 }
 
-core::PlacedShape fromMessage(const Obstacle& m, const ObstacleMeshCatalogue& catalogue) {
+core::PlacedShape fromMessage(const Obstacle& m, const core::MeshCatalogue& catalogue) {
+  if (m.shape > Obstacle::MESH) {
+    throw core::CommandError("obstacle '" + m.name + "': unknown shape " + std::to_string(m.shape));
+  }
   core::PlacedShape placed;
   placed.name = m.name;
-  switch (m.shape) {
-    case Obstacle::BOX:
-      placed.shape.kind = core::Shape::Kind::kBox;
-      break;
-    case Obstacle::SPHERE:
-      placed.shape.kind = core::Shape::Kind::kSphere;
-      break;
-    case Obstacle::CYLINDER:
-      placed.shape.kind = core::Shape::Kind::kCylinder;
-      break;
-    case Obstacle::MESH:
-      placed.shape.kind = core::Shape::Kind::kMesh;
-      placed.shape.mesh = catalogue.find(m.mesh_id);
-      break;
-    default:
-      throw core::CommandError("obstacle '" + m.name + "': unknown shape " +
-                               std::to_string(m.shape));
-  }
+  placed.shape.kind = static_cast<core::Shape::Kind>(m.shape);
+  if (m.shape == Obstacle::MESH) placed.shape.mesh = catalogue.find(m.mesh_id);
   placed.shape.size = toEigen(m.size);
   placed.shape.radius = m.radius;
   placed.shape.length = m.length;
@@ -95,8 +54,7 @@ core::PlacedShape fromMessage(const Obstacle& m, const ObstacleMeshCatalogue& ca
   return placed;
 }
 
-AppliedNodes toMessage(const core::NodeTarget& t, ObstacleMeshCatalogue& catalogue,
-                       std::vector<ObstacleMesh>& unrecorded) {
+AppliedNodes toMessage(const core::NodeTarget& t, MeshIds& ids) {
   AppliedNodes m;
   m.node_ids.assign(t.node_numbers.begin(), t.node_numbers.end());
   m.group = t.group;
@@ -111,14 +69,13 @@ AppliedNodes toMessage(const core::NodeTarget& t, ObstacleMeshCatalogue& catalog
     m.sphere_radius = t.sphere->radius;
   }
   m.region_pose = toTransform(t.region_pose);
-  for (const core::PlacedShape& s : t.shapes)
-    m.shapes.push_back(toMessage(s, catalogue, unrecorded));
+  for (const core::PlacedShape& s : t.shapes) m.shapes.push_back(toMessage(s, ids));
   m.shape_margin = t.shape_margin;
   m.whole_body = t.whole_body;
   return m;
 }
 
-core::NodeTarget fromMessage(const AppliedNodes& m, const ObstacleMeshCatalogue& catalogue) {
+core::NodeTarget fromMessage(const AppliedNodes& m, const core::MeshCatalogue& catalogue) {
   core::NodeTarget t;
   t.node_numbers.assign(m.node_ids.begin(), m.node_ids.end());
   t.group = m.group;
@@ -132,58 +89,56 @@ core::NodeTarget fromMessage(const AppliedNodes& m, const ObstacleMeshCatalogue&
 }
 
 // Each command's fields into the message (its kind and what that kind uses).
-void record(const core::WrenchCommand& c, Applied& m, ObstacleMeshCatalogue& catalogue) {
+void record(const core::WrenchCommand& c, Applied& m, MeshIds& ids) {
   m.kind = Applied::WRENCH;
   m.name = c.source;
   m.body = c.body;
-  m.nodes = toMessage(c.nodes, catalogue, m.meshes);
+  m.nodes = toMessage(c.nodes, ids);
   m.force = toVector3(c.force);
   m.torque = toVector3(c.torque);
   m.has_point = c.point.has_value();
   if (c.point) m.point = toPoint(*c.point);
 }
 
-void record(const core::ClearWrenchCommand& c, Applied& m, ObstacleMeshCatalogue&) {
+void record(const core::ClearWrenchCommand& c, Applied& m, MeshIds&) {
   m.kind = Applied::CLEAR_WRENCH;
   m.name = c.source;
 }
 
-void record(const core::FixCommand& c, Applied& m, ObstacleMeshCatalogue& catalogue) {
+void record(const core::FixCommand& c, Applied& m, MeshIds& ids) {
   m.kind = c.fix ? Applied::FIX : Applied::RELEASE;
   m.body = c.body;
-  m.nodes = toMessage(c.nodes, catalogue, m.meshes);
+  m.nodes = toMessage(c.nodes, ids);
   for (const Eigen::Vector3d& p : c.targets) m.targets.push_back(toPoint(p));
   m.has_translation = c.translation.has_value();
   if (c.translation) m.translation = toVector3(*c.translation);
 }
 
-void record(const core::GraspCommand& c, Applied& m, ObstacleMeshCatalogue& catalogue) {
+void record(const core::GraspCommand& c, Applied& m, MeshIds& ids) {
   m.kind = Applied::GRASP;
   m.name = c.name;
   m.body = c.body;
-  m.nodes = toMessage(c.nodes, catalogue, m.meshes);
+  m.nodes = toMessage(c.nodes, ids);
   m.frame = toTransform(c.frame);
 }
 
-void record(const core::ReleaseGraspCommand& c, Applied& m, ObstacleMeshCatalogue&) {
+void record(const core::ReleaseGraspCommand& c, Applied& m, MeshIds&) {
   m.kind = Applied::RELEASE_GRASP;
   m.name = c.name;
 }
 
-void record(const core::MoveGraspCommand& c, Applied& m, ObstacleMeshCatalogue&) {
+void record(const core::MoveGraspCommand& c, Applied& m, MeshIds&) {
   m.kind = Applied::MOVE_GRASP;
   m.name = c.name;
   m.frame = toTransform(c.frame);
 }
 
-void record(const core::SetObstaclesCommand& c, Applied& m, ObstacleMeshCatalogue& catalogue) {
+void record(const core::SetObstaclesCommand& c, Applied& m, MeshIds& ids) {
   m.kind = Applied::OBSTACLES;
-  for (const core::PlacedShape& s : c.obstacles) {
-    m.obstacles.push_back(toMessage(s, catalogue, m.meshes));
-  }
+  for (const core::PlacedShape& s : c.obstacles) m.obstacles.push_back(toMessage(s, ids));
 }
 
-void record(const core::TuneCommand& c, Applied& m, ObstacleMeshCatalogue&) {
+void record(const core::TuneCommand& c, Applied& m, MeshIds&) {
   m.kind = Applied::TUNE;
   m.body = c.body;
   m.has_material = c.material.has_value();
@@ -205,21 +160,23 @@ void record(const core::TuneCommand& c, Applied& m, ObstacleMeshCatalogue&) {
   m.dt = c.dt.value_or(0.0);
 }
 
-void record(const core::ResetCommand&, Applied& m, ObstacleMeshCatalogue&) {
-  m.kind = Applied::RESET;
-}
+void record(const core::ResetCommand&, Applied& m, MeshIds&) { m.kind = Applied::RESET; }
 
 }  // namespace
 
-Applied toMessage(const core::SessionCommand& command, ObstacleMeshCatalogue& catalogue) {
+Applied toMessage(const core::SessionCommand& command, core::MeshCatalogue& catalogue) {
   Applied m;
   m.frame.rotation.w = 1.0;
-  std::visit([&m, &catalogue](const auto& c) { record(c, m, catalogue); }, command);
+  MeshIds ids{catalogue, {}};
+  std::visit([&m, &ids](const auto& c) { record(c, m, ids); }, command);
+  for (const core::MeshCatalogue::Entry& e : ids.unrecorded) {
+    m.meshes.push_back(toMessage(e.id, *e.mesh));
+  }
   return m;
 }
 
-core::SessionCommand fromMessage(const Applied& m, ObstacleMeshCatalogue& catalogue) {
-  catalogue.receive(m.meshes);
+core::SessionCommand fromMessage(const Applied& m, core::MeshCatalogue& catalogue) {
+  receive(m.meshes, catalogue);
   switch (m.kind) {
     case Applied::WRENCH: {
       core::WrenchCommand c;
@@ -283,20 +240,22 @@ Scene toSceneMessage(const std::string& path, const std::string& yaml, double dt
                      const std::vector<std::string>& body_names,
                      const std::vector<core::PlacedShape>& obstacles,
                      const std::vector<core::PlacedShape>& link_shapes,
-                     ObstacleMeshCatalogue& catalogue) {
+                     core::MeshCatalogue& catalogue) {
   Scene m;
+  MeshIds ids{catalogue, {}};
   for (size_t k = 0; k < obstacles.size(); ++k) {
     if (obstacles[k].shape.kind != core::Shape::Kind::kMesh) continue;
     const std::string id = io::sceneObstacleKey(static_cast<int>(k));
-    m.obstacle_meshes.push_back(toMessage(id, *obstacles[k].shape.mesh));
     catalogue.addRecorded(id, obstacles[k].shape.mesh);
+    ids.unrecorded.push_back({id, obstacles[k].shape.mesh});
   }
   for (const core::PlacedShape& shape : link_shapes) {
-    if (shape.shape.kind == core::Shape::Kind::kMesh) {
-      catalogue.idFor(shape.shape.mesh, m.obstacle_meshes);
-    }
+    if (shape.shape.kind == core::Shape::Kind::kMesh) ids.idFor(shape.shape.mesh);
   }
-  catalogue.markRecorded(m.obstacle_meshes);
+  for (const core::MeshCatalogue::Entry& e : ids.unrecorded) {
+    m.obstacle_meshes.push_back(toMessage(e.id, *e.mesh));
+    catalogue.markRecorded(e.id);
+  }
   m.path = path;
   m.yaml = yaml;
   m.dt = dt;
@@ -312,7 +271,10 @@ Scene toSceneMessage(const std::string& path, const std::string& yaml, double dt
     data.cells = std::move(arrays.cells);
     data.cell_fractions = std::move(arrays.cell_fractions);
     data.incompatible_modes = arrays.incompatible_modes;
-    if (b < surfaces.size() && surfaces[b]) addSurface(*surfaces[b], data);
+    if (b < surfaces.size() && surfaces[b]) {
+      const core::TriangleMesh surface{surfaces[b]->restPositions(), surfaces[b]->triangles()};
+      core::flatten(surface, data.surface_vertices, data.surface_triangles);
+    }
     m.meshes.push_back(std::move(data));
   }
   return m;
@@ -324,13 +286,19 @@ std::vector<core::Mesh> meshesFromMessage(
   if (surfaces) surfaces->assign(message.meshes.size(), std::nullopt);
   for (size_t b = 0; b < message.meshes.size(); ++b) {
     const MeshData& data = message.meshes[b];
-    const core::MeshArrays arrays{data.node_ids,          data.rest_positions, data.tetrahedra,
-                                  data.cell_types,        data.cells,          data.cell_fractions,
-                                  data.incompatible_modes};
+    const core::MeshArrays arrays{data.node_ids,
+                                  data.rest_positions,
+                                  data.tetrahedra,
+                                  data.cell_types,
+                                  data.cells,
+                                  data.cell_fractions,
+                                  data.incompatible_modes != 0};
     const std::string what = "scene message: the mesh of body '" + data.body + "'";
     meshes.push_back(core::fromArrays(arrays, what));
     if (surfaces && !data.surface_triangles.empty()) {
-      (*surfaces)[b] = core::embedInGrid(surfaceOf(data, what), meshes.back(), what);
+      const core::TriangleMesh surface =
+          core::unflatten(data.surface_vertices, data.surface_triangles, what + ": its surface");
+      (*surfaces)[b] = core::embedInGrid(surface, meshes.back(), what);
     }
   }
   return meshes;

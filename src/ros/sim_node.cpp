@@ -66,7 +66,7 @@ void SimNode::startSession() {
     recording_.episode = static_cast<uint64_t>(applied.episode);
     recording_.step = static_cast<uint64_t>(applied.step);
     applied_pub_.publish(recording_);
-    obstacle_meshes_.markRecorded(recording_.meshes);
+    markRecorded(recording_.meshes, obstacle_meshes_);
   });
   status_.reports.assign(session_->simulation().bodies().size(), core::StepReport{});
 }

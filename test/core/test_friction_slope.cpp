@@ -218,7 +218,7 @@ TEST(FrictionSlope, BlockSlidesJustAboveTheFrictionAngle) {
 
 // A report, not a check: the acceleration and distance of a second on either side of the
 // friction angle, on each plane, lightly damped and with the landing wave damped (doc/physics.md):
-//   test_core_hard_cases --gtest_also_run_disabled_tests \
+//   test_core_hard_cases --gtest_also_run_disabled_tests
 //     --gtest_filter=FrictionSlope.DISABLED_ReportAroundTheFrictionAngle
 TEST(FrictionSlope, DISABLED_ReportAroundTheFrictionAngle) {
   const double mu = 0.6;

@@ -5,14 +5,13 @@
 #include <visualization_msgs/Marker.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "deformable_sim/core/body.h"
 #include "deformable_sim/core/commands.h"
 #include "deformable_sim/core/contact_pairs.h"
-#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/drawn_surfaces.h"
 #include "deformable_sim/core/simulation.h"
 
 namespace deformable_sim::ros_layer {
@@ -21,11 +20,9 @@ namespace deformable_sim::ros_layer {
 constexpr double kDefaultStrainScale = 0.1;
 
 /// The bodies' surfaces as rviz markers, for the node's ~mesh and the replay's output bag: a
-/// TRIANGLE_LIST a body, three points per triangle in outward order, namespace = the body's name.
-/// A body made from a surface is drawn with that surface, carried by its grid
-/// (Simulation::embeddedSurface); any other with its mesh's boundary. A body with
-/// stress_colouring has its vertices coloured by their strain, from blue (0) to red
-/// (>= strain_scale).
+/// TRIANGLE_LIST a body (core::DrawnSurfaces' corners), namespace = the body's name. A body with
+/// stress_colouring has its vertices coloured by their strain, from blue (0) to red (>=
+/// strain_scale).
 class SurfaceMarkers {
  public:
   SurfaceMarkers(const core::Simulation& simulation, double strain_scale);
@@ -34,12 +31,8 @@ class SurfaceMarkers {
                                            const std_msgs::Header& header);
 
  private:
-  void drawEmbedded(core::EmbeddedSurface& surface, const core::Body& body, bool colour);
-
-  std::vector<std::vector<core::Triangle>> surfaces_;           ///< per body
-  std::vector<std::optional<core::EmbeddedSurface>> embedded_;  ///< per body
+  core::DrawnSurfaces surfaces_;
   double strain_scale_;
-  std::vector<double> strain_;
   visualization_msgs::Marker marker_;
 };
 

@@ -11,18 +11,18 @@
 #include "deformable_sim/Applied.h"
 #include "deformable_sim/Scene.h"
 #include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/mesh_catalogue.h"
 #include "deformable_sim/core/session.h"
 #include "deformable_sim/core/shape.h"
-#include "deformable_sim/ros/obstacle_mesh_catalogue.h"
 
 namespace deformable_sim::ros_layer {
 
 /// A mesh that `catalogue` has not recorded yet goes into the message's `meshes`; once the
-/// message is published, catalogue.markRecorded(message.meshes).
-Applied toMessage(const core::SessionCommand& command, ObstacleMeshCatalogue& catalogue);
+/// message is published, markRecorded(message.meshes, catalogue).
+Applied toMessage(const core::SessionCommand& command, core::MeshCatalogue& catalogue);
 /// Throws core::CommandError for an unknown kind or shape code, or a mesh id that no message
 /// (this one, an earlier one, the scene) carried.
-core::SessionCommand fromMessage(const Applied& message, ObstacleMeshCatalogue& catalogue);
+core::SessionCommand fromMessage(const Applied& message, core::MeshCatalogue& catalogue);
 
 /// The scene (its file's text and path, or empty for the built-in one), the node's step, every
 /// body's mesh (with the surface it was made from, if any: `surfaces` may be shorter), and the
@@ -35,7 +35,7 @@ Scene toSceneMessage(const std::string& path, const std::string& yaml, double dt
                      const std::vector<std::string>& body_names,
                      const std::vector<core::PlacedShape>& obstacles,
                      const std::vector<core::PlacedShape>& link_shapes,
-                     ObstacleMeshCatalogue& catalogue);
+                     core::MeshCatalogue& catalogue);
 /// The meshes of a ~scene message and, in `surfaces` (one per mesh) if given, the surfaces bodies
 /// were made from. Throws std::invalid_argument when the arrays do not fit.
 std::vector<core::Mesh> meshesFromMessage(

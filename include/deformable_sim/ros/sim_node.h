@@ -31,7 +31,7 @@
 #include "deformable_sim/ros/node_obstacles.h"
 #include "deformable_sim/ros/node_outputs.h"
 #include "deformable_sim/ros/node_parameters.h"
-#include "deformable_sim/ros/obstacle_mesh_catalogue.h"
+#include "deformable_sim/ros/obstacle_mesh_messages.h"
 #include "deformable_sim/ros/robot_links.h"
 
 namespace deformable_sim::ros_layer {
@@ -70,7 +70,7 @@ class SimNode {
   NodeParameters params_;
   std::unique_ptr<core::Session> session_;
   Applied recording_;  ///< the message of the command being applied, published once it took effect
-  ObstacleMeshCatalogue obstacle_meshes_;  ///< meshes recorded in ~scene and ~applied, by id
+  core::MeshCatalogue obstacle_meshes_;  ///< meshes recorded in ~scene and ~applied, by id
   TickStatus status_;
   core::RealTimeFactor real_time_factor_;
   core::WrenchTimeouts wrench_timeouts_;
