@@ -12,6 +12,11 @@ namespace {
 /// one back moves its neighbours.
 constexpr int kEmbeddedPasses = 8;
 
+/// Halvings of a point's way in the step that find where it entered an obstacle: 2^-40 of it.
+constexpr int kEntryHalvings = 40;
+/// How far inside an obstacle a point put on its surface may be found again (round-off), m.
+constexpr double kOnTheSurface = 1e-9;
+
 /// The body's mass and the velocity of its centre of mass.
 std::pair<double, Eigen::Vector3d> massAndCentreVelocity(const Body& body) {
   double mass = 0.0;
@@ -148,6 +153,7 @@ void ContactState::grant(Requests& requests, Eigen::VectorXd& state) const {
 }
 
 void ContactState::hold(Body& body, const std::vector<PlacedShape>& obstacles, double dt) {
+  start_positions_ = body.positions();  // same size from step to step: no allocation
   // A body that touches one obstacle, and that nothing else holds, takes a slip's correction as
   // a whole.
   int touched = -1;
@@ -342,6 +348,29 @@ Eigen::Vector3d ContactState::landingChange(const Body& body, int p,
   return into * normal + slip_[p] - along;
 }
 
+void ContactState::enterThroughItsFace(const Shape& shape, const Eigen::Isometry3d& to_start_shape,
+                                       int p, const Eigen::Vector3d& now, Eigen::Vector3d& surface,
+                                       Eigen::Vector3d& normal) const {
+  if (start_positions_.size() == 0) return;  // no step held it yet
+  // Where it was at the step's start, in the obstacle's frame then (it moves with the obstacle).
+  // On its surface counts as outside: a node resting on a table was put there to round-off.
+  Eigen::Vector3d outside = to_start_shape * weighted(start_positions_, p);
+  // Moving into its nearest face, it came in through it (or beside it).
+  if ((now - outside).dot(normal) <= 0.0) return;
+  if (!(signedDistance(shape, outside) > -kOnTheSurface)) return;  // it was inside already
+  Eigen::Vector3d inside = now;
+  for (int k = 0; k < kEntryHalvings; ++k) {
+    const Eigen::Vector3d middle = 0.5 * (outside + inside);
+    (signedDistance(shape, middle) > -kOnTheSurface ? outside : inside) = middle;
+  }
+  Eigen::Vector3d entry, entry_normal;
+  signedDistance(shape, inside, &entry, &entry_normal);
+  // The nearest face is the one it came through, or beside it: it goes back there.
+  if (entry_normal.dot(normal) > 0.0) return;
+  surface = entry;
+  normal = entry_normal;
+}
+
 void ContactState::settleEmbedded(Body& body, const PlacedShape& obstacle, int k) {
   const Eigen::Isometry3d to_shape = obstacle.pose.inverse();
   for (int pass = 0; pass < kEmbeddedPasses; ++pass) {
@@ -420,14 +449,17 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
       if (!movable(body, q)) continue;  // held: by the user or a grasp
       Eigen::Vector3d surface, normal;
       const Eigen::Vector3d x = weighted(body.positions(), q);
-      const double distance = signedDistance(obstacle.shape, to_shape * x, &surface, &normal);
-      if (!(distance < 0.0)) continue;
-      contacts_[k].penetration = std::max(contacts_[k].penetration, -distance);
-      const Eigen::Vector3d on_surface = obstacle.pose * surface;
+      if (!(signedDistance(obstacle.shape, to_shape * x, &surface, &normal) < 0.0)) continue;
       // A point held on this obstacle moved with it (to its place, or as far as it slid): it is
       // inside by round-off only, and touches on as it did.
       const bool stuck = obstacle_[p] == static_cast<int>(k) && holds_[p];
       if (obstacle_[p] != static_cast<int>(k)) holds_[p] = 0;  // a new contact
+      const Eigen::Vector3d local = to_shape * x;
+      if (!stuck) {
+        enterThroughItsFace(obstacle.shape, start_poses[k].inverse(), q, local, surface, normal);
+      }
+      contacts_[k].penetration = std::max(contacts_[k].penetration, (surface - local).norm());
+      const Eigen::Vector3d on_surface = obstacle.pose * surface;
       obstacle_[p] = static_cast<int>(k);
       point_[p] = surface;
       normal_[p] = normal;

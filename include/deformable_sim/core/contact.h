@@ -41,7 +41,8 @@ struct ContactLoad {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< mean of the touching points, m
   int points =
       0;  ///< points (nodes, or vertices of an embedded surface) touching it after the step
-  double penetration = 0.0;  ///< deepest a point was found inside it before being put back, m
+  /// the farthest a point was put back out of it (by the face it came in through), m
+  double penetration = 0.0;
 };
 
 /// Which nodes touch which obstacle, from step to step. Sized once per body and per number of
@@ -134,6 +135,13 @@ class ContactState {
   /// `change` (a vertex: asks it of its nodes), adding the force that takes to the load.
   void putBack(Body& body, int p, const Eigen::Vector3d& x, const Eigen::Vector3d& on_surface,
                const Eigen::Vector3d& change, double dt);
+  /// A point found inside `shape` (at `now`, in its frame; nearest surface point and normal
+  /// there) that was outside at the step's start and whose nearest face is not the one it came
+  /// in through (it crossed more than half of a thin table) goes back by that face: `surface`
+  /// and `normal` become the entry's.
+  void enterThroughItsFace(const Shape& shape, const Eigen::Isometry3d& to_start_shape, int p,
+                           const Eigen::Vector3d& now, Eigen::Vector3d& surface,
+                           Eigen::Vector3d& normal) const;
   /// Puts the points of obstacle k that are still inside (their cells share nodes) back out.
   void settleEmbedded(Body& body, const PlacedShape& obstacle, int k);
   /// Where each node of a touching point is in its obstacle's frame: it is held there.
@@ -171,6 +179,7 @@ class ContactState {
   /// it whole.
   bool whole_ = true;
   Requests position_requests_, velocity_requests_;
+  Eigen::VectorXd start_positions_;  ///< the body's nodes at the step's start (hold())
 };
 
 }  // namespace deformable_sim::core
