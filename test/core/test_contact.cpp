@@ -14,6 +14,34 @@
 namespace dc = deformable_sim::core;
 using deformable_sim::test::boxMeshSimulation;
 
+namespace {
+
+// A block (body "block") above a 1 m x 1 m box table `thickness` thick whose top face is at
+// z = 0 (obstacle "table"), under gravity, lightly damped, with contact and friction 0.5.
+dc::SceneSpec blockAboveATable(double thickness, const dc::BoxMeshSpec& block_mesh,
+                               const dc::LinearElasticMaterial& material) {
+  dc::SceneSpec spec;
+  spec.dt = 0.01;
+  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
+  spec.effects.warping = true;
+  spec.effects.damping = dc::RayleighDamping{2.0, 0.002};
+  spec.contact = dc::ContactSettings{0.5};
+  dc::PlacedShape table;
+  table.name = "table";
+  table.shape.kind = dc::Shape::Kind::kBox;
+  table.shape.size = {1.0, 1.0, thickness};
+  table.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.5 * thickness);
+  spec.obstacles.push_back(table);
+  dc::BodySpec block;
+  block.name = "block";
+  block.box_mesh = block_mesh;
+  block.material = material;
+  spec.bodies.push_back(block);
+  return spec;
+}
+
+}  // namespace
+
 TEST(Shape, SignedDistancesToTheThreePrimitives) {
   dc::Shape box;
   box.kind = dc::Shape::Kind::kBox;
@@ -44,23 +72,8 @@ TEST(Shape, SignedDistancesToTheThreePrimitives) {
 }
 
 TEST(Contact, ABlockDroppedOnATableComesToRestOnTop) {
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-  spec.effects.warping = true;
-  spec.effects.damping = dc::RayleighDamping{2.0, 0.002};
-  spec.contact = dc::ContactSettings{0.5};
-  dc::PlacedShape table;
-  table.name = "table";
-  table.shape.kind = dc::Shape::Kind::kBox;
-  table.shape.size = {1.0, 1.0, 0.1};
-  table.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.05);  // top face at z = 0
-  spec.obstacles.push_back(table);
-  dc::BodySpec block;
-  block.name = "block";
-  block.box_mesh = dc::BoxMeshSpec{{-0.05, -0.05, 0.1}, {0.05, 0.05, 0.2}, {4, 4, 4}};
-  block.material = {3.0e4, 0.3, 150.0};
-  spec.bodies.push_back(block);
+  dc::SceneSpec spec = blockAboveATable(
+      0.1, dc::BoxMeshSpec{{-0.05, -0.05, 0.1}, {0.05, 0.05, 0.2}, {4, 4, 4}}, {3.0e4, 0.3, 150.0});
   dc::Simulation sim = boxMeshSimulation(spec);
   std::vector<dc::StepReport> reports;
   for (int s = 0; s < 600; ++s) {
@@ -100,26 +113,11 @@ TEST(Contact, ABlockDroppedOnATableComesToRestOnTop) {
 // 3 cm in a 0.01 s step and its bottom nodes are found past the middle of the top, nearest to its
 // underside. They go back out by the face they came in through and the block rests on top.
 TEST(Contact, ABlockHittingAThinTableFastStaysOnTop) {
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-  spec.effects.damping = dc::RayleighDamping{2.0, 0.002};
-  spec.contact = dc::ContactSettings{0.5};
-  dc::PlacedShape top;
-  top.name = "table_top";
-  top.shape.kind = dc::Shape::Kind::kBox;
-  top.shape.size = {1.0, 1.0, 0.03};
-  top.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.015);  // top face at z = 0
-  spec.obstacles.push_back(top);
-  dc::BodySpec block;
-  block.name = "block";
-  block.box_mesh = dc::BoxMeshSpec{{-0.05, -0.05, 0.002}, {0.05, 0.05, 0.102}, {2, 2, 2}};
-  block.material = {1.0e6, 0.3, 500.0};
-  spec.bodies.push_back(block);
-  dc::Simulation sim = boxMeshSimulation(spec);
+  dc::Simulation sim = boxMeshSimulation(
+      blockAboveATable(0.03, dc::BoxMeshSpec{{-0.05, -0.05, 0.002}, {0.05, 0.05, 0.102}, {2, 2, 2}},
+                       {1.0e6, 0.3, 500.0}));
   dc::Body& body = sim.bodies()[0];
-  body.setState(body.positions(), Eigen::VectorXd::Zero(3 * body.numNodes()) +
-                                      Eigen::Vector3d(0, 0, -3.0).replicate(body.numNodes(), 1));
+  body.setState(body.positions(), Eigen::Vector3d(0, 0, -3.0).replicate(body.numNodes(), 1));
   std::vector<dc::StepReport> reports;
   sim.step(reports);
   EXPECT_GT(sim.obstacleContacts(0)[0].penetration, 0.015);  // past the middle of the top
@@ -132,12 +130,9 @@ TEST(Contact, ABlockHittingAThinTableFastStaysOnTop) {
 // collision shapes): one pair, carrying its weight at the middle of its bottom face, and the
 // table feels the opposite.
 TEST(Contact, PairsMergeShapesOfOneNameAndCarryTheWeight) {
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-  spec.effects.warping = true;
-  spec.effects.damping = dc::RayleighDamping{2.0, 0.002};
-  spec.contact = dc::ContactSettings{0.5};
+  dc::SceneSpec spec = blockAboveATable(
+      0.1, dc::BoxMeshSpec{{-0.05, -0.05, 0.0}, {0.05, 0.05, 0.1}, {4, 4, 4}}, {3.0e4, 0.3, 150.0});
+  spec.obstacles.clear();
   for (double x : {-0.245, 0.245}) {  // two boards overlapping by 1 cm, tops at z = 0
     dc::PlacedShape half;
     half.name = "table";
@@ -145,11 +140,6 @@ TEST(Contact, PairsMergeShapesOfOneNameAndCarryTheWeight) {
     half.pose.translation() = Eigen::Vector3d(x, 0.0, -0.05);
     spec.obstacles.push_back(half);
   }
-  dc::BodySpec block;
-  block.name = "block";
-  block.box_mesh = dc::BoxMeshSpec{{-0.05, -0.05, 0.0}, {0.05, 0.05, 0.1}, {4, 4, 4}};
-  block.material = {3.0e4, 0.3, 150.0};
-  spec.bodies.push_back(block);
   dc::Simulation sim = boxMeshSimulation(spec);
   std::vector<dc::StepReport> reports;
   for (int s = 0; s < 300; ++s) sim.step(reports);
