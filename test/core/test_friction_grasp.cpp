@@ -162,13 +162,14 @@ TEST(FrictionGrasp, TooLightASqueezeLetsTheBlockSlipOut) {
   EXPECT_NEAR(grasp.table_force.z(), grasp.weight, 0.05 * grasp.weight);
 }
 
-// Fails today: as the block slips out and lands, the fingers still touch it, and a body touching
-// several obstacles is held only where it sticks; its sliding nodes, supported by the projection
-// alone, sink further each step (the body above presses them in) until one is deeper than half
-// the 4 cm table and is put out at its underside (lowest node at z = -0.04 with mu = 0.05, -0.041
-// with the contact code of f8d7a26). A body on one obstacle is held where it slides too.
+// Fails today: a body touching several obstacles gives a sliding patch's excess impulse to that
+// patch's few nodes alone; as a lightly squeezed block slips, they reach tens of m/s, one crosses
+// the whole 4 cm table within a step, and the block follows it under the table (lowest node at
+// z = -0.085 with 0.5 mm and mu = 0.05). Which light squeezes do this changes with any change to
+// the contact code: 2 mm with mu = 0.05, the case of this test before, now passes, 2 mm with
+// mu = 0.1 fails (doc/physics.md, Contact).
 TEST(FrictionGrasp, DISABLED_TheBlockThatSlipsOutEndsOnTheTablesTop) {
-  const Grasp grasp = squeezeAndLift(0.002, 0.05);
+  const Grasp grasp = squeezeAndLift(0.0005, 0.05);
   EXPECT_GT(grasp.lowest, -1e-9);  // the table's top is z = 0
 }
 
