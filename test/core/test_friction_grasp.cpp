@@ -155,8 +155,10 @@ TEST(FrictionGrasp, ASqueezedBlockRisesWithTheFingersAndTheyCarryItsWeight) {
 }
 
 TEST(FrictionGrasp, TooLightASqueezeLetsTheBlockSlipOut) {
-  // The same squeeze with a tenth of the friction: μ times the squeeze is less than the weight.
-  const Grasp grasp = squeezeAndLift(0.002, 0.05);
+  // The same squeeze with μ = 0.02: μ times the fingers' push (4.1 N each) is half the weight.
+  // (Between 0.04, where Coulomb's law would hold it, and 0.15 it slips too: friction of a body
+  // on several obstacles is judged per patch, doc/physics.md.)
+  const Grasp grasp = squeezeAndLift(0.002, 0.02);
   EXPECT_LT(grasp.rise, 0.2 * kLift);
   // It is back on the table, which carries it.
   EXPECT_NEAR(grasp.table_force.z(), grasp.weight, 0.05 * grasp.weight);
