@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "deformable_sim/core/contact.h"
 #include "deformable_sim/core/shape.h"
@@ -173,6 +174,21 @@ TEST(FrictionGrasp, TooLightASqueezeLetsTheBlockSlipOut) {
 TEST(FrictionGrasp, DISABLED_TheBlockThatSlipsOutEndsOnTheTablesTop) {
   const Grasp grasp = squeezeAndLift(0.0005, 0.05);
   EXPECT_GT(grasp.lowest, -1e-9);  // the table's top is z = 0
+}
+
+// A report, not a check: the block's rise, its lowest node and what the fingers carry at the end,
+// for light to firm squeezes and low to high friction (doc/physics.md, Contact):
+//   test_core_contact --gtest_also_run_disabled_tests
+//     --gtest_filter=FrictionGrasp.DISABLED_ReportAcrossSqueezesAndFrictions
+TEST(FrictionGrasp, DISABLED_ReportAcrossSqueezesAndFrictions) {
+  std::printf("squeeze_mm  mu     rise_m   lowest_m  fingers_z_N  weight_N\n");
+  for (const double squeeze : {0.0002, 0.0005, 0.001, 0.002}) {
+    for (const double mu : {0.02, 0.05, 0.1, 0.2, 0.5}) {
+      const Grasp grasp = squeezeAndLift(squeeze, mu);
+      std::printf("%-11.1f %-6.2f %-8.4f %-9.4f %-12.3f %.3f\n", 1e3 * squeeze, mu, grasp.rise,
+                  grasp.lowest, grasp.finger_force.z(), grasp.weight);
+    }
+  }
 }
 
 // A ball made from its surface is squeezed through its surface (core/contact.h): the fingers
