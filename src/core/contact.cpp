@@ -153,7 +153,6 @@ void ContactState::grant(Requests& requests, Eigen::VectorXd& state) const {
 }
 
 void ContactState::hold(Body& body, const std::vector<PlacedShape>& obstacles, double dt) {
-  start_positions_ = body.positions();  // same size from step to step: no allocation
   // A body that touches one obstacle, and that nothing else holds, takes a slip's correction as
   // a whole.
   int touched = -1;
@@ -349,12 +348,12 @@ Eigen::Vector3d ContactState::landingChange(const Body& body, int p,
 }
 
 void ContactState::enterThroughItsFace(const Shape& shape, const Eigen::Isometry3d& to_start_shape,
-                                       int p, const Eigen::Vector3d& now, Eigen::Vector3d& surface,
+                                       const Eigen::VectorXd& start, int p,
+                                       const Eigen::Vector3d& now, Eigen::Vector3d& surface,
                                        Eigen::Vector3d& normal) const {
-  if (start_positions_.size() == 0) return;  // no step held it yet
   // Where it was at the step's start, in the obstacle's frame then (it moves with the obstacle).
   // On its surface counts as outside: a node resting on a table was put there to round-off.
-  Eigen::Vector3d outside = to_start_shape * weighted(start_positions_, p);
+  Eigen::Vector3d outside = to_start_shape * weighted(start, p);
   // Moving into its nearest face, it came in through it (or beside it).
   if ((now - outside).dot(normal) <= 0.0) return;
   if (!(signedDistance(shape, outside) > -kOnTheSurface)) return;  // it was inside already
@@ -456,7 +455,8 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
       if (obstacle_[p] != static_cast<int>(k)) holds_[p] = 0;  // a new contact
       const Eigen::Vector3d local = to_shape * x;
       if (!stuck) {
-        enterThroughItsFace(obstacle.shape, start_poses[k].inverse(), q, local, surface, normal);
+        enterThroughItsFace(obstacle.shape, start_poses[k].inverse(), body.rememberedPositions(), q,
+                            local, surface, normal);
       }
       contacts_[k].penetration = std::max(contacts_[k].penetration, (surface - local).norm());
       const Eigen::Vector3d on_surface = obstacle.pose * surface;

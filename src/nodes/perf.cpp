@@ -239,7 +239,10 @@ void EffectCost(benchmark::State& state) {
   double iterations = 0.0;
   int touching = 0;
   const auto step = [&] {
-    if (contact) contacts.hold(body, obstacles, c.dt);
+    if (contact) {
+      body.rememberState();  // where project() looks back to, as Simulation::step
+      contacts.hold(body, obstacles, c.dt);
+    }
     const core::StepReport report = body.step(c.dt);
     if (contact) {
       contacts.release(body, obstacles, friction, c.dt);

@@ -171,6 +171,9 @@ class Body {
   void rememberState();
   bool stateIsFinite() const;
   void returnToRememberedState();
+  /// Finite-element bodies: the positions kept by the last rememberState() (in a Simulation, where
+  /// the step began; contact looks there for the face a point came in through).
+  const Eigen::VectorXd& rememberedPositions() const { return remembered_positions_; }
 
   /// Holds the nodes where they are now (v = 0).
   void fixNodes(const std::vector<int>& nodes);

@@ -64,7 +64,9 @@ class ContactState {
   void release(Body& body, const std::vector<PlacedShape>& obstacles,
                const ContactSettings& settings, double dt);
   /// Projects the free points out of every obstacle and records them as touching; an obstacle's
-  /// velocity is that of its rigid motion from `start_poses[k]` to its pose within the step.
+  /// velocity is that of its rigid motion from `start_poses[k]` to its pose within the step, and
+  /// the body's nodes at the step's start are its rememberedPositions() (Body::rememberState()
+  /// before the step, as Simulation does).
   /// Returns the number of points touching an obstacle.
   int project(Body& body, const std::vector<PlacedShape>& obstacles,
               const std::vector<Eigen::Isometry3d>& start_poses, const ContactSettings& settings,
@@ -136,12 +138,12 @@ class ContactState {
   void putBack(Body& body, int p, const Eigen::Vector3d& x, const Eigen::Vector3d& on_surface,
                const Eigen::Vector3d& change, double dt);
   /// A point found inside `shape` (at `now`, in its frame; nearest surface point and normal
-  /// there) that was outside at the step's start and whose nearest face is not the one it came
-  /// in through (it crossed more than half of a thin table) goes back by that face: `surface`
-  /// and `normal` become the entry's.
-  void enterThroughItsFace(const Shape& shape, const Eigen::Isometry3d& to_start_shape, int p,
-                           const Eigen::Vector3d& now, Eigen::Vector3d& surface,
-                           Eigen::Vector3d& normal) const;
+  /// there) that was outside at the step's start (the body's nodes then: `start`) and whose
+  /// nearest face is not the one it came in through (it crossed more than half of a thin table)
+  /// goes back by that face: `surface` and `normal` become the entry's.
+  void enterThroughItsFace(const Shape& shape, const Eigen::Isometry3d& to_start_shape,
+                           const Eigen::VectorXd& start, int p, const Eigen::Vector3d& now,
+                           Eigen::Vector3d& surface, Eigen::Vector3d& normal) const;
   /// Puts the points of obstacle k that are still inside (their cells share nodes) back out.
   void settleEmbedded(Body& body, const PlacedShape& obstacle, int k);
   /// Where each node of a touching point is in its obstacle's frame: it is held there.
@@ -179,7 +181,6 @@ class ContactState {
   /// it whole.
   bool whole_ = true;
   Requests position_requests_, velocity_requests_;
-  Eigen::VectorXd start_positions_;  ///< the body's nodes at the step's start (hold())
 };
 
 }  // namespace deformable_sim::core
