@@ -29,7 +29,7 @@ packages=(
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   python3-geometry-msgs python3-visualization-msgs python3-std-srvs python3-tf2-msgs
   python3-tf2-ros python3-diagnostic-msgs python3-sensor-msgs ros-robot-state-publisher
-  librosbag-dev libtf2-msgs-dev python3-rosbag
+  librosbag-dev libtf2-msgs-dev libtf2-eigen-dev python3-rosbag
 )
 # rviz for the demo when asked; rviz under Xvfb with imagemagick for the screenshot test; clang
 # with libFuzzer for the fuzz targets (scripts/fuzz.sh).

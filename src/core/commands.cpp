@@ -14,6 +14,15 @@ std::string vectorText(const Eigen::Vector3d& v) {
   return text;
 }
 
+Wrench seenFrom(const Wrench& wrench, const Eigen::Isometry3d& frame) {
+  const Eigen::Matrix3d to_frame = frame.linear().transpose();
+  Wrench seen;  // about the frame's origin: zero in the frame's own coordinates
+  seen.force = to_frame * wrench.force;
+  seen.torque =
+      to_frame * (wrench.torque + (wrench.point - frame.translation()).cross(wrench.force));
+  return seen;
+}
+
 CommandProcessor::CommandProcessor(Simulation& simulation, CommandLimits limits)
     : simulation_(simulation), limits_(limits) {
   for (const Body& body : simulation_.bodies()) base_forces_.push_back(body.externalForces());

@@ -2,6 +2,7 @@
 #include <Eigen/Geometry>
 
 #include "deformable_sim/core/commands.h"
+#include "deformable_sim/core/rigid_frame.h"
 
 namespace deformable_sim::core {
 
@@ -95,6 +96,13 @@ Wrench CommandProcessor::graspReaction(const std::string& name) const {
     wrench.torque += (body.positions().segment<3>(3 * i) - wrench.point).cross(r);
   }
   return wrench;
+}
+
+Eigen::Isometry3d CommandProcessor::objectInGrasp(const std::string& name) const {
+  const ActiveGrasp& grasp = grasps_.at(name);
+  const Body& body = simulation_.bodies()[grasp.body];
+  return grasp.frame.inverse() *
+         toIsometry(bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses()));
 }
 
 Wrench CommandProcessor::fixedReaction(int b, const Eigen::Vector3d& point) const {

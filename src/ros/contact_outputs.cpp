@@ -1,7 +1,5 @@
 #include "deformable_sim/ros/contact_outputs.h"
 
-#include <geometry_msgs/WrenchStamped.h>
-
 #include "deformable_sim/Contacts.h"
 #include "deformable_sim/ros/conversions.h"
 
@@ -18,9 +16,7 @@ ContactPair toMessage(const core::ContactPair& pair, const core::Simulation& sim
   m.other = pair.other;
   m.force = toVector3(pair.load.force);
   m.torque = toVector3(pair.load.torque - pair.load.centre.cross(pair.load.force));
-  m.centre.x = pair.load.centre.x();
-  m.centre.y = pair.load.centre.y();
-  m.centre.z = pair.load.centre.z();
+  m.centre = toPoint(pair.load.centre);
   m.points = static_cast<uint32_t>(pair.load.points);
   m.penetration = pair.load.penetration;
   return m;
@@ -60,14 +56,8 @@ void ContactOutputs::publish(const core::Session& session,
     const std::optional<Eigen::Isometry3d> pose = link_pose(link);
     if (!pose) continue;
     const core::ContactLoad load = core::loadOnObstacle(pairs_, link);
-    const Eigen::Matrix3d to_link = pose->linear().transpose();
-    geometry_msgs::WrenchStamped wrench;
-    wrench.header.stamp = now;
-    wrench.header.frame_id = link;
-    wrench.wrench.force = toVector3(to_link * load.force);
-    wrench.wrench.torque =
-        toVector3(to_link * (load.torque - pose->translation().cross(load.force)));
-    publisher.publish(wrench);
+    const core::Wrench wrench{load.force, load.torque, Eigen::Vector3d::Zero()};
+    publisher.publish(toMessage(wrench, link, *pose, now));
   }
 }
 

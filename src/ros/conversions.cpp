@@ -2,40 +2,15 @@
 
 namespace deformable_sim::ros_layer {
 
-geometry_msgs::Point toPoint(const Eigen::Vector3d& v) {
-  geometry_msgs::Point p;
-  p.x = v.x();
-  p.y = v.y();
-  p.z = v.z();
-  return p;
-}
-
-geometry_msgs::Vector3 toVector3(const Eigen::Vector3d& v) {
-  geometry_msgs::Vector3 m;
-  m.x = v.x();
-  m.y = v.y();
-  m.z = v.z();
+geometry_msgs::WrenchStamped toMessage(const core::Wrench& wrench, const std::string& frame_id,
+                                       const Eigen::Isometry3d& frame, const ros::Time& stamp) {
+  const core::Wrench seen = core::seenFrom(wrench, frame);
+  geometry_msgs::WrenchStamped m;
+  m.header.stamp = stamp;
+  m.header.frame_id = frame_id;
+  m.wrench.force = toVector3(seen.force);
+  m.wrench.torque = toVector3(seen.torque);
   return m;
-}
-
-Eigen::Isometry3d toEigen(const geometry_msgs::Transform& t) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = toEigen(t.translation);
-  pose.linear() = Eigen::Quaterniond(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z)
-                      .normalized()
-                      .toRotationMatrix();
-  return pose;
-}
-
-geometry_msgs::Transform toTransform(const Eigen::Isometry3d& pose) {
-  geometry_msgs::Transform t;
-  t.translation = toVector3(pose.translation());
-  const Eigen::Quaterniond q(pose.linear());
-  t.rotation.w = q.w();
-  t.rotation.x = q.x();
-  t.rotation.y = q.y();
-  t.rotation.z = q.z();
-  return t;
 }
 
 core::WrenchCommand toCommand(const NodeWrench& message, const Eigen::Isometry3d& frame_in_world) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "deformable_sim/core/drawn_interactions.h"
 #include "deformable_sim/ros/conversions.h"
 
 namespace deformable_sim::ros_layer {
@@ -74,51 +75,33 @@ visualization_msgs::Marker deleteAllMarker(const std_msgs::Header& header) {
 visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::Body>& bodies,
                                                    const core::CommandProcessor& commands,
                                                    const std_msgs::Header& header) {
+  using visualization_msgs::Marker;
+  const core::DrawnInteractions drawn = core::drawnInteractions(bodies, commands, 0.1);
   visualization_msgs::MarkerArray array;
   array.markers.push_back(deleteAllMarker(header));
+  const auto add = [&array](Marker m, const std::vector<Eigen::Vector3d>& points) {
+    for (const Eigen::Vector3d& p : points) m.points.push_back(toPoint(p));
+    if (!m.points.empty()) array.markers.push_back(m);
+  };
   for (size_t b = 0; b < bodies.size(); ++b) {
-    const core::Body& body = bodies[b];
-    const Eigen::VectorXd& x = body.positions();
-    // Grasped nodes are constrained too; they are drawn once, in the grasps' colour.
-    std::vector<bool> grasped(body.numNodes(), false);
-    visualization_msgs::Marker held =
-        marker(header, body.name() + "/grasped", 0, visualization_msgs::Marker::SPHERE_LIST, 0.012,
-               rgba(0.95f, 0.85f, 0.1f));
-    for (const auto& [name, grasp] : commands.grasps()) {
-      if (grasp.body != static_cast<int>(b)) continue;
-      for (int i : grasp.nodes) {
-        grasped[i] = true;
-        held.points.push_back(toPoint(x.segment<3>(3 * i)));
-      }
-    }
-    if (!held.points.empty()) array.markers.push_back(held);
-    visualization_msgs::Marker fixed =
-        marker(header, body.name() + "/fixed", 0, visualization_msgs::Marker::SPHERE_LIST, 0.015,
-               rgba(0.9f, 0.1f, 0.1f));
-    for (int i = 0; i < body.numNodes(); ++i) {
-      if (body.isConstrained(i) && !grasped[i])
-        fixed.points.push_back(toPoint(x.segment<3>(3 * i)));
-    }
-    if (!fixed.points.empty()) array.markers.push_back(fixed);
+    const std::string& name = bodies[b].name();
+    const core::DrawnNodes& nodes = drawn.bodies[b];
+    add(marker(header, name + "/grasped", 0, Marker::SPHERE_LIST, 0.012, rgba(0.95f, 0.85f, 0.1f)),
+        nodes.grasped);
+    add(marker(header, name + "/fixed", 0, Marker::SPHERE_LIST, 0.015, rgba(0.9f, 0.1f, 0.1f)),
+        nodes.fixed);
     int id = 0;
-    for (const auto& [name, nodes] : body.groups()) {
-      visualization_msgs::Marker group =
-          marker(header, body.name() + "/groups", id++, visualization_msgs::Marker::POINTS, 0.01,
-                 rgba(0.1f, 0.3f, 0.9f));
-      for (int i : nodes) group.points.push_back(toPoint(x.segment<3>(3 * i)));
-      array.markers.push_back(group);
+    for (const auto& [group, points] : nodes.groups) {
+      add(marker(header, name + "/groups", id++, Marker::POINTS, 0.01, rgba(0.1f, 0.3f, 0.9f)),
+          points);
     }
   }
   int id = 0;
-  for (const auto& [source, wrench] : commands.activeWrenches()) {
-    if (wrench.force.isZero(0.0)) continue;
-    visualization_msgs::Marker arrow = marker(
-        header, "wrenches", id++, visualization_msgs::Marker::ARROW, 0.0, rgba(0.1f, 0.8f, 0.2f));
+  for (const core::DrawnArrow& wrench : drawn.wrenches) {
+    Marker arrow = marker(header, "wrenches", id++, Marker::ARROW, 0.0, rgba(0.1f, 0.8f, 0.2f));
     arrow.scale.x = 0.01;  // shaft diameter
     arrow.scale.y = 0.02;  // head diameter
-    arrow.points.push_back(toPoint(wrench.point));
-    arrow.points.push_back(toPoint(wrench.point + 0.1 * wrench.force));
-    array.markers.push_back(arrow);
+    add(arrow, {wrench.from, wrench.to});
   }
   return array;
 }

@@ -1,9 +1,7 @@
 #include "deformable_sim/ros/node_grasps.h"
 
-#include <geometry_msgs/WrenchStamped.h>
 #include <ros/names.h>
 
-#include "deformable_sim/core/rigid_frame.h"
 #include "deformable_sim/ros/conversions.h"
 
 namespace deformable_sim::ros_layer {
@@ -118,24 +116,14 @@ void NodeGrasps::publish(const core::Session& session, const ros::Time& stamp,
                          tf2_ros::TransformBroadcaster* broadcaster) {
   std::vector<geometry_msgs::TransformStamped> objects;
   for (const auto& [name, frame] : follower_.frames()) {
-    const core::ActiveGrasp& grasp = session.commands().grasps().at(name);
-    const core::Wrench reaction = session.commands().graspReaction(name);
-    const Eigen::Matrix3d to_frame = grasp.frame.linear().transpose();
-    geometry_msgs::WrenchStamped wrench;
-    wrench.header.stamp = stamp;
-    wrench.header.frame_id = frame;
-    wrench.wrench.force = toVector3(to_frame * reaction.force);
-    wrench.wrench.torque = toVector3(to_frame * reaction.torque);
-    wrench_pubs_.at(name).publish(wrench);
-    // The object seen from the gripper: how it slips or sags in the hand.
-    const core::Body& body = session.simulation().bodies()[grasp.body];
+    const core::CommandProcessor& commands = session.commands();
+    wrench_pubs_.at(name).publish(
+        toMessage(commands.graspReaction(name), frame, commands.grasps().at(name).frame, stamp));
     geometry_msgs::TransformStamped object;
     object.header.stamp = stamp;
     object.header.frame_id = frame;
     object.child_frame_id = frames_.prefix() + name + "/object";
-    object.transform = toTransform(
-        grasp.frame.inverse() * core::toIsometry(core::bestFitFrame(
-                                    body.positions(), body.restPositions(), body.nodalMasses())));
+    object.transform = toTransform(commands.objectInGrasp(name));
     objects.push_back(object);
   }
   if (broadcaster && !objects.empty()) broadcaster->sendTransform(objects);

@@ -1,7 +1,5 @@
 #include "deformable_sim/ros/node_outputs.h"
 
-#include <geometry_msgs/WrenchStamped.h>
-
 #include "deformable_sim/Stats.h"
 #include "deformable_sim/core/body_activity.h"
 #include "deformable_sim/ros/body_frames.h"
@@ -57,12 +55,8 @@ bool NodeOutputs::publishState(const core::Session& session, const ros::Time& no
     if (reaction_pubs_[b].getNumSubscribers() == 0) continue;
     const core::Wrench reaction =
         session.commands().fixedReaction(static_cast<int>(b), Eigen::Vector3d::Zero());
-    geometry_msgs::WrenchStamped wrench;
-    wrench.header.stamp = now;
-    wrench.header.frame_id = params_.world_frame;
-    wrench.wrench.force = toVector3(reaction.force);
-    wrench.wrench.torque = toVector3(reaction.torque);
-    reaction_pubs_[b].publish(wrench);
+    reaction_pubs_[b].publish(
+        toMessage(reaction, params_.world_frame, Eigen::Isometry3d::Identity(), now));
   }
   return send_tf;
 }

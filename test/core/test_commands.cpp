@@ -333,6 +333,36 @@ TEST(Grasps, HangingBodyReactionIsItsWeightAboutItsCentreOfMass) {
   EXPECT_NEAR(moved.head<2>().norm(), 0.0, 1e-12);
 }
 
+// ~grasps/<name>/wrench and the tf frame <name>/object: what the hand feels and where the object
+// is, both in the hand's frame.
+TEST(Grasps, TheReactionAndTheObjectAreSeenFromTheHand) {
+  dc::Simulation sim = makeBlock();
+  dc::CommandProcessor commands(sim);
+  Eigen::Isometry3d hand = Eigen::Isometry3d::Identity();
+  hand.translation() << 0.01, 0.01, 0.09;
+  hand.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  commands.apply(graspTopCorner(hand));
+  const Eigen::Translation3d centroid(0.05, 0.05, 0.05);  // the object's frame: at its centroid
+  EXPECT_TRUE(commands.objectInGrasp("hand").isApprox(hand.inverse() * centroid, 1e-12));
+  dc::Body& body = sim.bodies()[0];
+  const Eigen::Vector3d shift(0.0, 0.0, -0.02);  // the object slipped 2 cm down in the hand
+  body.setState(body.restPositions() + shift.replicate(body.numNodes(), 1),
+                Eigen::VectorXd::Zero(3 * body.numNodes()));
+  const Eigen::Isometry3d slipped = hand.inverse() * Eigen::Translation3d(shift) * centroid;
+  EXPECT_TRUE(commands.objectInGrasp("hand").isApprox(slipped, 1e-12));
+
+  // A force of 1 N down at x = 1 m: about the origin of a hand turned 90 degrees about z, whose
+  // x axis is the world's y, the torque is +1 N m about the world's y, its own x.
+  const dc::Wrench load{{0, 0, -1}, {0, 0, 0}, {1, 0, 0}};
+  Eigen::Isometry3d sensor = Eigen::Isometry3d::Identity();
+  sensor.linear() = hand.linear();
+  const dc::Wrench seen = dc::seenFrom(load, sensor);
+  EXPECT_TRUE(seen.force.isApprox(Eigen::Vector3d(0, 0, -1), 1e-12));
+  EXPECT_TRUE(seen.torque.isApprox(Eigen::Vector3d(1, 0, 0), 1e-12)) << seen.torque.transpose();
+  sensor.translation() << 1, 0, 5;  // on the force's line: no torque
+  EXPECT_LT(dc::seenFrom(load, sensor).torque.norm(), 1e-12);
+}
+
 TEST(Grasps, RefusesEmptyRegionsAndNodesHeldElsewhere) {
   dc::Simulation sim = makeBlock();
   dc::CommandProcessor commands(sim);

@@ -1,9 +1,11 @@
-// What the node's ~mesh and a replay's bag draw and how mesh obstacles are recorded once: the
-// drawn corners follow the body, coloured by its strain; triangle meshes survive flat arrays; the
-// catalogue lists a mesh's triangles until they are recorded, then names it by id.
+// What the node's ~mesh, ~markers and a replay's bag draw and how mesh obstacles are recorded
+// once: the drawn corners follow the body, coloured by its strain; held and fixed nodes, groups
+// and wrench arrows are drawn where they are; triangle meshes survive flat arrays; the catalogue
+// lists a mesh's triangles until they are recorded, then names it by id.
 #include <gtest/gtest.h>
 
 #include "deformable_sim/core/commands.h"
+#include "deformable_sim/core/drawn_interactions.h"
 #include "deformable_sim/core/drawn_surfaces.h"
 #include "deformable_sim/core/mesh_catalogue.h"
 #include "deformable_sim/core/surface_body.h"
@@ -92,6 +94,50 @@ TEST(DrawnSurfaces, ABodyMadeFromASurfaceIsDrawnWithThatSurface) {
     EXPECT_LT((drawn.corners()[c] - expected).norm(), 1e-12) << c;
     EXPECT_NEAR(drawn.strains()[c], 0.02, 1e-9) << c;
   }
+}
+
+// Fixed at x = 0, grasped at x = 0.1, a group at x = 0.2 (nine nodes each), one pushing wrench and
+// one pure torque; then the whole body moved.
+TEST(DrawnInteractions, NodesAreDrawnWhereTheyAreAndEachConstrainedNodeOnce) {
+  dc::SceneSpec spec;
+  spec.bodies = {blockSpec("block", false)};
+  spec.bodies[0].fixed.push_back(
+      {dc::NodeSelection::Kind::kBox, {}, {{-1, -1, -1}, {0.001, 1, 1}}});
+  spec.bodies[0].groups["tip"] = {dc::NodeSelection::Kind::kBox, {}, {{0.199, -1, -1}, {1, 1, 1}}};
+  dc::Simulation sim = dt::boxMeshSimulation(spec);
+  dc::CommandProcessor commands(sim);
+  dc::GraspCommand grasp;
+  grasp.name = "hand";
+  grasp.nodes.box = dc::Box{{0.099, -1, -1}, {0.101, 1, 1}};
+  ASSERT_EQ(commands.apply(grasp), 9);
+  dc::WrenchCommand push;
+  push.source = "push";
+  push.nodes.group = "tip";
+  push.force = Eigen::Vector3d(0, 0, -2);
+  push.point = Eigen::Vector3d(0.2, 0.05, 0.05);
+  commands.apply(push);
+  dc::WrenchCommand twist = push;
+  twist.source = "twist";
+  twist.force.setZero();
+  twist.torque = Eigen::Vector3d(0, 0, 1);
+  commands.apply(twist);
+  const Eigen::Vector3d shift(0.3, -0.2, 0.5);
+  deform(sim, 0, Eigen::Matrix3d::Identity(), shift);
+
+  const dc::DrawnInteractions drawn = dc::drawnInteractions(sim.bodies(), commands, 0.1);
+  ASSERT_EQ(drawn.bodies.size(), 1u);
+  const dc::DrawnNodes& nodes = drawn.bodies[0];
+  ASSERT_EQ(nodes.grasped.size(), 9u);
+  ASSERT_EQ(nodes.fixed.size(), 9u);  // the grasped nodes are constrained too, not drawn twice
+  ASSERT_EQ(nodes.groups.size(), 1u);
+  EXPECT_EQ(nodes.groups[0].first, "tip");
+  ASSERT_EQ(nodes.groups[0].second.size(), 9u);
+  for (const Eigen::Vector3d& p : nodes.grasped) EXPECT_NEAR(p.x(), 0.1 + shift.x(), 1e-12);
+  for (const Eigen::Vector3d& p : nodes.fixed) EXPECT_NEAR(p.x(), shift.x(), 1e-12);
+  for (const Eigen::Vector3d& p : nodes.groups[0].second) EXPECT_NEAR(p.x(), 0.2 + 0.3, 1e-12);
+  ASSERT_EQ(drawn.wrenches.size(), 1u);  // none for the pure torque
+  EXPECT_TRUE(drawn.wrenches[0].from.isApprox(*push.point));
+  EXPECT_TRUE(drawn.wrenches[0].to.isApprox(Eigen::Vector3d(0.2, 0.05, -0.15)));
 }
 
 TEST(TriangleMeshArrays, RoundTripAndRefuseWhatDoesNotFit) {

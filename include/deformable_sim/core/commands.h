@@ -88,6 +88,10 @@ struct Wrench {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
 };
 
+/// The wrench as a sensor at `frame` (its pose in the world) reads it: force and torque in the
+/// frame's axes, the torque about the frame's origin.
+Wrench seenFrom(const Wrench& wrench, const Eigen::Isometry3d& frame);
+
 /// A wrench in effect, as applied: for markers and the record.
 struct ActiveWrench {
   int body = -1;
@@ -123,6 +127,9 @@ class CommandProcessor {
   /// What the grasp exerts on the body in the last step: the sum of its nodes' constraint forces
   /// and their torque about the frame's origin.
   Wrench graspReaction(const std::string& name) const;
+  /// The grasped body's best-fit frame seen from the grasp's frame: how it slips or sags in the
+  /// hand.
+  Eigen::Isometry3d objectInGrasp(const std::string& name) const;
   /// What all constrained nodes of a body that no grasp holds exert on it, torque about `point`.
   Wrench fixedReaction(int body, const Eigen::Vector3d& point) const;
 

@@ -4,6 +4,8 @@
 #include <geometry_msgs/Point.h>
 #include <geometry_msgs/Transform.h>
 #include <geometry_msgs/Vector3.h>
+#include <geometry_msgs/WrenchStamped.h>
+#include <tf2_eigen/tf2_eigen.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -19,10 +21,25 @@ namespace deformable_sim::ros_layer {
 
 inline Eigen::Vector3d toEigen(const geometry_msgs::Point& p) { return {p.x, p.y, p.z}; }
 inline Eigen::Vector3d toEigen(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z}; }
-geometry_msgs::Point toPoint(const Eigen::Vector3d& v);
-geometry_msgs::Vector3 toVector3(const Eigen::Vector3d& v);
-Eigen::Isometry3d toEigen(const geometry_msgs::Transform& t);
-geometry_msgs::Transform toTransform(const Eigen::Isometry3d& pose);
+inline geometry_msgs::Point toPoint(const Eigen::Vector3d& v) { return tf2::toMsg(v); }
+inline geometry_msgs::Vector3 toVector3(const Eigen::Vector3d& v) {
+  geometry_msgs::Vector3 m;
+  return tf2::toMsg(v, m);
+}
+/// The rotation is normalised: a message's quaternion need not be of unit length.
+inline Eigen::Isometry3d toEigen(geometry_msgs::Transform t) {
+  Eigen::Quaterniond q;
+  tf2::fromMsg(t.rotation, q);
+  t.rotation = tf2::toMsg(q.normalized());
+  return tf2::transformToEigen(t);
+}
+inline geometry_msgs::Transform toTransform(const Eigen::Isometry3d& pose) {
+  return tf2::eigenToTransform(pose).transform;
+}
+
+/// `wrench` as a sensor at `frame` (its pose in the world) reads it (core::seenFrom).
+geometry_msgs::WrenchStamped toMessage(const core::Wrench& wrench, const std::string& frame_id,
+                                       const Eigen::Isometry3d& frame, const ros::Time& stamp);
 
 /// A NodeWrench whose frame is `frame_in_world` (the pose of header.frame_id in the world frame).
 core::WrenchCommand toCommand(const NodeWrench& message, const Eigen::Isometry3d& frame_in_world);
