@@ -23,4 +23,17 @@ int appliedWrenches(const CommandProcessor& commands, int body) {
   return wrenches;
 }
 
+std::string bodySummary(const Simulation& simulation, int body) {
+  const Body& b = simulation.bodies()[body];
+  std::string effects;
+  for (const std::string& name : activeEffects(simulation, body)) {
+    effects += (effects.empty() ? "" : ", ") + name;
+  }
+  return "body '" + b.name() + "' (" + modelName(b.model()) + "): " + std::to_string(b.numNodes()) +
+         " nodes, " + std::to_string(b.mesh().numTetrahedra()) + " tetrahedra, " +
+         std::to_string(b.mesh().cells.size()) + " other elements, " +
+         std::to_string(b.numConstrained()) +
+         " fixed; effects: " + (effects.empty() ? "none" : effects);
+}
+
 }  // namespace deformable_sim::core

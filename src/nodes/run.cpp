@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "deformable_sim/core/body_activity.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/scene_file.h"
 
@@ -109,11 +110,8 @@ double millisecondsSince(Clock::time_point start) {
 }
 
 void printBodies(const Simulation& sim) {
-  for (const auto& body : sim.bodies()) {
-    std::printf("body %s (%s): %d nodes, %d tetrahedra, %d other elements, %d constrained\n",
-                body.name().c_str(), deformable_sim::core::modelName(body.model()), body.numNodes(),
-                body.mesh().numTetrahedra(), static_cast<int>(body.mesh().cells.size()),
-                body.numConstrained());
+  for (size_t b = 0; b < sim.bodies().size(); ++b) {
+    std::printf("%s\n", deformable_sim::core::bodySummary(sim, static_cast<int>(b)).c_str());
   }
 }
 

@@ -74,17 +74,8 @@ void SimNode::startSession() {
 void SimNode::logStart() const {
   const core::Simulation& sim = session_->simulation();
   for (size_t b = 0; b < sim.bodies().size(); ++b) {
-    const core::Body& body = sim.bodies()[b];
-    std::string effects;
-    for (const std::string& name : core::activeEffects(sim, static_cast<int>(b))) {
-      effects += (effects.empty() ? "" : ", ") + name;
-    }
-    ROS_INFO(
-        "body '%s' (%s): %d nodes, %d tetrahedra, %zu other elements, %d fixed; frame '%s'; "
-        "effects: %s",
-        body.name().c_str(), core::modelName(body.model()), body.numNodes(),
-        body.mesh().numTetrahedra(), body.mesh().cells.size(), body.numConstrained(),
-        (params_.frame_prefix + body.name()).c_str(), effects.empty() ? "none" : effects.c_str());
+    ROS_INFO("%s; frame '%s'", core::bodySummary(sim, static_cast<int>(b)).c_str(),
+             (params_.frame_prefix + sim.bodies()[b].name()).c_str());
   }
   ROS_INFO("stepping %s at %.4g Hz x %d substeps (dt %.4g s) in frame '%s'",
            params_.scene_path.empty() ? "the built-in default scene" : params_.scene_path.c_str(),

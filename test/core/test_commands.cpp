@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <limits>
 
+#include "deformable_sim/core/body_activity.h"
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/commands.h"
 #include "deformable_sim/core/default_scene.h"
@@ -361,6 +362,25 @@ TEST(Grasps, TheReactionAndTheObjectAreSeenFromTheHand) {
   EXPECT_TRUE(seen.torque.isApprox(Eigen::Vector3d(1, 0, 0), 1e-12)) << seen.torque.transpose();
   sensor.translation() << 1, 0, 5;  // on the force's line: no torque
   EXPECT_LT(dc::seenFrom(load, sensor).torque.norm(), 1e-12);
+}
+
+// The node's log line and ~stats of a body: what it is made of, what it runs, what acts on it.
+TEST(BodyActivity, SaysWhatABodyIsAndWhatActsOnIt) {
+  dc::Simulation sim = makeBlock(true);
+  dc::CommandProcessor commands(sim);
+  // 4 x 4 x 4 cubes of six tetrahedra; reactions are on unless a scene turns them off.
+  EXPECT_EQ(dc::bodySummary(sim, 0),
+            "body 'block' (fem): 125 nodes, 384 tetrahedra, 0 other elements, 0 fixed; effects: "
+            "warping, gravity, damping, reactions, contact");
+  commands.apply(graspTopCorner(Eigen::Isometry3d::Identity()));
+  dc::WrenchCommand push;
+  push.source = "push";
+  push.nodes.whole_body = true;
+  push.force = Eigen::Vector3d(1, 0, 0);
+  commands.apply(push);
+  EXPECT_EQ(dc::graspedNodes(commands, 0), 8);
+  EXPECT_EQ(dc::appliedWrenches(commands, 0), 1);
+  EXPECT_NE(dc::bodySummary(sim, 0).find(", 8 fixed;"), std::string::npos);  // grasped: held
 }
 
 TEST(Grasps, RefusesEmptyRegionsAndNodesHeldElsewhere) {

@@ -1,5 +1,6 @@
 // What is going on with one body of a running session, for its line in the node's statistics
-// and log: the effects it runs, the nodes grasps hold, the wrenches that push it.
+// and log: what it is made of, the effects it runs, the nodes grasps hold, the wrenches that
+// push it.
 #pragma once
 
 #include <string>
@@ -15,5 +16,8 @@ std::vector<std::string> activeEffects(const Simulation& simulation, int body);
 int graspedNodes(const CommandProcessor& commands, int body);
 /// Wrenches in effect on the body.
 int appliedWrenches(const CommandProcessor& commands, int body);
+/// One line on the body for a log: "body 'beam' (fem): 425 nodes, 1536 tetrahedra, 0 other
+/// elements, 25 fixed; effects: gravity, warping" ("effects: none" when it runs none).
+std::string bodySummary(const Simulation& simulation, int body);
 
 }  // namespace deformable_sim::core
