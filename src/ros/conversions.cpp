@@ -40,20 +40,10 @@ core::FixCommand toCommand(const FixedNodes& message, const Eigen::Isometry3d& f
   command.fix = message.action == FixedNodes::FIX;
   command.nodes.node_numbers.assign(message.nodes.begin(), message.nodes.end());
   command.nodes.group = message.group;
-  switch (message.region) {
-    case FixedNodes::REGION_NONE:
-      break;
-    case FixedNodes::REGION_BOX:
-      command.nodes.box = core::Box{toEigen(message.box_min), toEigen(message.box_max)};
-      command.nodes.region_pose = frame_in_world;
-      break;
-    case FixedNodes::REGION_SPHERE:
-      command.nodes.sphere = core::Sphere{toEigen(message.sphere_center), message.sphere_radius};
-      command.nodes.region_pose = frame_in_world;
-      break;
-    default:
-      throw core::CommandError("region " + std::to_string(message.region) +
-                               " is not REGION_NONE, REGION_BOX or REGION_SPHERE");
+  if (message.region != FixedNodes::REGION_NONE &&
+      !setRegion(message, frame_in_world, command.nodes)) {
+    throw core::CommandError("region " + std::to_string(message.region) +
+                             " is not REGION_NONE, REGION_BOX or REGION_SPHERE");
   }
   for (const geometry_msgs::Point& p : message.targets) {
     command.targets.push_back(frame_in_world * toEigen(p));

@@ -57,20 +57,11 @@ core::GraspCommand NodeGrasps::attachCommand(const core::Simulation& simulation,
   command.name = message.name;
   command.body = message.body;
   command.frame = target.pose;
-  command.nodes.region_pose = target.pose;
-  switch (message.region) {
-    case Grasp::REGION_BOX:
-      command.nodes.box = core::Box{toEigen(message.box_min), toEigen(message.box_max)};
-      break;
-    case Grasp::REGION_SPHERE:
-      command.nodes.sphere = core::Sphere{toEigen(message.sphere_center), message.sphere_radius};
-      break;
-    case Grasp::REGION_LINK:
-      command.nodes = linkRegion(message, frame);
-      break;
-    default:
-      throw core::CommandError(name + "region " + std::to_string(message.region) +
-                               " is not REGION_BOX, REGION_SPHERE or REGION_LINK");
+  if (message.region == Grasp::REGION_LINK) {
+    command.nodes = linkRegion(message, frame);
+  } else if (!setRegion(message, target.pose, command.nodes)) {
+    throw core::CommandError(name + "region " + std::to_string(message.region) +
+                             " is not REGION_BOX, REGION_SPHERE or REGION_LINK");
   }
   return command;
 }

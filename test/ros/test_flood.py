@@ -115,6 +115,7 @@ HOSTILE = {
               sphere_center=Point(NAN, 0, 0), sphere_radius=0.1),
         fixed(body='beam', action=FIX, region=FixedNodes.REGION_SPHERE, sphere_radius=-1.0),
         fixed(body='beam', action=7, group='tip'),
+        fixed(body='beam', action=FIX, group='tip', region=5),
         fixed(frame='intruder_frame', body='beam', action=FIX, group='tip'),
     ],
     'grasp': [

@@ -41,6 +41,21 @@ inline geometry_msgs::Transform toTransform(const Eigen::Isometry3d& pose) {
 geometry_msgs::WrenchStamped toMessage(const core::Wrench& wrench, const std::string& frame_id,
                                        const Eigen::Isometry3d& frame, const ros::Time& stamp);
 
+/// The box or sphere region of a message that has one (FixedNodes, Grasp), tested in `frame`;
+/// false, and `nodes` as it was, for its other region codes.
+template <typename Message>
+bool setRegion(const Message& m, const Eigen::Isometry3d& frame, core::NodeTarget& nodes) {
+  if (m.region == Message::REGION_BOX) {
+    nodes.box = core::Box{toEigen(m.box_min), toEigen(m.box_max)};
+  } else if (m.region == Message::REGION_SPHERE) {
+    nodes.sphere = core::Sphere{toEigen(m.sphere_center), m.sphere_radius};
+  } else {
+    return false;
+  }
+  nodes.region_pose = frame;
+  return true;
+}
+
 /// A NodeWrench whose frame is `frame_in_world` (the pose of header.frame_id in the world frame).
 core::WrenchCommand toCommand(const NodeWrench& message, const Eigen::Isometry3d& frame_in_world);
 
