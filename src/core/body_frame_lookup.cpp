@@ -46,6 +46,18 @@ BodyFrame findBodyFrame(const std::vector<Body>& bodies, const std::string& pref
   return {};
 }
 
+std::vector<std::pair<std::string, Eigen::Isometry3d>> allBodyFrames(
+    const std::vector<Body>& bodies, const std::string& prefix) {
+  std::vector<std::pair<std::string, Eigen::Isometry3d>> frames;
+  for (const Body& body : bodies) {
+    frames.emplace_back(prefix + body.name(), pose(body));
+    for (const auto& [group, nodes] : body.groups()) {
+      frames.emplace_back(prefix + body.name() + "/" + group, pose(body, nodes));
+    }
+  }
+  return frames;
+}
+
 std::string bodyFrameNames(const std::vector<Body>& bodies, const std::string& prefix) {
   std::string names;
   for (const Body& body : bodies) names += (names.empty() ? "" : ", ") + prefix + body.name();

@@ -1,6 +1,6 @@
 #include "deformable_sim/ros/body_frames.h"
 
-#include "deformable_sim/core/rigid_frame.h"
+#include "deformable_sim/core/body_frame_lookup.h"
 #include "deformable_sim/ros/conversions.h"
 
 namespace deformable_sim::ros_layer {
@@ -10,21 +10,13 @@ std::vector<geometry_msgs::TransformStamped> bodyFrames(const std::vector<core::
                                                         const std::string& prefix,
                                                         const ros::Time& stamp) {
   std::vector<geometry_msgs::TransformStamped> frames;
-  auto add = [&](const std::string& child, const core::RigidFrame& frame) {
+  for (const auto& [name, pose] : core::allBodyFrames(bodies, prefix)) {
     geometry_msgs::TransformStamped t;
     t.header.stamp = stamp;
     t.header.frame_id = world_frame;
-    t.child_frame_id = child;
-    t.transform = toTransform(core::toIsometry(frame));
+    t.child_frame_id = name;
+    t.transform = toTransform(pose);
     frames.push_back(t);
-  };
-  for (const core::Body& body : bodies) {
-    add(prefix + body.name(),
-        core::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses()));
-    for (const auto& [name, nodes] : body.groups()) {
-      add(prefix + body.name() + "/" + name,
-          core::bestFitFrame(body.positions(), body.restPositions(), body.nodalMasses(), nodes));
-    }
   }
   return frames;
 }

@@ -67,6 +67,19 @@ TEST(BodyFrames, NameBodiesAndGroupsAndNothingElse) {
   }
 }
 
+// What tf gets is what a message may name: every frame broadcast resolves to itself.
+TEST(BodyFrames, EveryFrameBroadcastResolvesToTheSamePose) {
+  Session session = defaultSession();
+  const std::vector<Body>& bodies = session.simulation().bodies();
+  const auto frames = allBodyFrames(bodies, "sim/");
+  ASSERT_EQ(frames.size(), 2u);  // the beam and its group "tip"
+  EXPECT_EQ(frames[0].first, "sim/beam");
+  EXPECT_EQ(frames[1].first, "sim/beam/tip");
+  for (const auto& [name, pose] : frames) {
+    EXPECT_TRUE(findBodyFrame(bodies, "sim/", name).pose.isApprox(pose, 1e-15)) << name;
+  }
+}
+
 TEST(WrenchNearPoint, ActsOnTheNearestBodyWithinItsRadius) {
   Session session = defaultSession();
   const WrenchCommand near = wrenchNearPoint(session.simulation(), "finger", {0.52, 0.0, 0.0},

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "deformable_sim/core/body.h"
@@ -25,6 +26,11 @@ struct BodyFrame {
 /// when `frame` is <prefix><body>/<group> with a group the body lacks.
 BodyFrame findBodyFrame(const std::vector<Body>& bodies, const std::string& prefix,
                         const std::string& frame);
+
+/// Every frame findBodyFrame knows, by name, posed in the world: each body's, then its groups'.
+/// What the node broadcasts on tf.
+std::vector<std::pair<std::string, Eigen::Isometry3d>> allBodyFrames(
+    const std::vector<Body>& bodies, const std::string& prefix);
 
 /// "<prefix>a, <prefix>b": the bodies' frame names, for messages.
 std::string bodyFrameNames(const std::vector<Body>& bodies, const std::string& prefix);
