@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "deformable_sim/core/box_mesh.h"
+#include "deformable_sim/core/default_scene.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/surface_body_reader.h"
 #include "deformable_sim/io/triangle_mesh_reader.h"
@@ -722,12 +723,23 @@ core::SceneSpec parseScene(const std::string& yaml_text, const std::string& sour
 }
 
 core::SceneSpec readSceneFile(const std::string& path) {
+  return sceneFromFileText(readSceneText(path), path);
+}
+
+std::string readSceneText(const std::string& path) {
   std::ifstream file(path);
   if (!file) throw SceneError(path + ": cannot open the scene file");
   std::stringstream text;
   text << file.rdbuf();
+  return text.str();
+}
+
+core::SceneSpec sceneFromFileText(const std::string& yaml_text, const std::string& path,
+                                  const ObstacleMeshLoader& load_mesh) {
+  if (yaml_text.empty() && path.empty()) return core::defaultScene();
   const std::string directory = std::filesystem::path(path).parent_path().string();
-  return parseScene(text.str(), path, directory.empty() ? "." : directory);
+  return parseScene(yaml_text, path.empty() ? "scene" : path, directory.empty() ? "." : directory,
+                    load_mesh);
 }
 
 namespace {

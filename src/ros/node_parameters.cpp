@@ -2,11 +2,8 @@
 
 #include <ros/this_node.h>
 
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
-#include "deformable_sim/core/default_scene.h"
 #include "deformable_sim/core/live_settings.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/ros/frame_resolver.h"
@@ -27,14 +24,9 @@ void require(bool ok, const std::string& message) {
 
 void readScene(const ros::NodeHandle& node, NodeParameters& p) {
   param(node, "scene", p.scene_path);
-  if (!p.scene_path.empty()) {
-    std::ifstream file(p.scene_path);
-    std::stringstream text;
-    text << file.rdbuf();
-    p.scene_text = text.str();
-  }
   try {
-    p.scene = p.scene_path.empty() ? core::defaultScene() : io::readSceneFile(p.scene_path);
+    if (!p.scene_path.empty()) p.scene_text = io::readSceneText(p.scene_path);
+    p.scene = io::sceneFromFileText(p.scene_text, p.scene_path);
   } catch (const io::SceneError& e) {
     throw std::runtime_error(std::string("~scene: ") + e.what());
   }

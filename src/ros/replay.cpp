@@ -1,9 +1,7 @@
 #include "deformable_sim/ros/replay.h"
 
 #include <chrono>
-#include <filesystem>
 
-#include "deformable_sim/core/default_scene.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/io/triangle_mesh_reader.h"
 #include "deformable_sim/ros/obstacle_mesh_messages.h"
@@ -34,16 +32,10 @@ io::ObstacleMeshLoader recordedMeshes(const Scene& scene) {
 // The scene as the node read it: its file's text, or the built-in scene, at the node's step.
 core::SceneSpec recordedScene(const Scene& scene) {
   core::SceneSpec spec;
-  if (scene.yaml.empty()) {
-    spec = core::defaultScene();
-  } else {
-    const std::string directory = std::filesystem::path(scene.path).parent_path().string();
-    try {
-      spec = io::parseScene(scene.yaml, scene.path.empty() ? "~scene" : scene.path,
-                            directory.empty() ? "." : directory, recordedMeshes(scene));
-    } catch (const io::SceneError& e) {
-      throw ReplayError(std::string("the recorded scene: ") + e.what());
-    }
+  try {
+    spec = io::sceneFromFileText(scene.yaml, scene.path, recordedMeshes(scene));
+  } catch (const io::SceneError& e) {
+    throw ReplayError(std::string("the recorded scene: ") + e.what());
   }
   spec.dt = scene.dt;
   return spec;

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <string>
 
+#include "deformable_sim/core/default_scene.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/scene_file.h"
 
@@ -386,6 +387,25 @@ TEST(SceneFile, MeshObstaclesAreReadRelativeToTheSceneFile) {
   // Scaled to 1 x 1 x 0.1 m: 5 cm from its centre to its top.
   EXPECT_NEAR(dc::signedDistance(table.shape, {0.1, 0.2, 0.0}), -0.05, 1e-9);
   EXPECT_TRUE(table.pose.translation().isApprox(Eigen::Vector3d(0, 0, -0.05)));
+}
+
+// The node records a scene file's text and path (both empty for the built-in scene); a replay
+// builds the scene again from them, meshes relative to where the file was.
+TEST(SceneFile, ASceneIsBuiltAgainFromTheTextAndPathItWasReadFrom) {
+  const std::string path = kScenes + "block_on_mesh_table.yaml";
+  const dc::SceneSpec again = dio::sceneFromFileText(dio::readSceneText(path), path);
+  ASSERT_EQ(again.obstacles.size(), 1u);
+  ASSERT_TRUE(again.obstacles[0].shape.mesh);
+  EXPECT_EQ(again.obstacles[0].shape.mesh->mesh().triangles.size(), 12u);
+  const dc::SceneSpec builtin = dio::sceneFromFileText("", "");
+  ASSERT_EQ(builtin.bodies.size(), 1u);
+  EXPECT_EQ(builtin.bodies[0].name, dc::defaultScene().bodies[0].name);
+  try {
+    dio::sceneFromFileText("", "somewhere.yaml");  // an empty file is no scene
+    ADD_FAILURE() << "an empty scene file was accepted";
+  } catch (const dio::SceneError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("somewhere.yaml", 0), 0u) << e.what();
+  }
 }
 
 TEST(SceneFile, MeshObstacleErrorsNameTheFileLineAndKey) {

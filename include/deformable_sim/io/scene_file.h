@@ -58,6 +58,12 @@ core::SceneSpec parseScene(const std::string& yaml_text, const std::string& sour
 
 /// Reads and parses a scene file.
 core::SceneSpec readSceneFile(const std::string& path);
+/// The text of the scene file at `path`; throws SceneError when it cannot be opened.
+std::string readSceneText(const std::string& path);
+/// The scene of `yaml_text` as read from the file `path` (relative paths against its directory);
+/// the built-in default scene when both are empty, as the node records a run of it.
+core::SceneSpec sceneFromFileText(const std::string& yaml_text, const std::string& path,
+                                  const ObstacleMeshLoader& load_mesh = {});
 
 /// Where bodies made from surfaces find what a scene file does not hold: the ROS node can resolve
 /// packages and has the robot description; the offline tools have neither.
