@@ -97,10 +97,15 @@ Slide slideOnSlope(Plane plane, double theta, double mu, double damping = kLight
   for (int i = 0; i < body.numNodes(); ++i) x.segment<3>(3 * i) = geometry * x.segment<3>(3 * i);
   body.setState(x, Eigen::VectorXd::Zero(x.size()));
   const Eigen::Vector3d downhill = geometry * -Eigen::Vector3d::UnitY();
+  // The block's motion is its centre of mass's: a plain mean of its nodes also moves as the block
+  // deforms (on the soft slab it tips into the dent it carries along).
   auto along = [&](const Eigen::VectorXd& values) {
-    double sum = 0.0;
-    for (int i = 0; i < body.numNodes(); ++i) sum += values.segment<3>(3 * i).dot(downhill);
-    return sum / body.numNodes();
+    double sum = 0.0, mass = 0.0;
+    for (int i = 0; i < body.numNodes(); ++i) {
+      sum += body.nodalMasses()[i] * values.segment<3>(3 * i).dot(downhill);
+      mass += body.nodalMasses()[i];
+    }
+    return sum / mass;
   };
   const double start = along(body.positions());
   // The acceleration: the least-squares slope of the mean velocity over time, past the landing.
@@ -199,14 +204,13 @@ TEST(FrictionSlope, BlockWithItsLandingWaveDampedStaysUpTo95PercentOfTheFriction
   expectSlides(Plane::kOpenMesh, 0.5, 0.3, kWaveDamping);
 }
 
-// Just above the friction angle the acceleration is a small difference of large forces: within
-// 5 % from tan = 1.05 mu on the obstacles, from 1.1 mu on the soft slab (whose dent it carries
-// along; 5.6 % over at 1.05 mu).
+// Just above the friction angle the acceleration is a small difference of large forces (at
+// tan = 1.02 mu, a fiftieth of the weight's pull down the slope): within 5 % from there up, on
+// every plane.
 TEST(FrictionSlope, BlockSlidesJustAboveTheFrictionAngle) {
   const double mu = 0.6;
   for (const Plane plane : {Plane::kPrimitiveBox, Plane::kOpenMesh, Plane::kSoftSlab}) {
-    for (const double ratio : {1.05, 1.1, 1.2}) {
-      if (plane == Plane::kSoftSlab && ratio < 1.1) continue;
+    for (const double ratio : {1.02, 1.05, 1.1, 1.2, 1.4}) {
       const double theta = std::atan(ratio * mu);
       const double expected = kGravity * (std::sin(theta) - mu * std::cos(theta));
       const Slide slide = slideOnSlope(plane, theta, mu);
