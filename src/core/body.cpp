@@ -21,6 +21,10 @@ using Clock = std::chrono::steady_clock;
 
 double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
+/// A plane spring's stiffness in units of its node's diagonal in the step matrix: stiff enough to
+/// keep the node within a thousandth of its way off the plane, soft enough for block-Jacobi.
+constexpr double kPlaneStiffness = 1e3;
+
 void validateCells(const std::string& where, const Mesh& mesh);
 
 // The readers validate files; this guards meshes built in code. Throws naming the element/node.
@@ -130,7 +134,9 @@ Body::Body(std::string name, Mesh mesh, const LinearElasticMaterial& material,
       constrained_(mesh_.numNodes(), 0),
       targets_(x0_),
       external_forces_(Eigen::VectorXd::Zero(x0_.size())),
-      reaction_(Eigen::VectorXd::Zero(x0_.size())) {
+      reaction_(Eigen::VectorXd::Zero(x0_.size())),
+      step_forces_(Eigen::VectorXd::Zero(x0_.size())) {
+  plane_holds_.reserve(mesh_.numNodes());
   try {
     validate(material);
   } catch (const std::invalid_argument& e) {
@@ -416,10 +422,50 @@ void Body::releaseNode(int node) {
   reaction_.segment<3>(3 * node).setZero();
 }
 
-SolveReport Body::solveLastStep(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+void Body::holdNodeOnPlane(int node, const Eigen::Vector3d& normal, const Eigen::Vector3d& target) {
+  PlaneHold hold;
+  hold.node = node;
+  hold.normal = normal;
+  hold.offset = normal.dot(target);
+  plane_holds_.push_back(hold);
+  matrix_changed_ = true;
+}
+
+void Body::addStepForce(int node, const Eigen::Vector3d& force) {
+  step_forces_.segment<3>(3 * node) += force;
+  has_step_forces_ = true;
+}
+
+void Body::releasePlaneHolds() {
+  if (!plane_holds_.empty()) matrix_changed_ = true;
+  for (const PlaneHold& hold : plane_holds_) reaction_.segment<3>(3 * hold.node).setZero();
+  plane_holds_.clear();
+  if (has_step_forces_) step_forces_.setZero();
+  has_step_forces_ = false;
+}
+
+void Body::preparePlaneHolds(double dt) {
+  if (plane_holds_.empty()) return;
   const RayleighDamping damping = effects_.damping.value_or(RayleighDamping{});
-  const double h = history_dt_;
-  const SystemMatrix a = systemMatrix(1.0 + h * damping.mass, h * damping.stiffness + h * h);
+  const double c_m = 1.0 + dt * damping.mass, c_k = dt * damping.stiffness + dt * dt;
+  const BlockSparseMatrix& k = elasticity_->stiffness();
+  for (PlaneHold& hold : plane_holds_) {
+    const int i = hold.node;
+    const double diagonal = c_m * mass_[i] + c_k * k.blocks()[k.diagonalIndex(i)].trace() / 3.0;
+    hold.stiffness = kPlaneStiffness * diagonal;
+    hold.velocity = (hold.offset - hold.normal.dot(x_.segment<3>(3 * i))) / dt;
+  }
+}
+
+SystemMatrix Body::stepMatrix(double h) const {
+  const RayleighDamping damping = effects_.damping.value_or(RayleighDamping{});
+  SystemMatrix a = systemMatrix(1.0 + h * damping.mass, h * damping.stiffness + h * h);
+  if (!plane_holds_.empty()) a.planes = &plane_holds_;
+  return a;
+}
+
+SolveReport Body::solveLastStep(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  const SystemMatrix a = stepMatrix(history_dt_);
   x.setZero();
   if (direct_) return solve(a, b, x, false, 0.0);  // the step's own factorization
   SolveReport report;
@@ -435,9 +481,8 @@ SolveReport Body::solveLastStep(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
 
 void Body::addConstraintForces(const Eigen::VectorXd& dv) {
   if (!effects_.reactions || numConstrained() == 0) return;
-  const RayleighDamping damping = effects_.damping.value_or(RayleighDamping{});
   const double h = history_dt_;
-  systemMatrix(1.0 + h * damping.mass, h * damping.stiffness + h * h).multiply(dv, scratch_);
+  stepMatrix(h).multiply(dv, scratch_);
   for (int i = 0; i < numNodes(); ++i) {
     if (constrained_[i]) reaction_.segment<3>(3 * i) += scratch_.segment<3>(3 * i) / h;
   }
@@ -535,9 +580,14 @@ double Body::setStepRightHandSide(double h) {
     Eigen::Vector3d load = external_forces_.segment<3>(3 * i);
     if (effects_.gravity) load += mass_[i] * *effects_.gravity;
     if (plasticity_) load += plastic_forces_.segment<3>(3 * i);
+    if (has_step_forces_) load += step_forces_.segment<3>(3 * i);
     if (!constrained_[i]) free_load2 += load.squaredNorm();
     rhs_.segment<3>(3 * i) = mass_[i] * v_.segment<3>(3 * i) -
                              h * (scratch_.segment<3>(3 * i) + f0.segment<3>(3 * i) - load);
+  }
+  // A plane's spring pulls its node to the velocity that puts it on the plane.
+  for (const PlaneHold& hold : plane_holds_) {
+    rhs_.segment<3>(3 * hold.node) += hold.stiffness * hold.velocity * hold.normal;
   }
   return h * std::sqrt(free_load2);
 }
@@ -562,6 +612,7 @@ StepReport Body::step(double dt) {
         constrained_[i] ? Eigen::Vector3d((targets_.segment<3>(3 * i) - x_.segment<3>(3 * i)) / dt)
                         : Eigen::Vector3d::Zero();
   }
+  preparePlaneHolds(dt);
   advance(dt, 0, report);
   report.times.total = seconds(Clock::now() - start);
   return report;
@@ -569,8 +620,7 @@ StepReport Body::step(double dt) {
 
 void Body::advance(double h, int depth, StepReport& report) {
   updateStiffness(&report.times);  // nothing to do unless a split step begins here
-  const RayleighDamping damping = effects_.damping.value_or(RayleighDamping{});
-  const SystemMatrix a = systemMatrix(1.0 + h * damping.mass, h * damping.stiffness + h * h);
+  const SystemMatrix a = stepMatrix(h);
   if (h != history_dt_) history_size_ = 0;  // the history is of another step size
   predictVelocity(next_);
   for (int i = 0; i < numNodes(); ++i) {
@@ -677,6 +727,10 @@ void Body::finishAdvance(const SystemMatrix& a, double h, bool product_is_curren
           constrained_[i]
               ? Eigen::Vector3d((scratch_.segment<3>(3 * i) - rhs_.segment<3>(3 * i)) / h)
               : Eigen::Vector3d::Zero();
+    }
+    for (const PlaneHold& p : plane_holds_) {  // what the plane's spring exerts on its node
+      const double lag = p.velocity - p.normal.dot(next_.segment<3>(3 * p.node));
+      reaction_.segment<3>(3 * p.node) = p.stiffness * lag / h * p.normal;
     }
   }
   if (effects_.warping) {

@@ -68,12 +68,16 @@ void ContactState::resizePoints() {
   holds_.assign(n, 0);
   slip_.assign(n, Eigen::Vector3d::Zero());
   point_held_.assign(n, 0);
+  on_plane_.assign(n, 0);
+  friction_.assign(n, Eigen::Vector3d::Zero());
+  excess_.assign(n, Eigen::Vector3d::Zero());
   point_force_.assign(n, Eigen::Vector3d::Zero());
 }
 
 void ContactState::forget() {
   std::fill(obstacle_.begin(), obstacle_.end(), -1);
   std::fill(holds_.begin(), holds_.end(), 0);
+  std::fill(on_plane_.begin(), on_plane_.end(), 0);
 }
 
 void ContactState::resizeForObstacles(size_t count) {
@@ -168,6 +172,16 @@ void ContactState::hold(Body& body, const std::vector<PlacedShape>& obstacles, d
     const int k = obstacle_[p];
     if (k < 0 || !holds_[p]) continue;
     const Point& point = points_[p];
+    if (on_plane_[p] && slidesOnPlanes()) {
+      const int i = point.nodes[0];
+      if (node_obstacle_[i] != k || body.isConstrained(i)) continue;
+      body.holdNodeOnPlane(i, worldNormal(obstacles, static_cast<int>(p)),
+                           obstacles[k].pose * node_place_[i]);
+      body.addStepForce(i, friction_[p] - excess_[p]);
+      point_held_[p] = kOnItsPlane;
+      continue;
+    }
+    on_plane_[p] = 0;
     // A sliding point is held where its slip takes it along the obstacle in the step: the
     // obstacle carries the body's weight through the solve whether it slides or not.
     const Eigen::Vector3d slide =
@@ -198,7 +212,7 @@ void ContactState::judgePatches(const Body& body, const std::vector<PlacedShape>
   // keeps others held while it slides (it stops).
   const Eigen::VectorXd& reactions = body.reactionForces();
   for (size_t p = 0; p < points_.size(); ++p) {
-    if (!point_held_[p]) continue;
+    if (point_held_[p] != 1) continue;
     // Its share of the forces on the nodes it holds, by its weight among the points holding them.
     const Point& point = points_[p];
     Eigen::Vector3d& r = point_force_[p];
@@ -265,6 +279,7 @@ void ContactState::decideSlides(const Body& body, const ContactSettings& setting
 }
 
 void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles,
+                           const std::vector<Eigen::Isometry3d>& start_poses,
                            const ContactSettings& settings, double dt) {
   resizeForObstacles(obstacles.size());
   judgePatches(body, obstacles, settings, dt);
@@ -272,6 +287,11 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
     // Points not held touch only if project() finds them inside again.
     if (!point_held_[p]) {
       obstacle_[p] = -1, holds_[p] = 0;
+      continue;
+    }
+    if (point_held_[p] == kOnItsPlane) {
+      judgeOnPlane(body, obstacles, start_poses, settings, dt, static_cast<int>(p));
+      point_held_[p] = 0;
       continue;
     }
     const int k = obstacle_[p];
@@ -291,6 +311,13 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
     }
     // Its share of the friction by its push; it slides on from where the step took it.
     addForce(k, x, pushing * n + pushing / patch.pushing * patch.friction);
+    if (slidesOnPlanes()) {
+      const double share = pushing / patch.pushing;
+      slideOnPlane(static_cast<int>(p), share * patch.friction,
+                   share * (patch.sliding - patch.friction));
+      point_[p] = obstacles[k].pose.inverse() * x;
+      continue;
+    }
     if (!whole_) {
       slideHeldNodes(body, static_cast<int>(p), patch.slip);
       obstacle_[p] = -1, holds_[p] = 0;
@@ -308,11 +335,53 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
     held_flag_[i] = 0;
   }
   held_.clear();
+  body.releasePlaneHolds();
   if (kick_.isZero(0.0)) return;
   Eigen::VectorXd& v = body.mutableVelocities();
   for (int i = 0; i < body.numNodes(); ++i) {
     if (!body.isConstrained(i)) v.segment<3>(3 * i) += kick_;
   }
+}
+
+void ContactState::slideOnPlane(int p, const Eigen::Vector3d& friction,
+                                const Eigen::Vector3d& excess) {
+  on_plane_[p] = 1;
+  friction_[p] = friction;
+  excess_[p] = excess;
+  holds_[p] = 1;
+}
+
+void ContactState::judgeOnPlane(const Body& body, const std::vector<PlacedShape>& obstacles,
+                                const std::vector<Eigen::Isometry3d>& start_poses,
+                                const ContactSettings& settings, double dt, int p) {
+  const int k = obstacle_[p];
+  const int i = points_[p].nodes[0];
+  const Eigen::Vector3d n = worldNormal(obstacles, p);
+  const Eigen::Vector3d x = body.positions().segment<3>(3 * i);
+  const double pushing = body.reactionForces().segment<3>(3 * i).dot(n);
+  const bool on_face =
+      signedDistance(obstacles[k].shape, obstacles[k].pose.inverse() * x) < kOffItsFace;
+  if (!(pushing > 0.0) || !on_face) {  // it lifts off, or slid past an edge
+    obstacle_[p] = -1, holds_[p] = 0, on_plane_[p] = 0;
+    return;
+  }
+  addForce(k, x, pushing * n + friction_[p] - excess_[p]);
+  excess_[p].setZero();
+  // Its slip relative to the obstacle (moving rigidly) at its place.
+  const Eigen::Vector3d was_at = start_poses[k] * (obstacles[k].pose.inverse() * x);
+  const Eigen::Vector3d relative = body.velocities().segment<3>(3 * i) - (x - was_at) / dt;
+  const Eigen::Vector3d slip = relative - relative.dot(n) * n;
+  // Friction that stopped or turned its slip leaves it at rest: held where it is from now on.
+  const bool stopped =
+      friction_[p].isZero(0.0) ? slip.norm() <= kAtRest : slip.dot(friction_[p]) >= 0.0;
+  point_[p] = obstacles[k].pose.inverse() * x;
+  holds_[p] = 1;
+  if (stopped) {
+    on_plane_[p] = 0;
+    slip_[p].setZero();
+    return;
+  }
+  friction_[p] = -settings.friction * pushing * slip.normalized();
 }
 
 void ContactState::slideHeldNodes(Body& body, int p, const Eigen::Vector3d& slip) const {
@@ -337,13 +406,15 @@ Eigen::Vector3d ContactState::landingChange(const Body& body, int p,
   if (!(into > 0.0)) {  // resting or leaving
     slip_[p] = whole_ ? along : Eigen::Vector3d::Zero();
     holds_[p] = whole_ || holds_[p] || along.isZero(0.0);
+    if (slidesOnPlanes() && !along.isZero(0.0)) slideOnPlane(p, Eigen::Vector3d::Zero());
     return Eigen::Vector3d::Zero();
   }
   const double speed = along.norm(), slowed = settings.friction * into;
   slip_[p] =
       speed <= slowed ? Eigen::Vector3d::Zero() : Eigen::Vector3d(along * (1.0 - slowed / speed));
-  // A body held otherwise slides free in the solve, and lands again.
+  // A body held otherwise slides on the obstacle's plane in the next solve.
   holds_[p] = whole_ || slip_[p].isZero(0.0);
+  if (slidesOnPlanes() && !slip_[p].isZero(0.0)) slideOnPlane(p, Eigen::Vector3d::Zero());
   return into * normal + slip_[p] - along;
 }
 
@@ -452,7 +523,7 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
       // A point held on this obstacle moved with it (to its place, or as far as it slid): it is
       // inside by round-off only, and touches on as it did.
       const bool stuck = obstacle_[p] == static_cast<int>(k) && holds_[p];
-      if (obstacle_[p] != static_cast<int>(k)) holds_[p] = 0;  // a new contact
+      if (obstacle_[p] != static_cast<int>(k)) holds_[p] = 0, on_plane_[p] = 0;  // a new contact
       const Eigen::Vector3d local = to_shape * x;
       if (!stuck) {
         enterThroughItsFace(obstacle.shape, start_poses[k].inverse(), body.rememberedPositions(), q,
@@ -490,7 +561,13 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
   // free in the next solve.
   if (obstacles_touched > 1 || body.numConstrained() > 0) {
     for (size_t p = 0; p < points_.size(); ++p) {
-      if (holds_[p] && !slip_[p].isZero(0.0)) holds_[p] = 0;
+      if (!holds_[p] || slip_[p].isZero(0.0)) continue;
+      if (embedded_) {
+        holds_[p] = 0;
+      } else {
+        slideOnPlane(static_cast<int>(p), Eigen::Vector3d::Zero());
+        slip_[p].setZero();
+      }
     }
   }
   return touching;

@@ -67,6 +67,11 @@ void multiplyRows(const SystemMatrix& a, int begin, int end, const Eigen::Vector
   a.stiffness->multiplyRows(begin, end, x.data(), y.data(), a.stiffness_coefficient,
                             a.mass_coefficient != 0.0 ? a.nodal_mass->data() : nullptr,
                             a.mass_coefficient);
+  if (!a.planes) return;
+  for (const PlaneHold& p : *a.planes) {
+    if (p.node < begin || p.node >= end) continue;
+    y.segment<3>(3 * p.node) += p.stiffness * p.normal.dot(x.segment<3>(3 * p.node)) * p.normal;
+  }
 }
 
 }  // namespace
@@ -79,19 +84,27 @@ void SystemMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const 
   });
 }
 
+Eigen::Matrix3d SystemMatrix::diagonalBlock(int i) const {
+  Eigen::Matrix3d d = stiffness_coefficient * stiffness->blocks()[stiffness->diagonalIndex(i)];
+  if (mass_coefficient != 0.0) d.diagonal().array() += mass_coefficient * (*nodal_mass)[i];
+  if (planes) {
+    for (const PlaneHold& p : *planes) {
+      if (p.node == i) d += p.stiffness * p.normal * p.normal.transpose();
+    }
+  }
+  return d;
+}
+
 void ConjugateGradientSolver::refreshPreconditioner(const SystemMatrix& a,
                                                     const ConstraintMask& constrained,
                                                     const SolverSettings& settings) {
   const int num_nodes = a.stiffness->numBlockRows();
-  const std::vector<Eigen::Matrix3d>& blocks = a.stiffness->blocks();
   parallelFor(a.threads, 0, num_nodes, [&](int i) {
     if (constrained[i]) {
       inverse_diagonal_[i].setZero();  // keeps every search direction zero on constrained nodes
       return;
     }
-    Eigen::Matrix3d d = a.stiffness_coefficient * blocks[a.stiffness->diagonalIndex(i)];
-    if (a.mass_coefficient != 0.0) d.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
-    inverse_diagonal_[i] = d.inverse();
+    inverse_diagonal_[i] = a.diagonalBlock(i).inverse();
   });
   if (settings.preconditioner == SolverSettings::Preconditioner::kFactorization) {
     const bool fresh = !factorization_;
@@ -397,10 +410,7 @@ bool DirectSolver::factorize(const SystemMatrix& a, const ConstraintMask& constr
     for (int s = k.rowStart()[i]; s < k.rowStart()[i + 1]; ++s) {
       const int j = k.columns()[s];
       const bool projected = constrained[i] || constrained[j];
-      Eigen::Matrix3d block = a.stiffness_coefficient * k.blocks()[s];
-      if (i == j && a.mass_coefficient != 0.0) {
-        block.diagonal().array() += a.mass_coefficient * (*a.nodal_mass)[i];
-      }
+      Eigen::Matrix3d block = i == j ? a.diagonalBlock(i) : a.stiffness_coefficient * k.blocks()[s];
       // Constrained rows and columns become identity rows: x_c = prescribed value.
       if (projected) {
         block.setZero();

@@ -217,7 +217,7 @@ void Simulation::step(std::vector<StepReport>& reports) {
   }
   parallelFor(threads, 0, static_cast<int>(bodies_.size()), [&](int b) {
     if (!contact_states_[b]) return;
-    contact_states_[b]->release(bodies_[b], obstacles_, *contact_, dt_);
+    contact_states_[b]->release(bodies_[b], obstacles_, obstacle_starts_, *contact_, dt_);
     reports[b].contacts =
         contact_states_[b]->project(bodies_[b], obstacles_, obstacle_starts_, *contact_, dt_);
   });

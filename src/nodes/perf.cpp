@@ -245,7 +245,7 @@ void EffectCost(benchmark::State& state) {
     }
     const core::StepReport report = body.step(c.dt);
     if (contact) {
-      contacts.release(body, obstacles, friction, c.dt);
+      contacts.release(body, obstacles, starts, friction, c.dt);
       touching = contacts.project(body, obstacles, starts, friction, c.dt);
     }
     if (body.effects().stress_colouring) core::nodalStrain(body, strain);

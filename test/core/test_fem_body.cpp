@@ -321,3 +321,44 @@ TEST(Body, NodalStrainIsTheRotationFreeStretch) {
   ASSERT_EQ(static_cast<int>(strain.size()), body.numNodes());
   for (double s : strain) EXPECT_NEAR(s, std::hypot(0.01, 0.005), 1e-12);
 }
+
+// Nodes held on a plane (contact sliding along an obstacle) end each step on it, move freely
+// along it, and the plane's springs carry the body's weight: a block on a frictionless floor
+// under gravity tilted 2 m/s^2 along x slides with exactly that acceleration.
+TEST(Body, NodesHeldOnAPlaneStayOnItAndSlideFreelyAlongIt) {
+  dc::BodyEffects effects;
+  effects.warping = true;
+  effects.gravity = Eigen::Vector3d(2.0, 0.0, -9.81);
+  effects.damping = dc::RayleighDamping{0.0, 0.01};
+  dc::Body body("block", dc::makeBoxMesh({0, 0, 0}, {0.1, 0.1, 0.1}, {2, 2, 2}), kSoft, effects,
+                dc::SolverSettings{});
+  double mass = 0.0;
+  for (double m : body.nodalMasses()) mass += m;
+  const auto centreVelocity = [&body, mass] {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int i = 0; i < body.numNodes(); ++i)
+      sum += body.nodalMasses()[i] * body.velocities().segment<3>(3 * i);
+    return Eigen::Vector3d(sum / mass);
+  };
+  const double dt = 0.01;
+  Eigen::Vector3d carried = Eigen::Vector3d::Zero();  // by the springs, over the last 20 steps
+  for (int s = 1; s <= 60; ++s) {
+    std::vector<int> bottom;
+    for (int i = 0; i < body.numNodes(); ++i) {
+      if (body.restPositions()[3 * i + 2] > 1e-9) continue;
+      const Eigen::Vector3d at = body.positions().segment<3>(3 * i);
+      body.holdNodeOnPlane(i, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(at.x(), at.y(), 0.0));
+      bottom.push_back(i);
+    }
+    ASSERT_EQ(bottom.size(), 9u);
+    body.step(dt);
+    for (int i : bottom) {
+      ASSERT_LT(std::abs(body.positions()[3 * i + 2]), 1e-5) << "step " << s;
+      if (s > 40) carried += body.reactionForces().segment<3>(3 * i);
+    }
+    body.releasePlaneHolds();
+    EXPECT_NEAR(centreVelocity().x(), 2.0 * dt * s, 1e-9 + 1e-6 * s) << "step " << s;
+  }
+  EXPECT_NEAR(carried.z() / 20.0, 9.81 * mass, 0.01 * 9.81 * mass);
+  EXPECT_NEAR(carried.x() / 20.0, 0.0, 1e-9);  // nothing along the plane
+}

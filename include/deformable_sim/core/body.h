@@ -190,6 +190,16 @@ class Body {
   void holdNodeAt(int node, const Eigen::Vector3d& target);
   void releaseNode(int node);
   bool isConstrained(int node) const { return constrained_[node] != 0; }
+  /// Finite-element bodies: holds a free node on the plane through `target` with unit normal
+  /// `normal` for the next step, free along it (a stiff spring along the normal in the solve:
+  /// contact sliding along an obstacle); its reaction force is the spring's. Allocates nothing.
+  void holdNodeOnPlane(int node, const Eigen::Vector3d& normal, const Eigen::Vector3d& target);
+  /// Finite-element bodies: a force on a node in the next step only (the friction on a node
+  /// held on a plane).
+  void addStepForce(int node, const Eigen::Vector3d& force);
+  /// Lets the nodes held on planes go and forgets the step forces.
+  void releasePlaneHolds();
+  const std::vector<PlaneHold>& planeHolds() const { return plane_holds_; }
   /// After a step (finite elements): x = A^-1 b with the matrix A of its last solve and the
   /// constrained nodes' rows held at zero: how the free nodes' velocities answer impulses b
   /// within the step (contact between bodies). A body that steps with CG factorizes A for these
@@ -289,6 +299,11 @@ class Body {
   SolveReport solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                     bool step_start = false, double reference_floor = 0.0);
   SystemMatrix systemMatrix(double mass_coefficient, double stiffness_coefficient) const;
+  /// The matrix of a step of h s (damping and the springs of nodes held on planes included).
+  SystemMatrix stepMatrix(double h) const;
+  /// At a step's start: each plane spring's stiffness (kPlaneStiffness times its node's diagonal
+  /// of the step matrix) and the normal velocity that puts its node on its plane in dt.
+  void preparePlaneHolds(double dt);
   /// The solver's initial guess for the next velocity (SolverSettings::warm_start).
   void predictVelocity(Eigen::VectorXd& guess) const;
   /// Forgets the velocities and solutions the warm start draws on (the body moved, or came to
@@ -337,7 +352,10 @@ class Body {
   double last_mass_coefficient_ = -1.0, last_stiffness_coefficient_ = -1.0;
 
   ConstraintMask constrained_;
-  Eigen::VectorXd targets_;  ///< prescribed positions of constrained nodes
+  Eigen::VectorXd targets_;             ///< prescribed positions of constrained nodes
+  std::vector<PlaneHold> plane_holds_;  ///< room for every node, reserved once
+  Eigen::VectorXd step_forces_;         ///< forces of the next step only (zero when unused)
+  bool has_step_forces_ = false;
   Eigen::VectorXd external_forces_;
   Eigen::VectorXd reaction_;
 

@@ -12,9 +12,10 @@
 // on one obstacle together (a patch): while their tangential force stays within μ times their
 // normal force they stick; otherwise the obstacle exerts μ times the normal force against the
 // slip, and what it exerted beyond that in the solve is given back to the body as a whole (or,
-// for a body that touches several obstacles or is held otherwise, to the patch's nodes, which
-// then slide free). Stable at any stiffness and step; costs nothing when the scene does not
-// enable it.
+// for a body that touches several obstacles or is held otherwise, through its next solve: the
+// patch's points slide on the obstacle's plane, held along its normal only, with friction and
+// that excess as forces). Stable at any stiffness and step; costs nothing when the scene does
+// not enable it.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -61,8 +62,10 @@ class ContactState {
   /// After the step of `dt` s: lets the held points go. Those that push out of their obstacle
   /// stay touching (held in the next step): at rest while the constraint forces of the body's
   /// points held on that obstacle together stay within the friction cone, else sliding.
+  /// `start_poses`: the obstacles' poses at the step's start (as for project()).
   void release(Body& body, const std::vector<PlacedShape>& obstacles,
-               const ContactSettings& settings, double dt);
+               const std::vector<Eigen::Isometry3d>& start_poses, const ContactSettings& settings,
+               double dt);
   /// Projects the free points out of every obstacle and records them as touching; an obstacle's
   /// velocity is that of its rigid motion from `start_poses[k]` to its pose within the step, and
   /// the body's nodes at the step's start are its rememberedPositions() (Body::rememberState()
@@ -152,6 +155,24 @@ class ContactState {
   void addForce(int k, const Eigen::Vector3d& at, const Eigen::Vector3d& force);
   Eigen::Vector3d worldNormal(const std::vector<PlacedShape>& obstacles, int p) const;
 
+  /// Sliding points go on planes: a body that touches several obstacles or is held otherwise,
+  /// made of its own nodes (not of a surface's vertices).
+  bool slidesOnPlanes() const { return !whole_ && !embedded_; }
+  /// After a step on its plane: point p lets go, sticks, or slides on against friction.
+  void judgeOnPlane(const Body& body, const std::vector<PlacedShape>& obstacles,
+                    const std::vector<Eigen::Isometry3d>& start_poses,
+                    const ContactSettings& settings, double dt, int p);
+  /// A sliding point goes on its plane for the next step, with `friction` (and, found sliding
+  /// while held, what it exerted beyond that: `excess`).
+  void slideOnPlane(int p, const Eigen::Vector3d& friction,
+                    const Eigen::Vector3d& excess = Eigen::Vector3d::Zero());
+  static constexpr std::uint8_t kOnItsPlane = 2;
+  /// How far off its obstacle a point on its plane may end a step and touch on (it slid past an
+  /// edge otherwise), m.
+  static constexpr double kOffItsFace = 1e-4;
+  /// A landed point slipping slower than this along its obstacle is at rest on it, m/s.
+  static constexpr double kAtRest = 1e-6;
+
   /// A vertex lying mostly on held nodes counts as held: moving it by the rest would take shifts
   /// of 1 / free weight times what it needs.
   static constexpr double kMovable = 0.2;
@@ -164,7 +185,14 @@ class ContactState {
   std::vector<Eigen::Vector3d> normal_;   ///< outward normal there, in the obstacle's frame
   std::vector<std::uint8_t> holds_;       ///< touching: held in the next step
   std::vector<Eigen::Vector3d> slip_;     ///< its velocity along the obstacle, relative to it
-  std::vector<std::uint8_t> point_held_;  ///< held in the present step
+  std::vector<std::uint8_t> point_held_;  ///< held in the present step (kOnItsPlane: so)
+  /// Sliding on an obstacle, a point of a body that touches several (or is held otherwise) is
+  /// held on the obstacle's plane only in the next step, with friction as a force.
+  std::vector<std::uint8_t> on_plane_;
+  std::vector<Eigen::Vector3d> friction_;  ///< that force, N (zero the step it landed)
+  /// What the point's patch, held in the step it was found sliding, exerted beyond friction: the
+  /// next step takes it back (a force against it), through the body's own solve.
+  std::vector<Eigen::Vector3d> excess_;
   std::vector<Eigen::Vector3d> point_force_;  ///< its share of its nodes' constraint forces
   // Per node.
   std::vector<int> node_obstacle_;           ///< the obstacle its place was recorded on

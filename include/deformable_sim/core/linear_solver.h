@@ -67,7 +67,19 @@ struct SolveReport {
   double preconditioner_seconds = 0.0;
 };
 
-/// The matrix of one solve: A = mass_coefficient M + stiffness_coefficient K.
+/// A node held on a plane only (contact sliding along an obstacle): A gains stiffness n n^T on
+/// its diagonal block, a stiff spring along the plane's normal n that leaves the node free along
+/// the plane.
+struct PlaneHold {
+  int node = 0;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit
+  double stiffness = 0.0;  ///< in A's units, set for each solve by the body
+  double offset = 0.0;     ///< n . x the node is to end the step at, m
+  double velocity = 0.0;   ///< n . v that takes it there in the step, m/s
+};
+
+/// The matrix of one solve: A = mass_coefficient M + stiffness_coefficient K (+ the springs of
+/// nodes held on planes).
 struct SystemMatrix {
   const BlockSparseMatrix* stiffness = nullptr;
   const std::vector<double>* nodal_mass = nullptr;  ///< kg per node (may be null if c_m == 0)
@@ -76,9 +88,12 @@ struct SystemMatrix {
   /// Current node positions (3n), for the rigid modes of the two-level preconditioner.
   const Eigen::VectorXd* positions = nullptr;
   int threads = 1;  ///< for products and the conjugate gradient's vector operations
+  const std::vector<PlaneHold>* planes = nullptr;  ///< none when null
 
   /// y = A x.
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  /// A's diagonal block of node i.
+  Eigen::Matrix3d diagonalBlock(int i) const;
 };
 
 /// Which nodes are constrained (non-zero) for a solve.
