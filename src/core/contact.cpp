@@ -330,6 +330,10 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
     slip_[p] = patch.sticks ? Eigen::Vector3d::Zero() : Eigen::Vector3d(slip - slip.dot(n) * n);
     point_[p] = obstacles[k].pose.inverse() * x;
   }
+  letGo(body);
+}
+
+void ContactState::letGo(Body& body) {
   for (int i : held_) {
     body.releaseNode(i);
     held_flag_[i] = 0;
@@ -507,6 +511,21 @@ void ContactState::putBack(Body& body, int p, const Eigen::Vector3d& x,
   addForce(k, on_surface, body.nodalMasses()[i] * change / dt);
 }
 
+int ContactState::countTouching(const Body& body) {
+  int touching = 0;
+  for (ContactLoad& c : contacts_) c.points = 0, c.centre.setZero();
+  for (size_t p = 0; p < points_.size(); ++p) {
+    if (obstacle_[p] < 0) continue;
+    ++touching;
+    ++contacts_[obstacle_[p]].points;
+    contacts_[obstacle_[p]].centre += weighted(body.positions(), static_cast<int>(p));
+  }
+  for (ContactLoad& c : contacts_) {
+    if (c.points > 0) c.centre /= c.points;
+  }
+  return touching;
+}
+
 int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
                           const std::vector<Eigen::Isometry3d>& start_poses,
                           const ContactSettings& settings, double dt) {
@@ -545,20 +564,11 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
     settleEmbedded(body, obstacle, static_cast<int>(k));
   }
   recordNodePlaces(body, obstacles);
-  int touching = 0;
-  for (ContactLoad& c : contacts_) c.points = 0, c.centre.setZero();
-  for (size_t p = 0; p < points_.size(); ++p) {
-    if (obstacle_[p] < 0) continue;
-    ++touching;
-    ++contacts_[obstacle_[p]].points;
-    contacts_[obstacle_[p]].centre += weighted(body.positions(), static_cast<int>(p));
-  }
+  const int touching = countTouching(body);
   int obstacles_touched = 0;
-  for (ContactLoad& c : contacts_) {
-    if (c.points > 0) c.centre /= c.points, ++obstacles_touched;
-  }
+  for (const ContactLoad& c : contacts_) obstacles_touched += c.points > 0;
   // Touching several, or held otherwise, a body is not moved whole: what slides on them slides
-  // free in the next solve.
+  // on their planes in the next solve (a surface's vertices: free, landing again).
   if (obstacles_touched > 1 || body.numConstrained() > 0) {
     for (size_t p = 0; p < points_.size(); ++p) {
       if (!holds_[p] || slip_[p].isZero(0.0)) continue;

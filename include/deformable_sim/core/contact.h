@@ -158,6 +158,10 @@ class ContactState {
   /// Sliding points go on planes: a body that touches several obstacles or is held otherwise,
   /// made of its own nodes (not of a surface's vertices).
   bool slidesOnPlanes() const { return !whole_ && !embedded_; }
+  /// Releases the nodes held in the step and gives the body its kick.
+  void letGo(Body& body);
+  /// Counts the touching points, per obstacle too, with their centre; returns them all.
+  int countTouching(const Body& body);
   /// After a step on its plane: point p lets go, sticks, or slides on against friction.
   void judgeOnPlane(const Body& body, const std::vector<PlacedShape>& obstacles,
                     const std::vector<Eigen::Isometry3d>& start_poses,
