@@ -480,8 +480,13 @@ SolveReport Body::solveLastStep(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
 }
 
 void Body::addConstraintForces(const Eigen::VectorXd& dv) {
-  if (!effects_.reactions || numConstrained() == 0) return;
+  if (!effects_.reactions) return;
   const double h = history_dt_;
+  for (const PlaneHold& p : plane_holds_) {  // its spring gives way as the node moves along n
+    reaction_.segment<3>(3 * p.node) -=
+        p.stiffness * p.normal.dot(dv.segment<3>(3 * p.node)) / h * p.normal;
+  }
+  if (numConstrained() == 0) return;
   stepMatrix(h).multiply(dv, scratch_);
   for (int i = 0; i < numNodes(); ++i) {
     if (constrained_[i]) reaction_.segment<3>(3 * i) += scratch_.segment<3>(3 * i) / h;

@@ -199,7 +199,6 @@ class Body {
   void addStepForce(int node, const Eigen::Vector3d& force);
   /// Lets the nodes held on planes go and forgets the step forces.
   void releasePlaneHolds();
-  const std::vector<PlaneHold>& planeHolds() const { return plane_holds_; }
   /// After a step (finite elements): x = A^-1 b with the matrix A of its last solve and the
   /// constrained nodes' rows held at zero: how the free nodes' velocities answer impulses b
   /// within the step (contact between bodies). A body that steps with CG factorizes A for these
@@ -210,7 +209,8 @@ class Body {
   /// The step's matrix has changed (a new step): solveLastStep factorizes again when next asked.
   void forgetLastStepFactorization() { response_factored_ = false; }
   /// Adds to reactionForces() what a velocity change dv of the free nodes (an answer of
-  /// solveLastStep) asks of the constrained ones, (A dv) / h there.
+  /// solveLastStep) asks of the constrained ones, (A dv) / h there, and of the springs of nodes
+  /// held on planes.
   void addConstraintForces(const Eigen::VectorXd& dv);
   int numConstrained() const;
 
