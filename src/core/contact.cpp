@@ -36,6 +36,8 @@ ContactState::ContactState(int num_nodes)
       node_place_(num_nodes, Eigen::Vector3d::Zero()),
       held_flag_(num_nodes, 0),
       held_weight_(num_nodes, 0.0),
+      on_plane_node_(num_nodes, 0),
+      plane_weight_(num_nodes, 0.0),
       position_requests_(num_nodes),
       velocity_requests_(num_nodes) {
   for (int i = 0; i < num_nodes; ++i) {
@@ -44,6 +46,7 @@ ContactState::ContactState(int num_nodes)
     points_[i].count = 1;
   }
   held_.reserve(num_nodes);
+  plane_nodes_.reserve(num_nodes);
   resizePoints();
 }
 
@@ -173,12 +176,7 @@ void ContactState::hold(Body& body, const std::vector<PlacedShape>& obstacles, d
     if (k < 0 || !holds_[p]) continue;
     const Point& point = points_[p];
     if (on_plane_[p] && slidesOnPlanes()) {
-      const int i = point.nodes[0];
-      if (node_obstacle_[i] != k || body.isConstrained(i)) continue;
-      body.holdNodeOnPlane(i, worldNormal(obstacles, static_cast<int>(p)),
-                           obstacles[k].pose * node_place_[i]);
-      body.addStepForce(i, friction_[p] - excess_[p]);
-      point_held_[p] = kOnItsPlane;
+      holdOnPlane(body, obstacles, static_cast<int>(p));
       continue;
     }
     on_plane_[p] = 0;
@@ -195,13 +193,34 @@ void ContactState::hold(Body& body, const std::vector<PlacedShape>& obstacles, d
         point_held_[p] = 1;
         continue;
       }
-      if (body.isConstrained(i)) continue;
+      if (body.isConstrained(i) || on_plane_node_[i]) continue;  // held, or on a sliding plane
       body.holdNodeAt(i, obstacles[k].pose * (node_place_[i] + slide));
       held_.push_back(i);
       held_flag_[i] = 1;
       held_weight_[i] = point.weights[j];
       point_held_[p] = 1;
     }
+  }
+}
+
+void ContactState::holdOnPlane(Body& body, const std::vector<PlacedShape>& obstacles, int p) {
+  // Each of its free nodes on a plane through its own place, with the point's normal; the
+  // point's forces spread by its weights. A node several points share is held once.
+  const int k = obstacle_[p];
+  const Point& point = points_[p];
+  const Eigen::Vector3d n = worldNormal(obstacles, p);
+  for (int j = 0; j < point.count; ++j) {
+    const int i = point.nodes[j];
+    if (node_obstacle_[i] != k || body.isConstrained(i)) continue;
+    if (!on_plane_node_[i]) {
+      body.holdNodeOnPlane(i, n, obstacles[k].pose * node_place_[i]);
+      on_plane_node_[i] = 1;
+      plane_weight_[i] = 0.0;
+      plane_nodes_.push_back(i);
+    }
+    plane_weight_[i] += point.weights[j];
+    body.addStepForce(i, point.weights[j] * (friction_[p] - excess_[p]));
+    point_held_[p] = kOnItsPlane;
   }
 }
 
@@ -258,11 +277,8 @@ void ContactState::decideSlides(const Body& body, const ContactSettings& setting
                                       : Eigen::Vector3d(-friction * slip.normalized());
     patch.slides = true;
     patch.sticks = false;
+    if (!whole_) continue;  // its points slide on the obstacle's plane (release())
     const Eigen::Vector3d impulse = (patch.friction - patch.sliding) * dt;
-    if (!whole_) {
-      patch.slip = impulse / patch.mass;
-      continue;
-    }
     double mass;
     std::tie(mass, centre_velocity_) = massAndCentreVelocity(body);
     kick_ = impulse / mass;
@@ -318,11 +334,6 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
       point_[p] = obstacles[k].pose.inverse() * x;
       continue;
     }
-    if (!whole_) {
-      slideHeldNodes(body, static_cast<int>(p), patch.slip);
-      obstacle_[p] = -1, holds_[p] = 0;
-      continue;
-    }
     // It slides on with the body's centre, not by what it was given alone: held along a slip of
     // its own, a corner the body tipped over dragged the body with it.
     const Eigen::Vector3d slip =
@@ -339,6 +350,8 @@ void ContactState::letGo(Body& body) {
     held_flag_[i] = 0;
   }
   held_.clear();
+  for (int i : plane_nodes_) on_plane_node_[i] = 0;
+  plane_nodes_.clear();
   body.releasePlaneHolds();
   if (kick_.isZero(0.0)) return;
   Eigen::VectorXd& v = body.mutableVelocities();
@@ -359,10 +372,15 @@ void ContactState::judgeOnPlane(const Body& body, const std::vector<PlacedShape>
                                 const std::vector<Eigen::Isometry3d>& start_poses,
                                 const ContactSettings& settings, double dt, int p) {
   const int k = obstacle_[p];
-  const int i = points_[p].nodes[0];
+  const Point& point = points_[p];
   const Eigen::Vector3d n = worldNormal(obstacles, p);
-  const Eigen::Vector3d x = body.positions().segment<3>(3 * i);
-  const double pushing = body.reactionForces().segment<3>(3 * i).dot(n);
+  const Eigen::Vector3d x = weighted(body.positions(), p);
+  double pushing = 0.0;  // its share of its nodes' springs, by its weight among their points
+  for (int j = 0; j < point.count; ++j) {
+    const int i = point.nodes[j];
+    if (!on_plane_node_[i] || node_obstacle_[i] != k) continue;
+    pushing += point.weights[j] / plane_weight_[i] * body.reactionForces().segment<3>(3 * i).dot(n);
+  }
   const bool on_face =
       signedDistance(obstacles[k].shape, obstacles[k].pose.inverse() * x) < kOffItsFace;
   if (!(pushing > 0.0) || !on_face) {  // it lifts off, or slid past an edge
@@ -373,7 +391,7 @@ void ContactState::judgeOnPlane(const Body& body, const std::vector<PlacedShape>
   excess_[p].setZero();
   // Its slip relative to the obstacle (moving rigidly) at its place.
   const Eigen::Vector3d was_at = start_poses[k] * (obstacles[k].pose.inverse() * x);
-  const Eigen::Vector3d relative = body.velocities().segment<3>(3 * i) - (x - was_at) / dt;
+  const Eigen::Vector3d relative = weighted(body.velocities(), p) - (x - was_at) / dt;
   const Eigen::Vector3d slip = relative - relative.dot(n) * n;
   // Friction that stopped or turned its slip leaves it at rest: held where it is from now on.
   const bool stopped =
@@ -386,15 +404,6 @@ void ContactState::judgeOnPlane(const Body& body, const std::vector<PlacedShape>
     return;
   }
   friction_[p] = -settings.friction * pushing * slip.normalized();
-}
-
-void ContactState::slideHeldNodes(Body& body, int p, const Eigen::Vector3d& slip) const {
-  const Point& point = points_[p];
-  for (int j = 0; j < point.count; ++j) {
-    const int i = point.nodes[j];
-    if (!held_flag_[i] || node_obstacle_[i] != obstacle_[p]) continue;
-    body.mutableVelocities().segment<3>(3 * i) += point.weights[j] / held_weight_[i] * slip;
-  }
 }
 
 Eigen::Vector3d ContactState::landingChange(const Body& body, int p,
@@ -568,16 +577,12 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
   int obstacles_touched = 0;
   for (const ContactLoad& c : contacts_) obstacles_touched += c.points > 0;
   // Touching several, or held otherwise, a body is not moved whole: what slides on them slides
-  // on their planes in the next solve (a surface's vertices: free, landing again).
+  // on their planes in the next solve.
   if (obstacles_touched > 1 || body.numConstrained() > 0) {
     for (size_t p = 0; p < points_.size(); ++p) {
       if (!holds_[p] || slip_[p].isZero(0.0)) continue;
-      if (embedded_) {
-        holds_[p] = 0;
-      } else {
-        slideOnPlane(static_cast<int>(p), Eigen::Vector3d::Zero());
-        slip_[p].setZero();
-      }
+      slideOnPlane(static_cast<int>(p), Eigen::Vector3d::Zero());
+      slip_[p].setZero();
     }
   }
   return touching;

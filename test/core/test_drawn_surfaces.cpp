@@ -101,9 +101,8 @@ TEST(DrawnSurfaces, ABodyMadeFromASurfaceIsDrawnWithThatSurface) {
 TEST(DrawnInteractions, NodesAreDrawnWhereTheyAreAndEachConstrainedNodeOnce) {
   dc::SceneSpec spec;
   spec.bodies = {blockSpec("block", false)};
-  spec.bodies[0].fixed.push_back(
-      {dc::NodeSelection::Kind::kBox, {}, {{-1, -1, -1}, {0.001, 1, 1}}});
-  spec.bodies[0].groups["tip"] = {dc::NodeSelection::Kind::kBox, {}, {{0.199, -1, -1}, {1, 1, 1}}};
+  spec.bodies[0].fixed.push_back(dt::boxSelection({-1, -1, -1}, {0.001, 1, 1}));
+  spec.bodies[0].groups["tip"] = dt::boxSelection({0.199, -1, -1}, {1, 1, 1});
   dc::Simulation sim = dt::boxMeshSimulation(spec);
   dc::CommandProcessor commands(sim);
   dc::GraspCommand grasp;

@@ -221,3 +221,25 @@ TEST(FrictionGrasp, ABallMadeFromItsSurfaceIsLiftedByFriction) {
   EXPECT_NEAR(grasp.rise, kLift, 0.002);
   expectHangingFromTheFingers(grasp);
 }
+
+// The same law for a ball made from its surface, held through its surface's vertices (each on
+// its cell's nodes): a light squeeze and a firm one, low to high friction.
+TEST(FrictionGrasp, ABallMadeFromItsSurfaceHoldsOrSlipsAsCoulombsLawSays) {
+  int held = 0, slipped = 0;
+  for (const double squeeze : {0.001, 0.004}) {
+    for (const double mu : {0.02, 0.05, 0.1, 0.5}) {
+      const Grasp grasp = squeezeAndLift(squeeze, mu, Object::kSurfaceBall);
+      const double carries = mu * 2.0 * grasp.squeeze_force / grasp.weight;
+      if (carries > 1.2) {
+        EXPECT_NEAR(grasp.rise, kLift, 0.002) << squeeze << " m, mu " << mu;
+        ++held;
+      } else if (carries < 1.0 / 1.2) {
+        EXPECT_LT(grasp.rise, 0.01 * kLift) << squeeze << " m, mu " << mu;
+        EXPECT_NEAR(grasp.table_force.z(), grasp.weight, 0.05 * grasp.weight);
+        ++slipped;
+      }
+    }
+  }
+  EXPECT_GE(held, 3);
+  EXPECT_GE(slipped, 2);
+}

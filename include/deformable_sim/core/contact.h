@@ -94,10 +94,8 @@ class ContactState {
     Eigen::Vector3d sliding = Eigen::Vector3d::Zero();   ///< tangential constraint force, N
     Eigen::Vector3d momentum = Eigen::Vector3d::Zero();  ///< of the held points' slip
     Eigen::Vector3d friction = Eigen::Vector3d::Zero();  ///< sliding: what the obstacle exerts
-    /// Not whole_: the velocity its nodes gain as they are let go, m/s
-    Eigen::Vector3d slip = Eigen::Vector3d::Zero();
-    bool slides = false;  ///< in the step
-    bool sticks = true;   ///< at rest on it after the step
+    bool slides = false;                                 ///< in the step
+    bool sticks = true;                                  ///< at rest on it after the step
   };
 
   /// Sizes the per-point state for points_ (allocates).
@@ -128,9 +126,6 @@ class ContactState {
   void grantVelocities(Body& body, int k, double dt);
   /// Judges each patch sliding or not, and what the body gains from those that slide.
   void decideSlides(const Body& body, const ContactSettings& settings, double dt);
-  /// A body held otherwise: adds a sliding patch's `slip` to the nodes point p holds, by its
-  /// share of each.
-  void slideHeldNodes(Body& body, int p, const Eigen::Vector3d& slip) const;
   /// The velocity change that the obstacle gives point p as it lands (its velocity into it
   /// removed, its sliding slowed by friction; zero when it rests or leaves); it is held from then
   /// on, sliding at what is left.
@@ -155,9 +150,11 @@ class ContactState {
   void addForce(int k, const Eigen::Vector3d& at, const Eigen::Vector3d& force);
   Eigen::Vector3d worldNormal(const std::vector<PlacedShape>& obstacles, int p) const;
 
-  /// Sliding points go on planes: a body that touches several obstacles or is held otherwise,
-  /// made of its own nodes (not of a surface's vertices).
-  bool slidesOnPlanes() const { return !whole_ && !embedded_; }
+  /// Sliding points go on planes: a body that touches several obstacles or is held otherwise.
+  bool slidesOnPlanes() const { return !whole_; }
+  /// Holds sliding point p's free nodes on its obstacle's plane for the next step, with its
+  /// friction (and excess) spread over them by its weights.
+  void holdOnPlane(Body& body, const std::vector<PlacedShape>& obstacles, int p);
   /// Releases the nodes held in the step and gives the body its kick.
   void letGo(Body& body);
   /// Counts the touching points, per obstacle too, with their centre; returns them all.
@@ -204,6 +201,9 @@ class ContactState {
   std::vector<int> held_;                    ///< nodes held in the present step
   std::vector<std::uint8_t> held_flag_;      ///< the same, per node
   std::vector<double> held_weight_;          ///< sum of the weights of the points holding it
+  std::vector<std::uint8_t> on_plane_node_;  ///< held on a plane in the present step
+  std::vector<double> plane_weight_;         ///< sum of the weights of the points holding it so
+  std::vector<int> plane_nodes_;             ///< nodes held on planes in the present step
   std::vector<ContactLoad> contacts_;
   std::vector<Patch> patches_;
   Eigen::Vector3d kick_ = Eigen::Vector3d::Zero();  ///< velocity the whole body gains, m/s
