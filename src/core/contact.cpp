@@ -190,7 +190,7 @@ void ContactState::hold(Body& body, const std::vector<PlacedShape>& obstacles, d
       if (node_obstacle_[i] != k) continue;  // its place was taken on another obstacle
       if (held_flag_[i]) {                   // by a neighbouring vertex in the same cell
         held_weight_[i] += point.weights[j];
-        point_held_[p] = 1;
+        point_held_[p] = kInPlace;
         continue;
       }
       if (body.isConstrained(i) || on_plane_node_[i]) continue;  // held, or on a sliding plane
@@ -198,7 +198,7 @@ void ContactState::hold(Body& body, const std::vector<PlacedShape>& obstacles, d
       held_.push_back(i);
       held_flag_[i] = 1;
       held_weight_[i] = point.weights[j];
-      point_held_[p] = 1;
+      point_held_[p] = kInPlace;
     }
   }
 }
@@ -231,7 +231,7 @@ void ContactState::judgePatches(const Body& body, const std::vector<PlacedShape>
   // keeps others held while it slides (it stops).
   const Eigen::VectorXd& reactions = body.reactionForces();
   for (size_t p = 0; p < points_.size(); ++p) {
-    if (point_held_[p] != 1) continue;
+    if (point_held_[p] != kInPlace) continue;
     // Its share of the forces on the nodes it holds, by its weight among the points holding them.
     const Point& point = points_[p];
     Eigen::Vector3d& r = point_force_[p];

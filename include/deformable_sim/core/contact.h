@@ -167,7 +167,8 @@ class ContactState {
   /// while held, what it exerted beyond that: `excess`).
   void slideOnPlane(int p, const Eigen::Vector3d& friction,
                     const Eigen::Vector3d& excess = Eigen::Vector3d::Zero());
-  static constexpr std::uint8_t kOnItsPlane = 2;
+  /// How a point is held in the present step (point_held_): at its place, or on its plane.
+  static constexpr std::uint8_t kInPlace = 1, kOnItsPlane = 2;
   /// How far off its obstacle a point on its plane may end a step and touch on (it slid past an
   /// edge otherwise), m.
   static constexpr double kOffItsFace = 1e-4;
@@ -186,7 +187,7 @@ class ContactState {
   std::vector<Eigen::Vector3d> normal_;   ///< outward normal there, in the obstacle's frame
   std::vector<std::uint8_t> holds_;       ///< touching: held in the next step
   std::vector<Eigen::Vector3d> slip_;     ///< its velocity along the obstacle, relative to it
-  std::vector<std::uint8_t> point_held_;  ///< held in the present step (kOnItsPlane: so)
+  std::vector<std::uint8_t> point_held_;  ///< held in the present step: 0, kInPlace or kOnItsPlane
   /// Sliding on an obstacle, a point of a body that touches several (or is held otherwise) is
   /// held on the obstacle's plane only in the next step, with friction as a force.
   std::vector<std::uint8_t> on_plane_;
