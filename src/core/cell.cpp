@@ -175,14 +175,30 @@ CellVectors cellCorners(const Cell& cell, const std::vector<Eigen::Vector3d>& po
   return corners;
 }
 
-double pointFraction(CellType type, const Eigen::Vector3d& xi, const OctantFractions* fractions) {
-  if (!fractions) return 1.0;
-  if (type == CellType::kHexahedron) {
-    return (*fractions)[(xi.x() > 0.0) + 2 * (xi.y() > 0.0) + 4 * (xi.z() > 0.0)];
+std::vector<QuadraturePoint> materialQuadrature(CellType type, const OctantFractions* fractions) {
+  std::vector<QuadraturePoint> rule = quadrature(type);
+  if (!fractions) return rule;
+  const OctantFractions& f = *fractions;
+  const bool even = std::all_of(f.begin(), f.end(), [&](double g) { return g == f[0]; });
+  if (even || type != CellType::kHexahedron) {
+    double mean = 0.0;
+    for (double g : f) mean += g / 8.0;
+    for (QuadraturePoint& q : rule) q.weight *= mean;
+    return rule;
   }
-  double sum = 0.0;
-  for (double f : *fractions) sum += f;
-  return sum / 8.0;
+  // Octant o spans xi in [-1, 0] or [0, 1] along each axis (bit k of o set: the upper half);
+  // Gauss's points sit at its centre +- 1 / (2 sqrt 3), weight 1 / 8 of its natural volume 1.
+  const double offset = 0.5 / std::sqrt(3.0);
+  rule.clear();
+  for (int o = 0; o < 8; ++o) {
+    if (!(f[o] > 0.0)) continue;
+    const Eigen::Vector3d centre(o & 1 ? 0.5 : -0.5, o & 2 ? 0.5 : -0.5, o & 4 ? 0.5 : -0.5);
+    for (int p = 0; p < 8; ++p) {
+      const Eigen::Vector3d sign(p & 1 ? 1 : -1, p & 2 ? 1 : -1, p & 4 ? 1 : -1);
+      rule.push_back({centre + offset * sign, 0.125 * f[o]});
+    }
+  }
+  return rule;
 }
 
 CellRest computeCellRest(CellType type, const CellVectors& corners,
@@ -192,10 +208,10 @@ CellRest computeCellRest(CellType type, const CellVectors& corners,
   double det = 0.0;
   spatialGradients(type, corners, naturalCentre(type), "the centre", rest.centre_gradients, det);
   CellVectors unused;
-  for (const QuadraturePoint& q : quadrature(type)) {
+  for (const QuadraturePoint& q : materialQuadrature(type, fractions)) {
     spatialGradients(type, corners, q.xi, "an integration point", unused, det);
     const ShapeValues shape = shapeFunctions(type, q.xi);
-    const double volume = pointFraction(type, q.xi, fractions) * q.weight * det;
+    const double volume = q.weight * det;
     rest.volume += volume;
     for (int k = 0; k < size; ++k) rest.shape_integrals[k] += volume * shape.values[k];
   }
@@ -239,9 +255,9 @@ Eigen::MatrixXd cellStiffness(CellType type, const CellVectors& corners, double 
   Eigen::MatrixXd k = Eigen::MatrixXd::Zero(3 * size, 3 * size);
   CellVectors g;
   double det = 0.0;
-  for (const QuadraturePoint& q : quadrature(type)) {
+  for (const QuadraturePoint& q : materialQuadrature(type, fractions)) {
     spatialGradients(type, corners, q.xi, "an integration point", g, det);
-    const double volume = pointFraction(type, q.xi, fractions) * q.weight * det;
+    const double volume = q.weight * det;
     for (int i = 0; i < size; ++i) {
       for (int j = 0; j < size; ++j) {
         k.block<3, 3>(3 * i, 3 * j) += stiffnessBlock(lambda * volume, mu * volume, g[i], g[j]);

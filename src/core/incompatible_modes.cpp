@@ -39,7 +39,7 @@ Eigen::MatrixXd incompatibleModesStiffness(const CellVectors& corners, double la
   // (modes), then the modes condensed out.
   constexpr int n = kNodes + kModes;
   Eigen::MatrixXd k = Eigen::MatrixXd::Zero(3 * n, 3 * n);
-  for (const QuadraturePoint& q : quadrature(kHex)) {
+  for (const QuadraturePoint& q : materialQuadrature(kHex, fractions)) {
     const ShapeValues shape = shapeFunctions(kHex, q.xi);
     const Eigen::Matrix3d j = naturalJacobian(corners, shape);
     const double det = j.determinant();
@@ -52,7 +52,7 @@ Eigen::MatrixXd incompatibleModesStiffness(const CellVectors& corners, double la
       g[kNodes + m] =
           (det0 / det) * j0_inverse_transpose * (-2.0 * q.xi[m] * Eigen::Vector3d::Unit(m));
     }
-    const double volume = pointFraction(kHex, q.xi, fractions) * q.weight * det;
+    const double volume = q.weight * det;
     for (int a = 0; a < n; ++a) {
       for (int b = 0; b < n; ++b) {
         k.block<3, 3>(3 * a, 3 * b) += stiffnessBlock(lambda * volume, mu * volume, g[a], g[b]);

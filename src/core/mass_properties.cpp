@@ -28,7 +28,7 @@ MassProperties massProperties(const Mesh& mesh, double density) {
   }
   for (size_t c = 0; c < mesh.cells.size(); ++c) {
     const Cell& cell = mesh.cells[c];
-    for (const QuadraturePoint& q : quadrature(cell.type)) {
+    for (const QuadraturePoint& q : materialQuadrature(cell.type, mesh.cellOctants(c))) {
       const ShapeValues shape = shapeFunctions(cell.type, q.xi);
       Eigen::Vector3d x = Eigen::Vector3d::Zero();
       Eigen::Matrix3d jacobian = Eigen::Matrix3d::Zero();  // dX/dxi
@@ -37,8 +37,7 @@ MassProperties massProperties(const Mesh& mesh, double density) {
         x += shape.values[k] * corner;
         jacobian += corner * shape.gradients[k].transpose();
       }
-      const double dv =
-          pointFraction(cell.type, q.xi, mesh.cellOctants(c)) * q.weight * jacobian.determinant();
+      const double dv = q.weight * jacobian.determinant();
       volume += dv;
       first += dv * x;
       second += dv * x * x.transpose();

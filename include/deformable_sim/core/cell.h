@@ -47,9 +47,14 @@ const std::vector<QuadraturePoint>& quadrature(CellType type);
 /// The cell's corner positions, in its node order.
 CellVectors cellCorners(const Cell& cell, const std::vector<Eigen::Vector3d>& positions);
 
-/// The material fraction that integration point xi of a cell stands for: a hexahedron's point
-/// that of the octant it lies in, other cells' the mean of the octants; 1 for null fractions.
-double pointFraction(CellType type, const Eigen::Vector3d& xi, const OctantFractions* fractions);
+/// The integration points of a cell's material, each weight times the material fraction it
+/// stands for. A cell filled alike everywhere (null fractions, or every octant the same) takes
+/// its own rule. A hexahedron filled unevenly takes 2 x 2 x 2 Gauss points in each octant that
+/// holds material, weighted by the octant's fraction: the trilinear field integrated exactly over
+/// the material, so that however little of a cell is filled its stiffness has only the six rigid
+/// modes as zero-energy modes (one point per octant left a cell filled in one octant a rank of 6,
+/// and its nodes free to move without resistance). Other cells: their rule times the mean.
+std::vector<QuadraturePoint> materialQuadrature(CellType type, const OctantFractions* fractions);
 
 /// Rest data of one cell.
 struct CellRest {
@@ -73,7 +78,7 @@ std::pair<double, double> jacobianRange(CellType type, const CellVectors& corner
 Cell mirrored(const Cell& cell);
 
 /// The rest stiffness (3n x 3n, node-major) for Lame parameters lambda and mu, Pa; of the cell's
-/// material with `fractions` (each integration point's share scaled by pointFraction).
+/// material with `fractions` (integrated by materialQuadrature).
 Eigen::MatrixXd cellStiffness(CellType type, const CellVectors& corners, double lambda, double mu,
                               const OctantFractions* fractions = nullptr);
 

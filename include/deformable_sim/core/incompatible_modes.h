@@ -12,9 +12,10 @@
 
 namespace deformable_sim::core {
 
-/// Below this material fraction in any octant a hexahedron keeps plain full integration: with
-/// little material at some integration points the nine modes can cancel the strain at the
-/// others, and the cell goes soft (a cell filled in one octant would have no stiffness at all).
+/// Below this material fraction in any octant a hexahedron keeps plain full integration: where
+/// little material holds them, the nine modes' own stiffness is nearly singular, and condensing
+/// them leaves the cell with nearly free motions that slow the solver by orders of magnitude
+/// (doc/physics.md, "Cells a surface cuts").
 constexpr double kModesMinOctantFraction = 0.25;
 
 /// Whether a hexahedron with these material fractions takes the incompatible modes.
@@ -22,7 +23,7 @@ bool incompatibleModesApply(const OctantFractions& fractions);
 
 /// The condensed rest stiffness (24 x 24, node-major) of a hexahedron with rest corners
 /// `corners` (Gmsh order), Lame parameters lambda and mu (Pa), and the material `fractions`
-/// (null: full) weighting its 2 x 2 x 2 integration points as in cellStiffness. The modes'
+/// (null: full) integrated as in cellStiffness (materialQuadrature). The modes'
 /// gradients use the Jacobian at the centre (Taylor's correction), so the element passes the
 /// patch test when distorted. Throws std::invalid_argument for an inverted cell.
 Eigen::MatrixXd incompatibleModesStiffness(const CellVectors& corners, double lambda, double mu,
