@@ -4,15 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <optional>
 #include <stdexcept>
 
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/box_occupancy.h"
 #include "deformable_sim/core/cell.h"
+#include "deformable_sim/core/grid_inside.h"
 #include "deformable_sim/core/mesh_pieces.h"
-#include "deformable_sim/core/ray_winding.h"
-#include "deformable_sim/core/winding_number.h"
 
 namespace deformable_sim::core {
 
@@ -76,39 +74,6 @@ void checkCellCount(const Eigen::Array3d& cells, double cell_size, long max_cell
       " and a body of them up to " + bytesText(count * kBodyBytesPerCell) +
       ". Choose a larger cell_size or fewer cells, or raise max_cells (a key of the body's mesh "
       "entry, beside cell_size)");
-}
-
-// Per grid cell, the triangles that may cross it.
-std::vector<std::vector<int>> binTriangles(const TriangleMesh& surface, const VoxelGrid& grid) {
-  std::vector<std::vector<int>> bins(grid.numCells());
-  const double h = grid.cell_size;
-  const double margin = 1e-9 * h;
-  const Eigen::Array3i last = grid.cells.array() - 1;
-  for (int t = 0; t < static_cast<int>(surface.triangles.size()); ++t) {
-    Eigen::AlignedBox3d box;
-    for (int c = 0; c < 3; ++c) box.extend(surface.vertices[surface.triangles[t][c]]);
-    const Eigen::Array3i low = ((box.min() - grid.origin).array() / h - kWholeCellTolerance)
-                                   .floor()
-                                   .cast<int>()
-                                   .max(0)
-                                   .min(last);
-    const Eigen::Array3i high = ((box.max() - grid.origin).array() / h + kWholeCellTolerance)
-                                    .floor()
-                                    .cast<int>()
-                                    .max(0)
-                                    .min(last);
-    for (int k = low.z(); k <= high.z(); ++k) {
-      for (int j = low.y(); j <= high.y(); ++j) {
-        for (int i = low.x(); i <= high.x(); ++i) {
-          const Eigen::Vector3i cell(i, j, k);
-          if (triangleMayCrossCube(surface, t, grid.cellMin(cell), h, margin)) {
-            bins[grid.cellIndex(cell)].push_back(t);
-          }
-        }
-      }
-    }
-  }
-  return bins;
 }
 
 // f(i, j, k) for every (i, j, k) of a grid of `size`, x fastest.
@@ -220,6 +185,38 @@ std::string nothingEnclosed(const TriangleMesh& surface, const VoxelGrid& grid) 
 
 }  // namespace
 
+std::vector<std::vector<int>> binTriangles(const TriangleMesh& surface, const VoxelGrid& grid) {
+  std::vector<std::vector<int>> bins(grid.numCells());
+  const double h = grid.cell_size;
+  const double margin = 1e-9 * h;
+  const Eigen::Array3i last = grid.cells.array() - 1;
+  for (int t = 0; t < static_cast<int>(surface.triangles.size()); ++t) {
+    Eigen::AlignedBox3d box;
+    for (int c = 0; c < 3; ++c) box.extend(surface.vertices[surface.triangles[t][c]]);
+    const Eigen::Array3i low = ((box.min() - grid.origin).array() / h - kWholeCellTolerance)
+                                   .floor()
+                                   .cast<int>()
+                                   .max(0)
+                                   .min(last);
+    const Eigen::Array3i high = ((box.max() - grid.origin).array() / h + kWholeCellTolerance)
+                                    .floor()
+                                    .cast<int>()
+                                    .max(0)
+                                    .min(last);
+    for (int k = low.z(); k <= high.z(); ++k) {
+      for (int j = low.y(); j <= high.y(); ++j) {
+        for (int i = low.x(); i <= high.x(); ++i) {
+          const Eigen::Vector3i cell(i, j, k);
+          if (triangleMayCrossCube(surface, t, grid.cellMin(cell), h, margin)) {
+            bins[grid.cellIndex(cell)].push_back(t);
+          }
+        }
+      }
+    }
+  }
+  return bins;
+}
+
 VoxelGrid voxelGridFor(const TriangleMesh& surface, const VoxelSettings& settings) {
   const Eigen::AlignedBox3d box = boundingBox(surface);
   if (box.isEmpty()) throw std::invalid_argument("voxel grid: the surface has no triangle");
@@ -244,20 +241,10 @@ VoxelGrid voxelGridFor(const TriangleMesh& surface, const VoxelSettings& setting
 Voxelization voxelize(const TriangleMesh& surface, const VoxelGrid& grid, int levels,
                       const VoxelProgress& progress) {
   const std::vector<std::vector<int>> bins = binTriangles(surface, grid);
-  // A closed surface's winding number is a whole number off it, and a ray's crossings count it
-  // exactly; an open surface needs the generalized one, whose tree costs far more per point.
-  std::optional<RayWinding> rays;
-  std::optional<WindingNumber> tree;
-  InsideTest inside;
-  if (isClosedSurface(surface)) {
-    rays.emplace(surface, grid, bins);
-    inside = [&rays](const Eigen::Vector3d& q) { return rays->at(q) >= 1; };
-  } else {
-    tree.emplace(surface);
-    inside = [&tree](const Eigen::Vector3d& q) { return tree->at(q) >= 0.5; };
-  }
-  const std::vector<OctantFractions> fractions =
-      cellFractions(surface, grid, bins, inside, std::max(levels, 1), progress);
+  const GridInside inside(surface, grid, bins);
+  const std::vector<OctantFractions> fractions = cellFractions(
+      surface, grid, bins, [&inside](const Eigen::Vector3d& q) { return inside.at(q); },
+      std::max(levels, 1), progress);
   Voxelization result;
   result.grid = grid;
   buildMesh(grid, fractions, result);

@@ -2,8 +2,9 @@
 // number of its triangles that the ray from the point along +x crosses (+1 for a triangle facing
 // +x, -1 for one facing -x). For a surface whose every edge is used as often in each direction
 // (closed, though it may cut through itself) this is the generalized winding number
-// (winding_number.h) at every point off the surface, to the bit; for an open surface it is not, and
-// the generalized one must be asked.
+// (winding_number.h) at every point off the surface, to the bit. An open surface is closed by
+// caps over its holes (holeCaps): its winding number is that of surface and caps, counted so,
+// less that of the caps alone, a few triangles.
 //
 // A ray through an edge or a vertex is moved by (0, e, e^2) for an infinitesimal e (simulation of
 // simplicity, Edelsbrunner and Muecke 1990): each edge's side is computed from its lower-numbered
@@ -26,6 +27,13 @@ namespace deformable_sim::core {
 /// Whether every edge of `surface` is used as often from a to b as from b to a (by vertex
 /// index): the surface is closed, and RayWinding gives its winding number.
 bool isClosedSurface(const TriangleMesh& surface);
+
+/// Triangles that close every hole of `surface`: for each edge used more often one way than the
+/// other, as many triangles from it, reversed, to its hole's apex (the mean of the vertices of the
+/// hole: the open edges that share vertices with it). The vertices are the surface's, then one
+/// apex per hole; the triangles only the caps' (none for a closed surface). The surface's
+/// triangles and these together are closed.
+TriangleMesh holeCaps(const TriangleMesh& surface);
 
 class RayWinding {
  public:

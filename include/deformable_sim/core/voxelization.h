@@ -61,6 +61,10 @@ struct VoxelSettings {
 /// how much memory it would take).
 VoxelGrid voxelGridFor(const TriangleMesh& surface, const VoxelSettings& settings);
 
+/// Per cell of `grid` (VoxelGrid::cellIndex), the triangles of `surface` that may cross it: every
+/// one that does, and some that pass within 1e-5 of a cell.
+std::vector<std::vector<int>> binTriangles(const TriangleMesh& surface, const VoxelGrid& grid);
+
 struct Voxelization {
   VoxelGrid grid;
   /// Hexahedra in the grid's x-fastest order, nodes likewise (numbered from 1), with
