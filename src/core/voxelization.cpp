@@ -51,7 +51,9 @@ std::string countText(double count) {
 
 std::string bytesText(double bytes) {
   char text[32];
-  if (bytes >= 1e9) {
+  if (bytes >= 1e12) {
+    std::snprintf(text, sizeof text, "%.3g TB", bytes / 1e12);
+  } else if (bytes >= 1e9) {
     std::snprintf(text, sizeof text, "%.3g GB", bytes / 1e9);
   } else {
     std::snprintf(text, sizeof text, "%.3g MB", bytes / 1e6);
