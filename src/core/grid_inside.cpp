@@ -7,18 +7,16 @@
 
 namespace deformable_sim::core {
 
-GridInside::GridInside(const TriangleMesh& surface, const VoxelGrid& grid,
-                       const std::vector<std::vector<int>>& bins)
+GridInside::GridInside(const TriangleMesh& surface, const VoxelGrid& grid)
     : caps_(holeCaps(surface)) {
   if (caps_.triangles.empty()) {
-    rays_.emplace(surface, grid, bins);
+    rays_.emplace(surface, grid);
     return;
   }
   closed_ = surface;
   closed_.vertices = caps_.vertices;
   closed_.triangles.insert(closed_.triangles.end(), caps_.triangles.begin(), caps_.triangles.end());
-  closed_bins_ = binTriangles(closed_, grid);
-  rays_.emplace(closed_, grid, closed_bins_);
+  rays_.emplace(closed_, grid);
   cap_winding_.emplace(caps_);
   // Each cap triangle is (b, a, apex): one bound per apex.
   std::map<int, CapBound> by_apex;

@@ -69,17 +69,29 @@ TriangleMesh holeCaps(const TriangleMesh& surface) {
   return caps;
 }
 
-RayWinding::RayWinding(const TriangleMesh& surface, const VoxelGrid& grid,
-                       const std::vector<std::vector<int>>& bins)
-    : surface_(surface), grid_(grid), bins_(bins) {
+RayWinding::RayWinding(const TriangleMesh& surface, const VoxelGrid& grid)
+    : surface_(surface), grid_(grid), bins_(grid.numCells()) {
   yz_boxes_.reserve(surface.triangles.size());
-  for (const Eigen::Vector3i& t : surface.triangles) {
-    const Eigen::Vector3d& a = surface.vertices[t[0]];
-    const Eigen::Vector3d& b = surface.vertices[t[1]];
-    const Eigen::Vector3d& c = surface.vertices[t[2]];
+  const Eigen::Array3i last = grid.cells.array() - 1;
+  const auto cellOf = [&](const Eigen::Vector3d& p) -> Eigen::Array3i {
+    return ((p - grid.origin).array() / grid.cell_size).floor().cast<int>().max(0).min(last);
+  };
+  for (int t = 0; t < static_cast<int>(surface.triangles.size()); ++t) {
+    const Eigen::Vector3d& a = surface.vertices[surface.triangles[t][0]];
+    const Eigen::Vector3d& b = surface.vertices[surface.triangles[t][1]];
+    const Eigen::Vector3d& c = surface.vertices[surface.triangles[t][2]];
     yz_boxes_.push_back({std::min({a.y(), b.y(), c.y()}), std::max({a.y(), b.y(), c.y()}),
                          std::min({a.z(), b.z(), c.z()}), std::max({a.z(), b.z(), c.z()})});
+    // The same floor as the query's, so that the cell holding a crossing has the triangle.
+    const Eigen::Array3i low = cellOf(a.cwiseMin(b).cwiseMin(c));
+    const Eigen::Array3i high = cellOf(a.cwiseMax(b).cwiseMax(c));
+    for (int k = low.z(); k <= high.z(); ++k) {
+      for (int j = low.y(); j <= high.y(); ++j) {
+        for (int i = low.x(); i <= high.x(); ++i) bins_[grid.cellIndex({i, j, k})].push_back(t);
+      }
+    }
   }
+  const std::vector<std::vector<int>>& bins = bins_;
   binned_before_.resize(grid.numCells());
   for (int k = 0; k < grid.cells.z(); ++k) {
     for (int j = 0; j < grid.cells.y(); ++j) {

@@ -243,7 +243,7 @@ VoxelGrid voxelGridFor(const TriangleMesh& surface, const VoxelSettings& setting
 Voxelization voxelize(const TriangleMesh& surface, const VoxelGrid& grid, int levels,
                       const VoxelProgress& progress) {
   const std::vector<std::vector<int>> bins = binTriangles(surface, grid);
-  const GridInside inside(surface, grid, bins);
+  const GridInside inside(surface, grid);
   const std::vector<OctantFractions> fractions = cellFractions(
       surface, grid, bins, [&inside](const Eigen::Vector3d& q) { return inside.at(q); },
       std::max(levels, 1), progress);

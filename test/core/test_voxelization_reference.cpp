@@ -236,3 +236,17 @@ TEST(Voxelization, ProgressRunsFromNoneToEveryCellNeverBack) {
   EXPECT_EQ(voxels.mesh.cell_fractions,
             dc::voxelize(torus, grid, settings.levels).mesh.cell_fractions);
 }
+
+TEST(VoxelizationReference, FacesARoundingOutsideTheGridStillCount) {
+  // Two boxes with an STL's single-precision corners (0.1f, 0.3f, 0.4f): the grid, centred on
+  // them, leaves the faces at x = 0 a rounding outside it.
+  dc::TriangleMesh two = dt::boxSurface(Eigen::Vector3d::Zero(), Eigen::Vector3d(0.1f, 0.1f, 0.1f));
+  const dc::TriangleMesh other =
+      dt::boxSurface(Eigen::Vector3d(0.3f, 0.0, 0.0), Eigen::Vector3d(0.4f, 0.1f, 0.1f));
+  for (const Eigen::Vector3i& t : other.triangles) two.triangles.push_back(t.array() + 8);
+  two.vertices.insert(two.vertices.end(), other.vertices.begin(), other.vertices.end());
+  expectReferenceFractions(two, 0.05, 2);
+  dc::VoxelSettings settings;
+  settings.cell_size = 0.05;
+  EXPECT_EQ(dc::voxelize(two, dc::voxelGridFor(two, settings), 3).mesh.cells.size(), 16u);
+}

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "../core/surface_test_helpers.h"
+#include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/scene_file.h"
 
 namespace dc = deformable_sim::core;

@@ -21,10 +21,9 @@ namespace deformable_sim::core {
 
 class GridInside {
  public:
-  /// `bins`: binTriangles(surface, grid). All three must outlive this object, which must stay
-  /// where it is made (the ray counter holds its members).
-  GridInside(const TriangleMesh& surface, const VoxelGrid& grid,
-             const std::vector<std::vector<int>>& bins);
+  /// Both must outlive this object, which must stay where it is made (the ray counter holds its
+  /// members).
+  GridInside(const TriangleMesh& surface, const VoxelGrid& grid);
   GridInside(const GridInside&) = delete;
   GridInside& operator=(const GridInside&) = delete;
 
@@ -42,7 +41,6 @@ class GridInside {
 
   TriangleMesh caps_;    ///< over the holes; no triangle for a closed surface
   TriangleMesh closed_;  ///< the surface and its caps, when there are caps
-  std::vector<std::vector<int>> closed_bins_;
   std::vector<CapBound> cap_bounds_;
   std::optional<RayWinding> rays_;
   std::optional<WindingNumber> cap_winding_;

@@ -11,7 +11,8 @@
 // vertex, so the two triangles of an edge see it alike and the ray crosses exactly one of them.
 // A query walks the grid's row of cells from the point's cell to the nearer end (the one with
 // fewer triangles binned on the way: along -x the crossings count with opposite sign), testing
-// only the triangles binned there, most by their bounding box alone: a few dozen cheap tests,
+// only the triangles binned there (by bounding box: a crossing at x lies in the bin of the cell
+// that holds x, where it is counted once), most by their yz box alone: a few dozen cheap tests,
 // against the thousands of solid angles of a tree query.
 #pragma once
 
@@ -37,10 +38,9 @@ TriangleMesh holeCaps(const TriangleMesh& surface);
 
 class RayWinding {
  public:
-  /// `bins`: per cell of `grid` (VoxelGrid::cellIndex), the triangles that may cross it, at least
-  /// every one that does. All three must outlive this object.
-  RayWinding(const TriangleMesh& surface, const VoxelGrid& grid,
-             const std::vector<std::vector<int>>& bins);
+  /// Bins the triangles into the cells of `grid` their bounding boxes overlap (clamped to the
+  /// grid: a vertex a rounding off the grid still counts). Both must outlive this object.
+  RayWinding(const TriangleMesh& surface, const VoxelGrid& grid);
 
   /// The winding number at q, a point inside the grid that lies on no face between its cells.
   /// Allocates nothing.
@@ -60,7 +60,7 @@ class RayWinding {
 
   const TriangleMesh& surface_;
   const VoxelGrid& grid_;
-  const std::vector<std::vector<int>>& bins_;
+  std::vector<std::vector<int>> bins_;  ///< per grid cell, the triangles whose box overlaps it
   std::vector<std::array<double, 4>> yz_boxes_;  ///< per triangle: low y, high y, low z, high z
   std::vector<long> binned_before_;  ///< per grid cell: triangles binned before it in its row
 };
