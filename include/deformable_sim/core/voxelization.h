@@ -77,11 +77,11 @@ struct Voxelization {
 };
 
 /// The cells of `grid` with any part inside `surface` (generalized winding number >= 1/2), each
-/// octant's fraction measured to a resolution of cell_size / 2^levels. A closed surface
-/// (isClosedSurface) is asked by counting the triangles a ray crosses (ray_winding.h), which gives
-/// the same answers far faster; an open one by the generalized winding number. Single-threaded
-/// and deterministic. Throws std::invalid_argument when no cell is inside (saying so when the
-/// cells are too large for the part). `progress`, if set, is told how far it is.
+/// octant's fraction measured to a resolution of cell_size / 2^levels. Points are asked by
+/// counting the triangles a ray crosses, with caps over any holes (grid_inside.h): the answers of
+/// the generalized winding number, far faster. Single-threaded and deterministic. Throws
+/// std::invalid_argument when no cell is inside (saying so when the cells are too large for the
+/// part). `progress`, if set, is told how far it is.
 Voxelization voxelize(const TriangleMesh& surface, const VoxelGrid& grid, int levels,
                       const VoxelProgress& progress = {});
 
