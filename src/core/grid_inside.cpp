@@ -7,10 +7,39 @@
 
 namespace deformable_sim::core {
 
+namespace {
+
+// The cells the bounding boxes of the caps' triangles cover, summed: what binning them for the
+// rays would store. Caps over a few holes cover a few cells each; a surface whose triangles face
+// every which way has open edges all over, and fans across the whole grid.
+double capBinEntries(const TriangleMesh& caps, const VoxelGrid& grid) {
+  double sum = 0.0;
+  for (const Eigen::Vector3i& t : caps.triangles) {
+    const Eigen::Vector3d& a = caps.vertices[t[0]];
+    const Eigen::Vector3d& b = caps.vertices[t[1]];
+    const Eigen::Vector3d& c = caps.vertices[t[2]];
+    const Eigen::Array3d span =
+        (a.cwiseMax(b).cwiseMax(c) - a.cwiseMin(b).cwiseMin(c)).array() / grid.cell_size + 1.0;
+    sum += span.min(grid.cells.cast<double>().array()).prod();
+  }
+  return sum;
+}
+
+// Caps that would cost more than this many bin entries per triangle of the surface and cell of
+// the grid are not worth it: the generalized winding number's tree asks the surface instead.
+constexpr double kMostCapEntriesPerItem = 4.0;
+
+}  // namespace
+
 GridInside::GridInside(const TriangleMesh& surface, const VoxelGrid& grid)
     : caps_(holeCaps(surface)) {
   if (caps_.triangles.empty()) {
     rays_.emplace(surface, grid);
+    return;
+  }
+  const double items = static_cast<double>(surface.triangles.size() + grid.numCells());
+  if (capBinEntries(caps_, grid) > kMostCapEntriesPerItem * items) {
+    whole_winding_.emplace(surface);
     return;
   }
   closed_ = surface;
@@ -43,6 +72,7 @@ double GridInside::capBound(const Eigen::Vector3d& q) const {
 }
 
 bool GridInside::at(const Eigen::Vector3d& q) const {
+  if (whole_winding_) return whole_winding_->at(q) >= 0.5;
   const int count = rays_->at(q);
   // Caps that subtend less than half a sphere cannot take a whole number across 1/2.
   if (!cap_winding_ || capBound(q) < 0.5) return count >= 1;

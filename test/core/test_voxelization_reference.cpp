@@ -19,13 +19,15 @@ namespace dt = deformable_sim::test;
 
 namespace {
 
-// Per grid cell, the octant fractions from the exact winding number (every solid angle summed):
+// Per grid cell, the octant fractions from `inside` (below: the exact winding number, every solid
+// angle summed):
 // at the centre of each of the cell's (2^levels)^3 parts (`every_part`), or, as voxelize cuts a
 // cell, only where a triangle may cross (an open surface's winding number varies across a part
 // that no triangle crosses, which voxelize decides by its centre). No tree, no rays.
 std::vector<dc::OctantFractions> bruteForceFractions(const dc::TriangleMesh& surface,
                                                      const dc::VoxelGrid& grid, int levels,
-                                                     bool every_part) {
+                                                     bool every_part,
+                                                     const dc::InsideTest& inside) {
   const int n = 1 << levels, half = n / 2;
   const double part = grid.cell_size / n;
   std::vector<dc::OctantFractions> fractions(grid.numCells());
@@ -40,21 +42,18 @@ std::vector<dc::OctantFractions> bruteForceFractions(const dc::TriangleMesh& sur
         // A cell no triangle comes near is all in or all out (the exact winding number of the
         // closed shapes here is constant off the surface): its centre decides, to save time.
         if (bins[index].empty()) {
-          f.fill(dc::exactWindingNumber(surface, min.array() + 0.5 * grid.cell_size) >= 0.5);
+          f.fill(inside(min.array() + 0.5 * grid.cell_size));
           continue;
         }
         if (!every_part) {
-          const dc::InsideTest exact = [&surface](const Eigen::Vector3d& q) {
-            return dc::exactWindingNumber(surface, q) >= 0.5;
-          };
-          f = dc::octantFractions(surface, exact, bins[index], min, grid.cell_size, levels);
+          f = dc::octantFractions(surface, inside, bins[index], min, grid.cell_size, levels);
           continue;
         }
         for (int c = 0; c < n; ++c) {
           for (int b = 0; b < n; ++b) {
             for (int a = 0; a < n; ++a) {
               const Eigen::Vector3d q = min + part * Eigen::Vector3d(a + 0.5, b + 0.5, c + 0.5);
-              if (dc::exactWindingNumber(surface, q) < 0.5) continue;
+              if (!inside(q)) continue;
               const int octant = (a >= half) + 2 * (b >= half) + 4 * (c >= half);
               f[octant] += 8.0 / (n * n * n);
             }
@@ -64,6 +63,15 @@ std::vector<dc::OctantFractions> bruteForceFractions(const dc::TriangleMesh& sur
     }
   }
   return fractions;
+}
+
+std::vector<dc::OctantFractions> bruteForceFractions(const dc::TriangleMesh& surface,
+                                                     const dc::VoxelGrid& grid, int levels,
+                                                     bool every_part) {
+  const dc::InsideTest exact = [&surface](const Eigen::Vector3d& q) {
+    return dc::exactWindingNumber(surface, q) >= 0.5;
+  };
+  return bruteForceFractions(surface, grid, levels, every_part, exact);
 }
 
 // Every cell of the voxelization holds the reference's fractions, and every cell it leaves out
@@ -249,4 +257,31 @@ TEST(VoxelizationReference, FacesARoundingOutsideTheGridStillCount) {
   dc::VoxelSettings settings;
   settings.cell_size = 0.05;
   EXPECT_EQ(dc::voxelize(two, dc::voxelGridFor(two, settings), 3).mesh.cells.size(), 16u);
+}
+
+TEST(VoxelizationReference, ASurfaceFacingEveryWhichWayIsAskedByTheTree) {
+  // Every other triangle of a sphere turned inside out: open edges everywhere, caps that would
+  // cross the whole grid. It is asked as before, by the generalized winding number's tree.
+  dc::TriangleMesh mixed = dt::sphereSurface(0.1, Eigen::Vector3d::Zero(), 8, 16);
+  for (size_t t = 0; t < mixed.triangles.size(); t += 2) {
+    std::swap(mixed.triangles[t][1], mixed.triangles[t][2]);
+  }
+  EXPECT_GT(dc::holeCaps(mixed).triangles.size(), mixed.triangles.size() / 2);
+  dc::VoxelSettings settings;
+  settings.cell_size = 0.04;
+  const dc::VoxelGrid grid = dc::voxelGridFor(mixed, settings);
+  const dc::WindingNumber tree(mixed);
+  const std::vector<dc::OctantFractions> reference = bruteForceFractions(
+      mixed, grid, 2, false, [&tree](const Eigen::Vector3d& q) { return tree.at(q) >= 0.5; });
+  try {
+    const dc::Voxelization voxels = dc::voxelize(mixed, grid, 2);
+    for (long index = 0; index < grid.numCells(); ++index) {
+      const int cell = voxels.cell_at[index];
+      for (int o = 0; o < 8; ++o) {
+        EXPECT_EQ(cell < 0 ? 0.0 : voxels.mesh.cell_fractions[cell][o], reference[index][o]);
+      }
+    }
+  } catch (const std::invalid_argument&) {  // nothing inside: nor in the reference
+    for (const dc::OctantFractions& f : reference) EXPECT_EQ(f, dc::OctantFractions{});
+  }
 }

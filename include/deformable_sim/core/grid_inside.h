@@ -5,7 +5,8 @@
 // exactly (ray_winding.h). An open one's is that of the surface closed by caps over its holes
 // (holeCaps), so counted, less the caps' own: a tree over the caps' few triangles, asked only
 // where the caps could move the answer (they subtend at most area / (4 pi d^2) of a sphere from
-// a point at distance d).
+// a point at distance d). A surface whose caps would cross much of the grid (its triangles face
+// every which way) is asked by the generalized winding number's tree, as before: slow, but sure.
 #pragma once
 
 #include <Eigen/Core>
@@ -44,6 +45,9 @@ class GridInside {
   std::vector<CapBound> cap_bounds_;
   std::optional<RayWinding> rays_;
   std::optional<WindingNumber> cap_winding_;
+  /// Instead, for a surface whose caps would cross much of the grid (triangles that face every
+  /// which way): the generalized winding number of the whole surface, slow but sure.
+  std::optional<WindingNumber> whole_winding_;
 };
 
 }  // namespace deformable_sim::core
