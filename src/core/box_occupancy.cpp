@@ -24,18 +24,18 @@ bool triangleMayCrossCube(const TriangleMesh& surface, int t, const Eigen::Vecto
   return std::abs(normal.dot(centre - a)) <= reach;
 }
 
-double occupiedFraction(const TriangleMesh& surface, const WindingNumber& winding,
+double occupiedFraction(const TriangleMesh& surface, const InsideTest& inside,
                         const std::vector<int>& candidates, const Eigen::Vector3d& min, double size,
                         int levels) {
   if (candidates.empty() || levels == 0) {
-    return winding.at(min.array() + 0.5 * size) >= 0.5 ? 1.0 : 0.0;
+    return inside(min.array() + 0.5 * size) ? 1.0 : 0.0;
   }
   double sum = 0.0;
-  for (double f : octantFractions(surface, winding, candidates, min, size, levels)) sum += f;
+  for (double f : octantFractions(surface, inside, candidates, min, size, levels)) sum += f;
   return sum / 8.0;
 }
 
-std::array<double, 8> octantFractions(const TriangleMesh& surface, const WindingNumber& winding,
+std::array<double, 8> octantFractions(const TriangleMesh& surface, const InsideTest& inside,
                                       const std::vector<int>& candidates,
                                       const Eigen::Vector3d& min, double size, int levels) {
   const double half = 0.5 * size;
@@ -51,7 +51,7 @@ std::array<double, 8> octantFractions(const TriangleMesh& surface, const Winding
     for (int t : candidates) {
       if (triangleMayCrossCube(surface, t, part_min, half, margin)) crossing.push_back(t);
     }
-    fractions[octant] = occupiedFraction(surface, winding, crossing, part_min, half, levels - 1);
+    fractions[octant] = occupiedFraction(surface, inside, crossing, part_min, half, levels - 1);
   }
   return fractions;
 }

@@ -16,12 +16,13 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-ProgressBar::ProgressBar(long total, std::FILE* stream, std::string unit)
+ProgressBar::ProgressBar(long total, std::FILE* stream, std::string unit,
+                         std::chrono::steady_clock::time_point start)
     : total_(std::max(total, 1L)),
       stream_(stream),
       unit_(std::move(unit)),
       terminal_(isatty(fileno(stream)) != 0),
-      start_(std::chrono::steady_clock::now()) {}
+      start_(start) {}
 
 void ProgressBar::update(long done, const std::string& current) {
   const double fraction = std::min(static_cast<double>(done) / total_, 1.0);

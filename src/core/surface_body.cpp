@@ -6,7 +6,8 @@ namespace deformable_sim::core {
 
 SurfaceBody bodyFromSurface(TriangleMesh surface, const VoxelSettings& settings,
                             std::vector<std::string>* warnings) {
-  Voxelization voxels = voxelize(surface, voxelGridFor(surface, settings), settings.levels);
+  Voxelization voxels =
+      voxelize(surface, voxelGridFor(surface, settings), settings.levels, settings.progress);
   const std::string pieces = piecesWarning(voxels.piece_sizes);
   if (warnings && !pieces.empty()) warnings->push_back(pieces);
   // Embedded as a recording embeds it again from the grid alone, to the same bits: contact acts

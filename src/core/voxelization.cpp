@@ -3,13 +3,14 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/box_occupancy.h"
 #include "deformable_sim/core/cell.h"
+#include "deformable_sim/core/grid_inside.h"
 #include "deformable_sim/core/mesh_pieces.h"
-#include "deformable_sim/core/winding_number.h"
 
 namespace deformable_sim::core {
 
@@ -20,45 +21,61 @@ namespace {
 // (a relative error near 6e-8 of each coordinate).
 constexpr double kWholeCellTolerance = 1e-5;
 
+// Of the vertices the triangles use. Throws std::invalid_argument naming a vertex with a
+// coordinate that is not finite: it has no place in a grid.
 Eigen::AlignedBox3d boundingBox(const TriangleMesh& surface) {
   Eigen::AlignedBox3d box;
   for (const Eigen::Vector3i& t : surface.triangles) {
-    for (int c = 0; c < 3; ++c) box.extend(surface.vertices[t[c]]);
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d& v = surface.vertices[t[c]];
+      if (!v.allFinite()) {
+        char text[160];
+        std::snprintf(text, sizeof text, "vertex %d is (%g, %g, %g)", t[c] + 1, v.x(), v.y(),
+                      v.z());
+        throw std::invalid_argument(
+            "voxel grid: the surface has coordinates that are not finite (NaN or infinite): " +
+            std::string(text));
+      }
+      box.extend(v);
+    }
   }
   return box;
 }
 
-// Per grid cell, the triangles that may cross it.
-std::vector<std::vector<int>> binTriangles(const TriangleMesh& surface, const VoxelGrid& grid) {
-  std::vector<std::vector<int>> bins(grid.numCells());
-  const double h = grid.cell_size;
-  const double margin = 1e-9 * h;
-  const Eigen::Array3i last = grid.cells.array() - 1;
-  for (int t = 0; t < static_cast<int>(surface.triangles.size()); ++t) {
-    Eigen::AlignedBox3d box;
-    for (int c = 0; c < 3; ++c) box.extend(surface.vertices[surface.triangles[t][c]]);
-    const Eigen::Array3i low = ((box.min() - grid.origin).array() / h - kWholeCellTolerance)
-                                   .floor()
-                                   .cast<int>()
-                                   .max(0)
-                                   .min(last);
-    const Eigen::Array3i high = ((box.max() - grid.origin).array() / h + kWholeCellTolerance)
-                                    .floor()
-                                    .cast<int>()
-                                    .max(0)
-                                    .min(last);
-    for (int k = low.z(); k <= high.z(); ++k) {
-      for (int j = low.y(); j <= high.y(); ++j) {
-        for (int i = low.x(); i <= high.x(); ++i) {
-          const Eigen::Vector3i cell(i, j, k);
-          if (triangleMayCrossCube(surface, t, grid.cellMin(cell), h, margin)) {
-            bins[grid.cellIndex(cell)].push_back(t);
-          }
-        }
-      }
-    }
+// A count of cells as a whole number, or about one when it is too large for that.
+std::string countText(double count) {
+  char text[32];
+  std::snprintf(text, sizeof text, count < 1e15 ? "%.0f" : "%.3g", count);
+  return text;
+}
+
+std::string bytesText(double bytes) {
+  char text[32];
+  if (bytes >= 1e12) {
+    std::snprintf(text, sizeof text, "%.3g TB", bytes / 1e12);
+  } else if (bytes >= 1e9) {
+    std::snprintf(text, sizeof text, "%.3g GB", bytes / 1e9);
+  } else {
+    std::snprintf(text, sizeof text, "%.3g MB", bytes / 1e6);
   }
-  return bins;
+  return text;
+}
+
+// Refuses a grid of more than max_cells cells before anything is allocated, saying how many it
+// would take and what that costs.
+void checkCellCount(const Eigen::Array3d& cells, double cell_size, long max_cells) {
+  const double count = cells.prod();
+  if (count <= static_cast<double>(max_cells)) return;
+  char size[32];
+  std::snprintf(size, sizeof size, "%.6g m", cell_size);
+  throw std::invalid_argument(
+      "voxel grid: cells of " + std::string(size) + " make " + countText(cells.x()) + " x " +
+      countText(cells.y()) + " x " + countText(cells.z()) + " = " + countText(count) +
+      " cells, more than max_cells (" + std::to_string(max_cells) +
+      "); voxelizing them would take " + bytesText(count * kVoxelBytesPerGridCell) +
+      " and a body of them up to " + bytesText(count * kBodyBytesPerCell) +
+      ". Choose a larger cell_size or fewer cells, or raise max_cells (a key of the body's mesh "
+      "entry, beside cell_size)");
 }
 
 // f(i, j, k) for every (i, j, k) of a grid of `size`, x fastest.
@@ -127,7 +144,80 @@ std::vector<int> pieceSizes(const Mesh& mesh) {
   return sizes;
 }
 
+// Every grid cell's octant fractions, layer by layer along z, telling `progress` after each.
+std::vector<OctantFractions> cellFractions(const TriangleMesh& surface, const VoxelGrid& grid,
+                                           const std::vector<std::vector<int>>& bins,
+                                           const InsideTest& inside, int levels,
+                                           const VoxelProgress& progress) {
+  std::vector<OctantFractions> fractions(grid.numCells());
+  const long layer = static_cast<long>(grid.cells.x()) * grid.cells.y();
+  if (progress) progress(0, grid.numCells());
+  for (int k = 0; k < grid.cells.z(); ++k) {
+    forEachPoint({grid.cells.x(), grid.cells.y(), 1}, [&](int i, int j, int) {
+      const Eigen::Vector3i cell(i, j, k);
+      const long index = grid.cellIndex(cell);
+      // A cell no triangle crosses is all in or all out: one query decides.
+      if (bins[index].empty()) {
+        fractions[index].fill(inside(grid.cellMin(cell).array() + 0.5 * grid.cell_size));
+      } else {
+        fractions[index] = octantFractions(surface, inside, bins[index], grid.cellMin(cell),
+                                           grid.cell_size, levels);
+      }
+    });
+    if (progress) progress(layer * (k + 1), grid.numCells());
+  }
+  return fractions;
+}
+
+// Why no cell holds material: cells too large to see the part (fewer than two along every side
+// of its bounding box), or a surface with no inside.
+std::string nothingEnclosed(const TriangleMesh& surface, const VoxelGrid& grid) {
+  const Eigen::Vector3d extent = boundingBox(surface).sizes();
+  if ((extent.array() < 2.0 * grid.cell_size).all()) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "the cell size %.6g m is too large for the part, %.3g x %.3g x %.3g m: no "
+                  "cell is inside it; choose a cell size of at most %.3g m (a tenth of its "
+                  "longest side) or give cells instead",
+                  grid.cell_size, extent.x(), extent.y(), extent.z(), 0.1 * extent.maxCoeff());
+    return text;
+  }
+  return "the surface encloses no volume: no grid cell is inside it (is it open, or a sheet?)";
+}
+
 }  // namespace
+
+std::vector<std::vector<int>> binTriangles(const TriangleMesh& surface, const VoxelGrid& grid) {
+  std::vector<std::vector<int>> bins(grid.numCells());
+  const double h = grid.cell_size;
+  const double margin = 1e-9 * h;
+  const Eigen::Array3i last = grid.cells.array() - 1;
+  for (int t = 0; t < static_cast<int>(surface.triangles.size()); ++t) {
+    Eigen::AlignedBox3d box;
+    for (int c = 0; c < 3; ++c) box.extend(surface.vertices[surface.triangles[t][c]]);
+    const Eigen::Array3i low = ((box.min() - grid.origin).array() / h - kWholeCellTolerance)
+                                   .floor()
+                                   .cast<int>()
+                                   .max(0)
+                                   .min(last);
+    const Eigen::Array3i high = ((box.max() - grid.origin).array() / h + kWholeCellTolerance)
+                                    .floor()
+                                    .cast<int>()
+                                    .max(0)
+                                    .min(last);
+    for (int k = low.z(); k <= high.z(); ++k) {
+      for (int j = low.y(); j <= high.y(); ++j) {
+        for (int i = low.x(); i <= high.x(); ++i) {
+          const Eigen::Vector3i cell(i, j, k);
+          if (triangleMayCrossCube(surface, t, grid.cellMin(cell), h, margin)) {
+            bins[grid.cellIndex(cell)].push_back(t);
+          }
+        }
+      }
+    }
+  }
+  return bins;
+}
 
 VoxelGrid voxelGridFor(const TriangleMesh& surface, const VoxelSettings& settings) {
   const Eigen::AlignedBox3d box = boundingBox(surface);
@@ -144,37 +234,23 @@ VoxelGrid voxelGridFor(const TriangleMesh& surface, const VoxelSettings& setting
   if (!(grid.cell_size > 0.0)) throw std::invalid_argument("voxel grid: the surface is a point");
   const Eigen::Array3d cells =
       (extent.array() / grid.cell_size - kWholeCellTolerance).ceil().max(1.0);
-  if (cells.prod() > static_cast<double>(kMaxBoxMeshCells)) {
-    throw std::invalid_argument("voxel grid: more than " + std::to_string(kMaxBoxMeshCells) +
-                                " cells; choose a larger cell size");
-  }
+  checkCellCount(cells, grid.cell_size, settings.max_cells);
   grid.cells = cells.cast<int>();
   grid.origin = box.center() - 0.5 * grid.cell_size * cells.matrix();
   return grid;
 }
 
-Voxelization voxelize(const TriangleMesh& surface, const VoxelGrid& grid, int levels) {
-  const WindingNumber winding(surface);
+Voxelization voxelize(const TriangleMesh& surface, const VoxelGrid& grid, int levels,
+                      const VoxelProgress& progress) {
   const std::vector<std::vector<int>> bins = binTriangles(surface, grid);
-  std::vector<OctantFractions> fractions(grid.numCells());
-  forEachPoint(grid.cells, [&](int i, int j, int k) {
-    const Eigen::Vector3i cell(i, j, k);
-    const long index = grid.cellIndex(cell);
-    // A cell no triangle crosses is all in or all out: one query decides.
-    if (bins[index].empty()) {
-      fractions[index].fill(winding.at(grid.cellMin(cell).array() + 0.5 * grid.cell_size) >= 0.5);
-    } else {
-      fractions[index] = octantFractions(surface, winding, bins[index], grid.cellMin(cell),
-                                         grid.cell_size, std::max(levels, 1));
-    }
-  });
+  const GridInside inside(surface, grid);
+  const std::vector<OctantFractions> fractions = cellFractions(
+      surface, grid, bins, [&inside](const Eigen::Vector3d& q) { return inside.at(q); },
+      std::max(levels, 1), progress);
   Voxelization result;
   result.grid = grid;
   buildMesh(grid, fractions, result);
-  if (result.mesh.cells.empty()) {
-    throw std::invalid_argument(
-        "the surface encloses no volume: no grid cell is inside it (is it open, or a sheet?)");
-  }
+  if (result.mesh.cells.empty()) throw std::invalid_argument(nothingEnclosed(surface, grid));
   result.enclosed_volume = enclosedVolume(surface);
   result.piece_sizes = pieceSizes(result.mesh);
   return result;

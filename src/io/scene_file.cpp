@@ -449,14 +449,16 @@ class SceneParser {
       return;
     }
     expectMap(node, key);
-    checkKeys(node, key, {"box", "surface", "urdf_link", "cell_size", "cells", "position", "rpy"});
+    checkKeys(
+        node, key,
+        {"box", "surface", "urdf_link", "cell_size", "cells", "max_cells", "position", "rpy"});
     if (node["surface"] || node["urdf_link"]) {
       body.surface_mesh = parseSurfaceMesh(node, key);
       return;
     }
     const YAML::Node box = node["box"];
     if (!box) fail(node, key + ".box", "missing (or give surface: file or urdf_link: name)");
-    for (const char* other : {"cell_size", "cells", "position", "rpy"}) {
+    for (const char* other : {"cell_size", "cells", "max_cells", "position", "rpy"}) {
       if (node[other]) fail(node[other], key + "." + other, "only with surface or urdf_link");
     }
     expectMap(box, key + ".box");
@@ -522,6 +524,10 @@ class SceneParser {
     if (node["cell_size"]) spec.voxels.cell_size = positive(node["cell_size"], key + ".cell_size");
     if (node["cells"]) {
       spec.voxels.longest_side_cells = atLeast(node["cells"], key + ".cells", 1);
+    }
+    if (node["max_cells"]) {  // a long: a limit past 2^31 cells is a choice too
+      spec.voxels.max_cells = integer(node["max_cells"], key + ".max_cells");
+      if (spec.voxels.max_cells < 1) fail(node["max_cells"], key + ".max_cells", "must be >= 1");
     }
     spec.pose = pose(node, key);
     return spec;
@@ -814,7 +820,13 @@ std::vector<core::Mesh> readMeshes(const core::SceneSpec& spec, std::vector<std:
     MeshReadResult read;
     try {
       if (body.surface_mesh) {
-        core::SurfaceBody made = readSurfaceBodyOf(spec, *body.surface_mesh, sources, warnings);
+        core::SurfaceMeshSpec surface_mesh = *body.surface_mesh;
+        if (sources.progress) {
+          surface_mesh.voxels.progress = [&sources, &body](long done, long total) {
+            sources.progress(body.name, done, total);
+          };
+        }
+        core::SurfaceBody made = readSurfaceBodyOf(spec, surface_mesh, sources, warnings);
         meshes.push_back(std::move(made.voxels.mesh));
         if (surfaces) (*surfaces)[b] = std::move(made.surface);
         continue;
@@ -829,9 +841,10 @@ std::vector<core::Mesh> readMeshes(const core::SceneSpec& spec, std::vector<std:
   return meshes;
 }
 
-core::Simulation buildSimulation(const core::SceneSpec& spec, std::vector<std::string>* warnings) {
+core::Simulation buildSimulation(const core::SceneSpec& spec, std::vector<std::string>* warnings,
+                                 const SurfaceSources& sources) {
   std::vector<std::optional<core::EmbeddedSurface>> surfaces;
-  std::vector<core::Mesh> meshes = readMeshes(spec, warnings, &surfaces);
+  std::vector<core::Mesh> meshes = readMeshes(spec, warnings, &surfaces, sources);
   try {
     core::Simulation simulation(spec, std::move(meshes));
     for (size_t b = 0; b < surfaces.size(); ++b) {

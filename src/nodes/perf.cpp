@@ -38,6 +38,12 @@
 // ManyBodies/<bodies>/<threads>: 1, 5 or 20 such blocks hanging apart (clamped at one face, no
 // floor, no contact), on 1 or 2 threads: the bodies step side by side.
 //
+// VoxelizeScan/<side_cells>/<closed>: a body's grid from perf/scan_blob.h's closed, bumpy blob of
+// 69,732 triangles (core::voxelize, with voxelGridFor, on one thread): 26 cells along its longest
+// side make about 10k cells, 58 about 100k. closed 1: as it is, asked by ray crossings; 0: with one
+// triangle left out, so open: the rays count with a cap over the hole, less the cap's own winding
+// number (core/grid_inside.h). Counters: cells, triangles.
+//
 // MachineRead/<KiB> and MachineFma: what one core does at best (perf/machine_floor.h), the
 // floors under the step's parts in doc/performance.md. Counters: GB/s read from an array of that
 // size, read again and again (in L1, L2, L3 or memory by its size); GFlop/s of multiply-adds.
@@ -54,10 +60,12 @@
 #include "deformable_sim/core/contact.h"
 #include "deformable_sim/core/loads.h"
 #include "deformable_sim/core/strain.h"
+#include "deformable_sim/core/voxelization.h"
 #include "deformable_sim/perf/blocks_on_floor.h"
 #include "deformable_sim/perf/bullet_peer.h"
 #include "deformable_sim/perf/cantilever.h"
 #include "deformable_sim/perf/machine_floor.h"
+#include "deformable_sim/perf/scan_blob.h"
 
 namespace {
 
@@ -295,6 +303,22 @@ void ManyBodies(benchmark::State& state) {
   for (auto _ : state) sim.step(reports);
 }
 
+void VoxelizeScan(benchmark::State& state) {
+  static const core::TriangleMesh blob = perf::makeScanBlob();
+  core::TriangleMesh surface = blob;
+  if (state.range(1) == 0) surface.triangles.pop_back();
+  core::VoxelSettings settings;
+  settings.longest_side_cells = static_cast<int>(state.range(0));
+  std::size_t cells = 0;
+  for (auto _ : state) {
+    const core::Voxelization voxels =
+        core::voxelize(surface, core::voxelGridFor(surface, settings), settings.levels);
+    cells = voxels.mesh.cells.size();
+  }
+  state.counters["cells"] = static_cast<double>(cells);
+  state.counters["triangles"] = static_cast<double>(surface.triangles.size());
+}
+
 void MachineRead(benchmark::State& state) {
   const std::size_t count = static_cast<std::size_t>(state.range(0)) * 1024 / sizeof(double);
   std::vector<double> values(count, 1.0);
@@ -376,6 +400,14 @@ BENCHMARK(MatVec)
     ->Apply([](benchmark::internal::Benchmark* b) { meshSizes(b, false); })
     ->ArgNames({"mesh"})
     ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+
+BENCHMARK(VoxelizeScan)
+    ->Args({26, 1})
+    ->Args({58, 1})
+    ->Args({26, 0})
+    ->ArgNames({"side_cells", "closed"})
+    ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
 // L1 (48 KiB here), L2 (1 MiB), the 9k mesh's matrix (1.9 MB) and the 98k one's (19 MB) in L3,

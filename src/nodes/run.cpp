@@ -4,11 +4,14 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "deformable_sim/core/body_activity.h"
+#include "deformable_sim/core/late_progress_bar.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/scene_file.h"
 
@@ -171,11 +174,24 @@ bool stepDynamically(Simulation& sim, const Options& options) {
   return converged;
 }
 
+// Where surfaces are voxelized, a bar on stderr for each body that takes more than a second.
+deformable_sim::io::SurfaceSources surfaceProgress() {
+  deformable_sim::io::SurfaceSources sources;
+  auto bar = std::make_shared<std::optional<deformable_sim::core::LateProgressBar>>();
+  sources.progress = [bar](const std::string& body, long done, long total) {
+    if (done == 0 || !bar->has_value())
+      bar->emplace(stderr, "grid cells of body '" + body + "' voxelized");
+    (*bar)->update(done, total, "body '" + body + "'");
+    if (done == total) (*bar)->finish();
+  };
+  return sources;
+}
+
 // Runs the scene as the options say; the process's exit status.
 int run(const Options& options) {
   std::vector<std::string> warnings;
   Simulation sim = deformable_sim::io::buildSimulation(
-      deformable_sim::io::readSceneFile(options.scene), &warnings);
+      deformable_sim::io::readSceneFile(options.scene), &warnings, surfaceProgress());
   for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
   printBodies(sim);
   const bool converged = options.quasi_static ? solveStatic(sim) : stepDynamically(sim, options);

@@ -11,8 +11,10 @@ namespace deformable_sim::core {
 
 class ProgressBar {
  public:
-  /// `unit` names what is counted, for the closing line ("120 settings in 3.2 s").
-  ProgressBar(long total, std::FILE* stream, std::string unit);
+  /// `unit` names what is counted, for the closing line ("120 settings in 3.2 s"); times count
+  /// from `start` (a bar shown late, once the work has run a while, gives when the work began).
+  ProgressBar(long total, std::FILE* stream, std::string unit,
+              std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now());
 
   /// `done` of the total are finished; `current` names what runs next. Cheap enough to call
   /// every step: the bar is redrawn only when what it shows changes (another percent or another

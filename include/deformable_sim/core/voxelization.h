@@ -4,9 +4,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/mesh.h"
 #include "deformable_sim/core/triangle_mesh.h"
 
@@ -28,6 +30,17 @@ struct VoxelGrid {
   }
 };
 
+/// Told how far voxelize is: `done` of the grid's `total` cells, from 0 to total, never less
+/// than the last time. Called once per layer of cells (along z), so cheap enough to redraw a bar.
+using VoxelProgress = std::function<void(long done, long total)>;
+
+/// What a grid's cells cost, bytes: voxelizing and embedding the surface peak near
+/// kVoxelBytesPerGridCell per cell of the grid; a body then needs about kBodyBytesPerCell per cell
+/// it holds (elements, matrices, solver), up to every cell of the grid. Both measured as peak
+/// resident memory on a box of 64k cells.
+constexpr double kVoxelBytesPerGridCell = 300.0;
+constexpr double kBodyBytesPerCell = 12000.0;
+
 /// How fine the grid is: cell_size if > 0, else longest_side_cells along the longest side of the
 /// surface's bounding box.
 struct VoxelSettings {
@@ -35,12 +48,22 @@ struct VoxelSettings {
   int longest_side_cells = 0;  ///< cells along the bounding box's longest side
   /// Near the surface a cell is cut into 2^levels parts per axis to measure its fraction.
   int levels = 3;
+  /// The most cells the grid may have (scene key max_cells of a surface body's mesh entry): a
+  /// grid of more is refused before anything is allocated.
+  long max_cells = kMaxBoxMeshCells;
+  VoxelProgress progress;  ///< if set, told how far voxelize is
 };
 
 /// The grid that covers the bounding box of `surface` with whole cells, centred on it (an
 /// extent that is a whole number of cells, within 1e-5 of one, is covered exactly). Throws
-/// std::invalid_argument for settings that give no cell size or more than kMaxBoxMeshCells cells.
+/// std::invalid_argument for settings that give no cell size, a surface with a coordinate that is
+/// not finite, or a grid of more than settings.max_cells cells (saying how many cells and about
+/// how much memory it would take).
 VoxelGrid voxelGridFor(const TriangleMesh& surface, const VoxelSettings& settings);
+
+/// Per cell of `grid` (VoxelGrid::cellIndex), the triangles of `surface` that may cross it: every
+/// one that does, and some that pass within 1e-5 of a cell.
+std::vector<std::vector<int>> binTriangles(const TriangleMesh& surface, const VoxelGrid& grid);
 
 struct Voxelization {
   VoxelGrid grid;
@@ -53,9 +76,14 @@ struct Voxelization {
   std::vector<int> piece_sizes;
 };
 
-/// The cells of `grid` with any part inside `surface` (generalized winding number >= 1/2).
-/// Throws std::invalid_argument when none is.
-Voxelization voxelize(const TriangleMesh& surface, const VoxelGrid& grid, int levels);
+/// The cells of `grid` with any part inside `surface` (generalized winding number >= 1/2), each
+/// octant's fraction measured to a resolution of cell_size / 2^levels. Points are asked by
+/// counting the triangles a ray crosses, with caps over any holes (grid_inside.h): the answers of
+/// the generalized winding number, far faster. Single-threaded and deterministic. Throws
+/// std::invalid_argument when no cell is inside (saying so when the cells are too large for the
+/// part). `progress`, if set, is told how far it is.
+Voxelization voxelize(const TriangleMesh& surface, const VoxelGrid& grid, int levels,
+                      const VoxelProgress& progress = {});
 
 /// The signed volume the triangles enclose, sum of a . (b x c) / 6, m^3: positive for a closed
 /// surface facing outwards.

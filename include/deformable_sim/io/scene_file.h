@@ -70,6 +70,9 @@ core::SceneSpec sceneFromFileText(const std::string& yaml_text, const std::strin
 struct SurfaceSources {
   PackageResolver resolver;       ///< for package:// surfaces and URDF mesh URIs
   std::string robot_description;  ///< URDF text for urdf_link bodies; empty: the scene's urdf file
+  /// If set, told how far voxelizing a body's surface is: `done` of the `total` cells of its grid
+  /// (core::VoxelProgress), with the body's name.
+  std::function<void(const std::string& body, long done, long total)> progress;
 };
 
 /// Reads (or generates) every body's mesh, in the order of spec.bodies. Mesh repairs are appended
@@ -86,8 +89,9 @@ std::vector<core::Mesh> readMeshes(
 /// Reads every body's mesh and builds the simulation, with the embedded surfaces of bodies made
 /// from surfaces (Simulation::embeddedSurface). Mesh repairs are appended to `warnings`.
 /// Throws SceneError (bad selections, loads; with the scene file and line of the entry) or
-/// MeshError (bad mesh files).
-core::Simulation buildSimulation(const core::SceneSpec& spec, std::vector<std::string>* warnings);
+/// MeshError (bad mesh files). `sources` as for readMeshes.
+core::Simulation buildSimulation(const core::SceneSpec& spec, std::vector<std::string>* warnings,
+                                 const SurfaceSources& sources = {});
 
 /// The message of an error from building `spec` (core::Simulation, core::Session) with the scene
 /// file and line of its key in front: "scene.yaml:12: bodies[0].groups.tip: selects no node".

@@ -1,0 +1,287 @@
+// Voxelization against a brute-force reference, the refusal of hostile grids before anything is
+// allocated, and its progress reports.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "deformable_sim/core/box_occupancy.h"
+#include "deformable_sim/core/ray_winding.h"
+#include "deformable_sim/core/voxelization.h"
+#include "deformable_sim/core/winding_number.h"
+#include "surface_test_helpers.h"
+
+namespace dc = deformable_sim::core;
+namespace dt = deformable_sim::test;
+
+namespace {
+
+// Per grid cell, the octant fractions from `inside` (below: the exact winding number, every solid
+// angle summed):
+// at the centre of each of the cell's (2^levels)^3 parts (`every_part`), or, as voxelize cuts a
+// cell, only where a triangle may cross (an open surface's winding number varies across a part
+// that no triangle crosses, which voxelize decides by its centre). No tree, no rays.
+std::vector<dc::OctantFractions> bruteForceFractions(const dc::TriangleMesh& surface,
+                                                     const dc::VoxelGrid& grid, int levels,
+                                                     bool every_part,
+                                                     const dc::InsideTest& inside) {
+  const int n = 1 << levels, half = n / 2;
+  const double part = grid.cell_size / n;
+  std::vector<dc::OctantFractions> fractions(grid.numCells());
+  const std::vector<std::vector<int>> bins = dc::binTriangles(surface, grid);
+  for (int k = 0; k < grid.cells.z(); ++k) {
+    for (int j = 0; j < grid.cells.y(); ++j) {
+      for (int i = 0; i < grid.cells.x(); ++i) {
+        const long index = grid.cellIndex({i, j, k});
+        dc::OctantFractions& f = fractions[index];
+        f.fill(0.0);
+        const Eigen::Vector3d min = grid.cellMin({i, j, k});
+        // A cell no triangle comes near is all in or all out (the exact winding number of the
+        // closed shapes here is constant off the surface): its centre decides, to save time.
+        if (bins[index].empty()) {
+          f.fill(inside(min.array() + 0.5 * grid.cell_size));
+          continue;
+        }
+        if (!every_part) {
+          f = dc::octantFractions(surface, inside, bins[index], min, grid.cell_size, levels);
+          continue;
+        }
+        for (int c = 0; c < n; ++c) {
+          for (int b = 0; b < n; ++b) {
+            for (int a = 0; a < n; ++a) {
+              const Eigen::Vector3d q = min + part * Eigen::Vector3d(a + 0.5, b + 0.5, c + 0.5);
+              if (!inside(q)) continue;
+              const int octant = (a >= half) + 2 * (b >= half) + 4 * (c >= half);
+              f[octant] += 8.0 / (n * n * n);
+            }
+          }
+        }
+      }
+    }
+  }
+  return fractions;
+}
+
+std::vector<dc::OctantFractions> bruteForceFractions(const dc::TriangleMesh& surface,
+                                                     const dc::VoxelGrid& grid, int levels,
+                                                     bool every_part) {
+  const dc::InsideTest exact = [&surface](const Eigen::Vector3d& q) {
+    return dc::exactWindingNumber(surface, q) >= 0.5;
+  };
+  return bruteForceFractions(surface, grid, levels, every_part, exact);
+}
+
+// Every cell of the voxelization holds the reference's fractions, and every cell it leaves out
+// holds nothing in the reference.
+void expectReferenceFractions(const dc::TriangleMesh& surface, double cell_size, int levels,
+                              bool every_part = true) {
+  dc::VoxelSettings settings;
+  settings.cell_size = cell_size;
+  const dc::VoxelGrid grid = dc::voxelGridFor(surface, settings);
+  const dc::Voxelization voxels = dc::voxelize(surface, grid, levels);
+  const std::vector<dc::OctantFractions> reference =
+      bruteForceFractions(surface, grid, levels, every_part);
+  int compared = 0;
+  for (long index = 0; index < grid.numCells(); ++index) {
+    const int cell = voxels.cell_at[index];
+    for (int o = 0; o < 8; ++o) {
+      const double got = cell < 0 ? 0.0 : voxels.mesh.cell_fractions[cell][o];
+      EXPECT_NEAR(got, reference[index][o], 1e-12) << "grid cell " << index << " octant " << o;
+    }
+    compared += cell >= 0;
+  }
+  EXPECT_GT(compared, 0);
+}
+
+dc::TriangleMesh withoutCap(const dc::TriangleMesh& closed, double z) {
+  dc::TriangleMesh open = closed;
+  open.triangles.clear();
+  for (const Eigen::Vector3i& t : closed.triangles) {
+    if (closed.vertices[t[0]].z() < z || closed.vertices[t[1]].z() < z) open.triangles.push_back(t);
+  }
+  return open;
+}
+
+}  // namespace
+
+TEST(VoxelizationReference, ClosedShapesGiveTheExactWindingNumbersFractions) {
+  expectReferenceFractions(dt::sphereSurface(0.1, Eigen::Vector3d(0.01, 0.02, -0.03), 12, 24), 0.04,
+                           3);
+  expectReferenceFractions(dt::torusSurface(0.1, 0.04, 24, 12), 0.03, 2);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.rotate(Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 2, 3).normalized()));
+  pose.pretranslate(Eigen::Vector3d(0.013, -0.007, 0.021));
+  expectReferenceFractions(
+      dt::boxSurface(Eigen::Vector3d::Zero(), Eigen::Vector3d::Constant(0.1), pose), 0.025, 3);
+  // An aligned box: triangles on the grid's planes and rays along their edges.
+  expectReferenceFractions(
+      dt::boxSurface(Eigen::Vector3d(-0.1, 0.2, 0.0), Eigen::Vector3d(0.5, 0.4, 0.1)), 0.05, 2);
+}
+
+TEST(VoxelizationReference, SelfIntersectingAndOpenShapesToo) {
+  // Two spheres overlapping, one soup: winding number 2 in the lens, inside once.
+  dc::TriangleMesh both = dt::sphereSurface(0.1, Eigen::Vector3d::Zero(), 12, 24);
+  const dc::TriangleMesh other = dt::sphereSurface(0.1, Eigen::Vector3d(0.1, 0, 0), 12, 24);
+  const int offset = static_cast<int>(both.vertices.size());
+  both.vertices.insert(both.vertices.end(), other.vertices.begin(), other.vertices.end());
+  for (const Eigen::Vector3i& t : other.triangles) both.triangles.push_back(t.array() + offset);
+  ASSERT_TRUE(dc::isClosedSurface(both));
+  expectReferenceFractions(both, 0.04, 2);
+  // A sphere with its cap above z = 0.8 r cut away: the caps over the hole make up the count.
+  const dc::TriangleMesh open =
+      withoutCap(dt::sphereSurface(0.1, Eigen::Vector3d::Zero(), 12, 24), 0.08);
+  ASSERT_FALSE(dc::isClosedSurface(open));
+  EXPECT_FALSE(dc::holeCaps(open).triangles.empty());
+  expectReferenceFractions(open, 0.04, 2, false);
+}
+
+TEST(VoxelizationReference, HoleCapsCloseTheSurface) {
+  const dc::TriangleMesh open =
+      withoutCap(dt::torusSurface(0.1, 0.04, 24, 12), std::numeric_limits<double>::infinity());
+  ASSERT_TRUE(dc::isClosedSurface(open));  // nothing cut: closed, no cap
+  EXPECT_TRUE(dc::holeCaps(open).triangles.empty());
+  dc::TriangleMesh cut = withoutCap(dt::sphereSurface(0.1, Eigen::Vector3d::Zero(), 12, 24), 0.05);
+  // And a second hole at the south pole.
+  cut.triangles.erase(cut.triangles.begin());
+  const dc::TriangleMesh caps = dc::holeCaps(cut);
+  EXPECT_EQ(caps.vertices.size(), cut.vertices.size() + 2);  // an apex per hole
+  dc::TriangleMesh closed = cut;
+  closed.vertices = caps.vertices;
+  closed.triangles.insert(closed.triangles.end(), caps.triangles.begin(), caps.triangles.end());
+  EXPECT_TRUE(dc::isClosedSurface(closed));
+}
+
+TEST(VoxelGrid, TooManyCellsAreRefusedSayingHowManyHowMuchMemoryAndWhichKey) {
+  const dc::TriangleMesh box =
+      dt::boxSurface(Eigen::Vector3d::Zero(), Eigen::Vector3d(1.0, 0.5, 0.25));
+  dc::VoxelSettings settings;
+  settings.cell_size = 0.001;  // 1000 x 500 x 250 cells
+  try {
+    dc::voxelGridFor(box, settings);
+    FAIL() << "125 million cells accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("1000 x 500 x 250 = 125000000 cells"), std::string::npos) << message;
+    EXPECT_NE(message.find("more than max_cells (1000000)"), std::string::npos) << message;
+    EXPECT_NE(message.find("37.5 GB"), std::string::npos) << message;  // voxelizing them
+    EXPECT_NE(message.find("1.5 TB"), std::string::npos) << message;   // a body of them
+    EXPECT_NE(message.find("raise max_cells"), std::string::npos) << message;
+  }
+  // Raised, the same grid is sized (voxelGridFor allocates nothing for it).
+  settings.max_cells = 200000000;
+  EXPECT_EQ(dc::voxelGridFor(box, settings).numCells(), 125000000);
+  // And lowered, a small one is refused.
+  settings.cell_size = 0.1;
+  settings.max_cells = 10;
+  EXPECT_THROW(dc::voxelGridFor(box, settings), std::invalid_argument);
+  // A cell size that makes more cells than a double counts exactly still says how many.
+  settings.cell_size = 1e-300;
+  settings.max_cells = dc::kMaxBoxMeshCells;
+  try {
+    dc::voxelGridFor(box, settings);
+    FAIL() << "an endless grid accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("more than max_cells"), std::string::npos) << e.what();
+  }
+}
+
+TEST(VoxelGrid, ACoordinateThatIsNotFiniteIsNamedNotCountedInCells) {
+  for (double bad :
+       {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+        std::numeric_limits<double>::quiet_NaN()}) {
+    dc::TriangleMesh box = dt::boxSurface(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones());
+    box.vertices[5].y() = bad;
+    dc::VoxelSettings settings;
+    settings.cell_size = 0.1;
+    try {
+      dc::voxelGridFor(box, settings);
+      FAIL() << bad << " accepted";
+    } catch (const std::invalid_argument& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("not finite"), std::string::npos) << message;
+      EXPECT_NE(message.find("vertex 6"), std::string::npos) << message;  // numbered from 1
+      EXPECT_EQ(message.find("cells"), std::string::npos) << message;
+    }
+  }
+}
+
+TEST(VoxelGrid, CellsTooLargeForThePartSaySoAndGiveItsSize) {
+  const dc::TriangleMesh box =
+      dt::boxSurface(Eigen::Vector3d::Zero(), Eigen::Vector3d(0.04, 0.02, 0.01));
+  dc::VoxelSettings settings;
+  settings.cell_size = 10.0;
+  try {
+    dc::voxelize(box, dc::voxelGridFor(box, settings), settings.levels);
+    FAIL() << "a part of 4 cm in a cell of 10 m";
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("cell size 10 m is too large for the part, 0.04 x 0.02 x 0.01 m"),
+              std::string::npos)
+        << message;
+    EXPECT_EQ(message.find("open, or a sheet"), std::string::npos) << message;
+  }
+}
+
+TEST(Voxelization, ProgressRunsFromNoneToEveryCellNeverBack) {
+  const dc::TriangleMesh torus = dt::torusSurface(0.1, 0.04, 24, 12);
+  dc::VoxelSettings settings;
+  settings.cell_size = 0.02;
+  const dc::VoxelGrid grid = dc::voxelGridFor(torus, settings);
+  std::vector<long> done;
+  const dc::Voxelization voxels =
+      dc::voxelize(torus, grid, settings.levels, [&](long cells, long total) {
+        EXPECT_EQ(total, grid.numCells());
+        done.push_back(cells);
+      });
+  ASSERT_GE(done.size(), 3u);
+  EXPECT_EQ(done.front(), 0);
+  EXPECT_EQ(done.back(), grid.numCells());
+  for (size_t k = 1; k < done.size(); ++k) EXPECT_GE(done[k], done[k - 1]) << k;
+  // The same cells as without a progress report.
+  EXPECT_EQ(voxels.mesh.cell_fractions,
+            dc::voxelize(torus, grid, settings.levels).mesh.cell_fractions);
+}
+
+TEST(VoxelizationReference, FacesARoundingOutsideTheGridStillCount) {
+  // Two boxes with an STL's single-precision corners (0.1f, 0.3f, 0.4f): the grid, centred on
+  // them, leaves the faces at x = 0 a rounding outside it.
+  dc::TriangleMesh two = dt::boxSurface(Eigen::Vector3d::Zero(), Eigen::Vector3d(0.1f, 0.1f, 0.1f));
+  const dc::TriangleMesh other =
+      dt::boxSurface(Eigen::Vector3d(0.3f, 0.0, 0.0), Eigen::Vector3d(0.4f, 0.1f, 0.1f));
+  for (const Eigen::Vector3i& t : other.triangles) two.triangles.push_back(t.array() + 8);
+  two.vertices.insert(two.vertices.end(), other.vertices.begin(), other.vertices.end());
+  expectReferenceFractions(two, 0.05, 2);
+  dc::VoxelSettings settings;
+  settings.cell_size = 0.05;
+  EXPECT_EQ(dc::voxelize(two, dc::voxelGridFor(two, settings), 3).mesh.cells.size(), 16u);
+}
+
+TEST(VoxelizationReference, ASurfaceFacingEveryWhichWayIsAskedByTheTree) {
+  // Every other triangle of a sphere turned inside out: open edges everywhere, caps that would
+  // cross the whole grid. It is asked as before, by the generalized winding number's tree.
+  dc::TriangleMesh mixed = dt::sphereSurface(0.1, Eigen::Vector3d::Zero(), 8, 16);
+  for (size_t t = 0; t < mixed.triangles.size(); t += 2) {
+    std::swap(mixed.triangles[t][1], mixed.triangles[t][2]);
+  }
+  EXPECT_GT(dc::holeCaps(mixed).triangles.size(), mixed.triangles.size() / 2);
+  dc::VoxelSettings settings;
+  settings.cell_size = 0.04;
+  const dc::VoxelGrid grid = dc::voxelGridFor(mixed, settings);
+  const dc::WindingNumber tree(mixed);
+  const std::vector<dc::OctantFractions> reference = bruteForceFractions(
+      mixed, grid, 2, false, [&tree](const Eigen::Vector3d& q) { return tree.at(q) >= 0.5; });
+  try {
+    const dc::Voxelization voxels = dc::voxelize(mixed, grid, 2);
+    for (long index = 0; index < grid.numCells(); ++index) {
+      const int cell = voxels.cell_at[index];
+      for (int o = 0; o < 8; ++o) {
+        EXPECT_EQ(cell < 0 ? 0.0 : voxels.mesh.cell_fractions[cell][o], reference[index][o]);
+      }
+    }
+  } catch (const std::invalid_argument&) {  // nothing inside: nor in the reference
+    for (const dc::OctantFractions& f : reference) EXPECT_EQ(f, dc::OctantFractions{});
+  }
+}
