@@ -9,7 +9,7 @@
 #   DEFORMABLE_SIM_FUZZ_BUILD    build directory (default /tmp/deformable_sim_fuzz)
 #   DEFORMABLE_SIM_FUZZ_RESULTS  write a JUnit XML result per target here (fuzz_<target>.xml), as
 #                                catkin's test_results directory expects them
-#   DEFORMABLE_SIM_FUZZ_TARGETS  the targets to run, e.g. "fuzz_commands" (default: all three)
+#   DEFORMABLE_SIM_FUZZ_TARGETS  the targets to run, e.g. "fuzz_commands" (default: all four)
 #   DEFORMABLE_SIM_FUZZ_JOBS     parallel compilations (default 2)
 #
 # Exits non-zero when a target does not build or finds a crash, a leak, a sanitizer report, a
@@ -23,7 +23,7 @@ seconds=${1:-20}
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${DEFORMABLE_SIM_FUZZ_BUILD:-/tmp/deformable_sim_fuzz}
 results=${DEFORMABLE_SIM_FUZZ_RESULTS:-}
-read -r -a targets <<< "${DEFORMABLE_SIM_FUZZ_TARGETS:-fuzz_mesh_readers fuzz_scene_file fuzz_commands}"
+read -r -a targets <<< "${DEFORMABLE_SIM_FUZZ_TARGETS:-fuzz_mesh_readers fuzz_scene_file fuzz_commands fuzz_surfaces}"
 jobs=${DEFORMABLE_SIM_FUZZ_JOBS:-2}
 export PATH=/usr/bin:/bin:$PATH
 cxx=clang++-14

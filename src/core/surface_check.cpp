@@ -217,8 +217,10 @@ std::string droppedWarning(const SurfaceCheck& check) {
                  check.duplicates > 0 ? counted(check.duplicates, "duplicate") : ""});
 }
 
+// Only when a shell faced inwards: separate shells that face outwards are the separate pieces
+// the voxelizer reports, or overlap (and then their triangles cross).
 std::string shellsWarning(const SurfaceCheck& check) {
-  if (check.shells < 2) return "";
+  if (check.voids + check.turned_shells == 0) return "";
   const std::string kinds =
       listOf({check.voids > 0 ? counted(check.voids, "void") + " inside another shell" : "",
               check.turned_shells > 0

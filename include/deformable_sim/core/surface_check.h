@@ -39,7 +39,8 @@ SurfaceCheck checkSurface(TriangleMesh& surface, int zero_area_dropped = 0);
 
 /// One warning per kind of problem `check` found, e.g. "3 open edges (the surface has holes;
 /// inside is judged by the winding number, volume may be off)" or "12 triangles dropped: 8 with
-/// zero area, 4 duplicates"; none for a clean surface.
+/// zero area, 4 duplicates"; none for a clean surface. Shells are named only when one faced
+/// inwards (a void, or turned): shells apart are the separate pieces the voxelizer names.
 std::vector<std::string> surfaceWarnings(const SurfaceCheck& check);
 
 }  // namespace deformable_sim::core
