@@ -47,7 +47,8 @@ flags=(-std=c++17 -O1 -gline-tables-only -fno-omit-frame-pointer -Wno-unknown-pr
 # counters there tell the fuzzer nothing about the input).
 numeric=(src/core/block_sparse_matrix.cpp src/core/corotational_elasticity.cpp
   src/core/linear_solver.cpp src/core/rigid_mode_coarse_space.cpp src/core/rotation.cpp
-  src/core/tetrahedron.cpp src/core/body.cpp src/core/strain.cpp src/core/reduced_dynamics.cpp)
+  src/core/tetrahedron.cpp src/core/body.cpp src/core/strain.cpp src/core/reduced_dynamics.cpp
+  src/core/winding_number.cpp src/core/box_occupancy.cpp)
 
 # True when object $1 (with its .d file) is missing or older than one of its dependencies.
 stale() {
@@ -145,7 +146,9 @@ for target in "${targets[@]}"; do
   echo "== $target: $seconds s"
   start=$(date +%s%N)
   rc=0
+  # Leaks inside assimp itself are suppressed (test/fuzz/lsan.supp says which and why).
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    LSAN_OPTIONS=suppressions="$repo/test/fuzz/lsan.supp" \
     "$dir/$target" "${options[@]}" "$dir/corpus" > "$dir/fuzz.log" 2>&1 || rc=$?
   time=$(awk -v start="$start" -v end="$(date +%s%N)" 'BEGIN { printf "%.1f", (end - start) / 1e9 }')
   # The last status line ("#N DONE cov: C ft: F corp: ...") and the executions.

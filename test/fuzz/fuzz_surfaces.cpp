@@ -27,7 +27,7 @@
 namespace deformable_sim::fuzz {
 namespace {
 
-constexpr int kCells = 6;  // along the longest side: at most 216 cells, a run stays fast
+constexpr int kCells = 5;  // along the longest side: at most 125 cells, a run stays fast
 
 void requireValidSurface(const core::TriangleMesh& mesh, const std::string& what) {
   const int n = static_cast<int>(mesh.vertices.size());
@@ -91,7 +91,7 @@ void fuzzSurfaces(const uint8_t* data, std::size_t size) {
   require(second.zero_area == 0 && second.duplicates == 0, "the check dropped more a second time");
   core::VoxelSettings settings;
   settings.longest_side_cells = kCells;
-  settings.levels = 2;
+  settings.levels = 2;  // an octant cut again once: reaches the recursion, stays cheap
   std::vector<std::string> warnings;
   try {
     const core::SurfaceBody body = core::bodyFromSurface(mesh, settings, &warnings, collapsed);
