@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds the fuzz targets test/fuzz/fuzz_*.cpp with clang++-14 (libFuzzer, AddressSanitizer,
 # UndefinedBehaviorSanitizer) straight from the ROS-free sources (core and readers; no catkin), and
-# runs each one in turn, starting from its committed corpus (test/fuzz/corpus/<target>/).
+# runs each one in turn, starting from its committed corpus (test/fuzz/corpus/<target>/), with its
+# dictionary (test/fuzz/<target>.dict) and extra libFuzzer flags (test/fuzz/<target>.options, the
+# lines that are not comments) where it has them.
 #
 #   scripts/fuzz.sh [seconds-per-target]     # default 20 (a CI run)
 #
@@ -143,6 +145,10 @@ for target in "${targets[@]}"; do
   options=(-max_total_time="$seconds" -max_len=4096 -timeout=60 -rss_limit_mb=1024
     -malloc_limit_mb=256 -print_final_stats=1 -artifact_prefix="$dir/artifacts/")
   if [ -e "$repo/test/fuzz/$target.dict" ]; then options+=(-dict="$repo/test/fuzz/$target.dict"); fi
+  if [ -e "$repo/test/fuzz/$target.options" ]; then
+    read -r -a extra <<< "$(grep -v '^#' "$repo/test/fuzz/$target.options" | tr '\n' ' ')"
+    options+=("${extra[@]}")
+  fi
   echo "== $target: $seconds s"
   start=$(date +%s%N)
   rc=0
