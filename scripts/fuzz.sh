@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds the fuzz targets test/fuzz/fuzz_*.cpp with clang++-14 (libFuzzer, AddressSanitizer,
 # UndefinedBehaviorSanitizer) straight from the ROS-free sources (core and readers; no catkin), and
-# runs each one in turn, starting from its committed corpus (test/fuzz/corpus/<target>/).
+# runs each one in turn, starting from its committed corpus (test/fuzz/corpus/<target>/), with its
+# dictionary (test/fuzz/<target>.dict) and extra libFuzzer flags (test/fuzz/<target>.options, the
+# lines that are not comments) where it has them.
 #
 #   scripts/fuzz.sh [seconds-per-target]     # default 20 (a CI run)
 #
@@ -9,7 +11,7 @@
 #   DEFORMABLE_SIM_FUZZ_BUILD    build directory (default /tmp/deformable_sim_fuzz)
 #   DEFORMABLE_SIM_FUZZ_RESULTS  write a JUnit XML result per target here (fuzz_<target>.xml), as
 #                                catkin's test_results directory expects them
-#   DEFORMABLE_SIM_FUZZ_TARGETS  the targets to run, e.g. "fuzz_commands" (default: all three)
+#   DEFORMABLE_SIM_FUZZ_TARGETS  the targets to run, e.g. "fuzz_commands" (default: all four)
 #   DEFORMABLE_SIM_FUZZ_JOBS     parallel compilations (default 2)
 #
 # Exits non-zero when a target does not build or finds a crash, a leak, a sanitizer report, a
@@ -23,7 +25,7 @@ seconds=${1:-20}
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${DEFORMABLE_SIM_FUZZ_BUILD:-/tmp/deformable_sim_fuzz}
 results=${DEFORMABLE_SIM_FUZZ_RESULTS:-}
-read -r -a targets <<< "${DEFORMABLE_SIM_FUZZ_TARGETS:-fuzz_mesh_readers fuzz_scene_file fuzz_commands}"
+read -r -a targets <<< "${DEFORMABLE_SIM_FUZZ_TARGETS:-fuzz_mesh_readers fuzz_scene_file fuzz_commands fuzz_surfaces}"
 jobs=${DEFORMABLE_SIM_FUZZ_JOBS:-2}
 export PATH=/usr/bin:/bin:$PATH
 cxx=clang++-14
@@ -47,7 +49,9 @@ flags=(-std=c++17 -O1 -gline-tables-only -fno-omit-frame-pointer -Wno-unknown-pr
 # counters there tell the fuzzer nothing about the input).
 numeric=(src/core/block_sparse_matrix.cpp src/core/corotational_elasticity.cpp
   src/core/linear_solver.cpp src/core/rigid_mode_coarse_space.cpp src/core/rotation.cpp
-  src/core/tetrahedron.cpp src/core/body.cpp src/core/strain.cpp src/core/reduced_dynamics.cpp)
+  src/core/tetrahedron.cpp src/core/body.cpp src/core/strain.cpp src/core/reduced_dynamics.cpp
+  src/core/winding_number.cpp src/core/box_occupancy.cpp src/core/ray_winding.cpp
+  src/core/grid_inside.cpp)
 
 # True when object $1 (with its .d file) is missing or older than one of its dependencies.
 stale() {
@@ -142,10 +146,16 @@ for target in "${targets[@]}"; do
   options=(-max_total_time="$seconds" -max_len=4096 -timeout=60 -rss_limit_mb=1024
     -malloc_limit_mb=256 -print_final_stats=1 -artifact_prefix="$dir/artifacts/")
   if [ -e "$repo/test/fuzz/$target.dict" ]; then options+=(-dict="$repo/test/fuzz/$target.dict"); fi
+  if [ -e "$repo/test/fuzz/$target.options" ]; then
+    read -r -a extra <<< "$(grep -v '^#' "$repo/test/fuzz/$target.options" | tr '\n' ' ')"
+    options+=("${extra[@]}")
+  fi
   echo "== $target: $seconds s"
   start=$(date +%s%N)
   rc=0
+  # Leaks inside assimp itself are suppressed (test/fuzz/lsan.supp says which and why).
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    LSAN_OPTIONS=suppressions="$repo/test/fuzz/lsan.supp" \
     "$dir/$target" "${options[@]}" "$dir/corpus" > "$dir/fuzz.log" 2>&1 || rc=$?
   time=$(awk -v start="$start" -v end="$(date +%s%N)" 'BEGIN { printf "%.1f", (end - start) / 1e9 }')
   # The last status line ("#N DONE cov: C ft: F corp: ...") and the executions.

@@ -1,13 +1,26 @@
 #include "deformable_sim/core/surface_body.h"
 
+#include <stdexcept>
 #include <utility>
+
+#include "deformable_sim/core/surface_check.h"
 
 namespace deformable_sim::core {
 
 SurfaceBody bodyFromSurface(TriangleMesh surface, const VoxelSettings& settings,
-                            std::vector<std::string>* warnings) {
-  Voxelization voxels =
-      voxelize(surface, voxelGridFor(surface, settings), settings.levels, settings.progress);
+                            std::vector<std::string>* warnings, int zero_area_dropped) {
+  const SurfaceCheck check = checkSurface(surface, zero_area_dropped);
+  std::vector<std::string> found = surfaceWarnings(check);
+  Voxelization voxels;
+  try {
+    voxels = voxelize(surface, voxelGridFor(surface, settings), settings.levels, settings.progress);
+  } catch (const std::invalid_argument& e) {
+    // What the check found often says why (a sheet is all open edges).
+    std::string message = e.what();
+    for (const std::string& w : found) message += "; " + w;
+    throw std::invalid_argument(message);
+  }
+  if (warnings) warnings->insert(warnings->end(), found.begin(), found.end());
   const std::string pieces = piecesWarning(voxels.piece_sizes);
   if (warnings && !pieces.empty()) warnings->push_back(pieces);
   // Embedded as a recording embeds it again from the grid alone, to the same bits: contact acts

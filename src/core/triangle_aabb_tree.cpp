@@ -105,4 +105,23 @@ TriangleAabbTree::Nearest TriangleAabbTree::nearest(const TriangleMesh& mesh,
   return best;
 }
 
+void TriangleAabbTree::trianglesNear(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
+                                     std::vector<int>& found) const {
+  if (nodes_.empty()) return;
+  std::array<int, kMaxDepth + 1> stack;
+  int size = 0;
+  stack[size++] = 0;
+  while (size > 0) {
+    const Node& node = nodes_[stack[--size]];
+    if ((node.min.array() > max.array()).any() || (min.array() > node.max.array()).any()) continue;
+    if (node.count > 0) {
+      found.insert(found.end(), order_.begin() + node.first,
+                   order_.begin() + node.first + node.count);
+      continue;
+    }
+    stack[size++] = node.first;
+    stack[size++] = node.first + 1;
+  }
+}
+
 }  // namespace deformable_sim::core

@@ -796,7 +796,12 @@ core::SurfaceBody readSurfaceBodyOf(const core::SceneSpec& spec, const core::Sur
   core::TriangleMesh surface = readVisualMesh(xml, body.urdf_link, sources.resolver, directory);
   for (Eigen::Vector3d& v : surface.vertices) v = body.pose * v;
   try {
-    return core::bodyFromSurface(std::move(surface), body.voxels, warnings);
+    std::vector<std::string> found;
+    core::SurfaceBody made = core::bodyFromSurface(std::move(surface), body.voxels, &found);
+    if (warnings) {
+      for (const std::string& w : found) warnings->push_back("link '" + body.urdf_link + "': " + w);
+    }
+    return made;
   } catch (const std::invalid_argument& e) {
     throw UrdfError("link '" + body.urdf_link + "': " + e.what());
   }

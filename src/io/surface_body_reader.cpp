@@ -9,11 +9,12 @@ namespace deformable_sim::io {
 core::SurfaceBody readSurfaceBody(const std::string& path, const core::VoxelSettings& settings,
                                   std::vector<std::string>* warnings,
                                   const Eigen::Isometry3d& pose) {
-  core::TriangleMesh surface = readTriangleMesh(path);
+  int collapsed = 0;
+  core::TriangleMesh surface = readTriangleMesh(path, Eigen::Vector3d::Ones(), &collapsed);
   for (Eigen::Vector3d& v : surface.vertices) v = pose * v;
   std::vector<std::string> found;
   try {
-    core::SurfaceBody body = core::bodyFromSurface(std::move(surface), settings, &found);
+    core::SurfaceBody body = core::bodyFromSurface(std::move(surface), settings, &found, collapsed);
     if (warnings) {
       for (const std::string& w : found) warnings->push_back("surface '" + path + "': " + w);
     }

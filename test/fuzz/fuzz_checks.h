@@ -58,6 +58,7 @@ inline void stepAndCheck(core::Simulation& simulation, int steps, const std::str
 void fuzzMeshReaders(const uint8_t* data, std::size_t size);
 void fuzzSceneFile(const uint8_t* data, std::size_t size);
 void fuzzCommands(const uint8_t* data, std::size_t size);
+void fuzzSurfaces(const uint8_t* data, std::size_t size);
 
 /// libFuzzer's callback: a finding is reported like a crash, with the input kept.
 inline int runForLibFuzzer(void (*target)(const uint8_t*, std::size_t), const uint8_t* data,

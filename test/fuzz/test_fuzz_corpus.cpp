@@ -57,4 +57,6 @@ TEST(FuzzCorpus, SceneFile) { runAll("fuzz_scene_file", deformable_sim::fuzz::fu
 
 TEST(FuzzCorpus, Commands) { runAll("fuzz_commands", deformable_sim::fuzz::fuzzCommands); }
 
+TEST(FuzzCorpus, Surfaces) { runAll("fuzz_surfaces", deformable_sim::fuzz::fuzzSurfaces); }
+
 }  // namespace

@@ -92,6 +92,56 @@ TEST_F(SurfaceBodyTest, SeparatePiecesAreAWarningNamingTheFile) {
       << warnings[0];
 }
 
+// A box with one face missing, one triangle twice and one whose corners coincide in the file:
+// the warnings name the file and give the counts, through each way a body is made.
+TEST_F(SurfaceBodyTest, AMessySurfaceIsReportedWithItsCounts) {
+  dc::TriangleMesh box = dt::boxSurface(Eigen::Vector3d::Zero(), Eigen::Vector3d::Constant(0.1));
+  box.triangles.erase(box.triangles.begin(), box.triangles.begin() + 2);
+  box.triangles.push_back(box.triangles[3]);
+  box.triangles.emplace_back(0, 0, 5);
+  dt::writeAsciiStl(box, path("messy.stl"));
+  const std::vector<std::string> expected = {
+      "2 triangles dropped: 1 with zero area, 1 duplicate",
+      "4 open edges (the surface has holes; inside is judged by the winding number, volume may "
+      "be off)"};
+  std::vector<std::string> warnings;
+  dc::VoxelSettings settings;
+  settings.cell_size = 0.05;
+  dio::readSurfaceBody(path("messy.stl"), settings, &warnings);
+  ASSERT_EQ(warnings.size(), expected.size());
+  for (size_t k = 0; k < expected.size(); ++k) {
+    EXPECT_EQ(warnings[k], "surface '" + path("messy.stl") + "': " + expected[k]);
+  }
+  // A scene's body: the same warnings, which the node logs and deformable_sim_run prints.
+  const std::string scene =
+      write("scene.yaml", std::string("bodies:\n  - name: b\n") +
+                              "    mesh: {surface: messy.stl, cell_size: 0.05}\n" + kMaterial);
+  std::vector<std::string> from_scene;
+  dio::buildSimulation(dio::readSceneFile(scene), &from_scene);
+  EXPECT_EQ(from_scene, warnings);
+}
+
+TEST_F(SurfaceBodyTest, ANonFiniteCoordinateIsRefusedForBodiesAndObstacles) {
+  std::ofstream(path("nan.stl")) << "solid t\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\n"
+                                    "vertex 1 nan 0\nvertex 0 1 0\nendloop\nendfacet\n"
+                                    "endsolid t\n";
+  const std::string body = readError(path("nan.stl"));
+  EXPECT_NE(body.find("mesh file '" + path("nan.stl") +
+                      "': corner 2 of triangle 1 has a non-finite coordinate (1 nan 0)"),
+            std::string::npos)
+      << body;
+  const std::string text = std::string("obstacles:\n  - {name: o, mesh: {file: nan.stl}}\n") +
+                           "bodies:\n  - {name: b, mesh: {box: {min: [0, 0, 0], max: [1, 1, 1], "
+                           "cells: [1, 1, 1]}}, material: {}}\n";
+  try {
+    dio::parseScene(text, "scene.yaml", dir_.string());
+    FAIL() << "no error";
+  } catch (const dio::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("non-finite coordinate (1 nan 0)"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(SurfaceBodyTest, ASceneBodyFromASurfaceKeepsItsEmbeddedSurface) {
   const dc::TriangleMesh sphere = dt::sphereSurface(0.05, Eigen::Vector3d(0, 0, 0.1), 12, 24);
   dt::writeAsciiStl(sphere, path("ball.stl"));

@@ -1,9 +1,17 @@
 // Tests for the surface mesh loader: the same unit cube written as ascii STL, binary STL, OBJ and
 // a DAE in centimetres reads back as 8 vertices and 12 outward triangles; scale, URIs and errors.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <Eigen/Geometry>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "deformable_sim/io/triangle_mesh_reader.h"
 
@@ -80,6 +88,111 @@ TEST(TriangleMeshReader, ErrorsNameTheFile) {
   const std::string empty = errorOf(kMeshes + "no_triangles.obj");
   EXPECT_NE(empty.find("no_triangles.obj"), std::string::npos) << empty;
   EXPECT_NE(empty.find("no triangle"), std::string::npos) << empty;
+}
+
+// A tetrahedron's four triangles as an ascii STL, with corner `corner` of triangle `triangle`
+// (from 1) written as `bad`.
+std::string tetrahedronStl(int triangle, int corner, const std::string& bad) {
+  const char* corners[4][3] = {{"0 0 0", "0 1 0", "1 0 0"},
+                               {"0 0 0", "1 0 0", "0 0 1"},
+                               {"0 0 0", "0 0 1", "0 1 0"},
+                               {"1 0 0", "0 1 0", "0 0 1"}};
+  std::string text = "solid t\n";
+  for (int t = 0; t < 4; ++t) {
+    text += "facet normal 0 0 0\nouter loop\n";
+    for (int c = 0; c < 3; ++c) {
+      text += std::string("vertex ") +
+              (t + 1 == triangle && c + 1 == corner ? bad : std::string(corners[t][c])) + "\n";
+    }
+    text += "endloop\nendfacet\n";
+  }
+  return text + "endsolid t\n";
+}
+
+// The same four triangles as a binary STL, with one coordinate replaced by `bad`.
+std::string tetrahedronBinaryStl(int triangle, int corner, float bad) {
+  const float corners[4][3][3] = {{{0, 0, 0}, {0, 1, 0}, {1, 0, 0}},
+                                  {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}},
+                                  {{0, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+                                  {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  std::string bytes(80, ' ');
+  const uint32_t count = 4;
+  bytes.append(reinterpret_cast<const char*>(&count), 4);
+  for (int t = 0; t < 4; ++t) {
+    float record[12] = {0, 0, 0};
+    for (int c = 0; c < 3; ++c) std::memcpy(record + 3 + 3 * c, corners[t][c], sizeof(float) * 3);
+    if (t + 1 == triangle) record[3 + 3 * (corner - 1)] = bad;
+    bytes.append(reinterpret_cast<const char*>(record), sizeof record);
+    bytes.append(2, '\0');
+  }
+  return bytes;
+}
+
+std::string writeTemporary(const std::string& name, const std::string& bytes) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / (std::to_string(getpid()) + "_" + name)).string();
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
+TEST(TriangleMeshReader, ReadsFromMemoryAsFromAFile) {
+  for (const char* name : {"cube_ascii.stl", "cube_binary.stl", "cube.obj"}) {
+    std::ifstream file(kMeshes + name, std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+    const std::string format = std::filesystem::path(name).extension().string().substr(1);
+    expectUnitCube(readTriangleMeshFromMemory(bytes, format, name), 1.0);
+  }
+  EXPECT_EQ(
+      readTriangleMeshFromMemory(tetrahedronBinaryStl(0, 0, 0.0f), "stl", "t.stl").triangles.size(),
+      4u);
+  EXPECT_EQ(readTriangleMeshFromMemory("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "obj", "t.obj")
+                .triangles.size(),
+            1u);
+  EXPECT_THROW(readTriangleMeshFromMemory("", "stl", "t.stl"), TriangleMeshError);
+  EXPECT_THROW(readTriangleMeshFromMemory("v 0 0 0\n", "xyz", "t.xyz"), TriangleMeshError);
+}
+
+TEST(TriangleMeshReader, TrianglesWhoseCornersCoincideAreDroppedAndCounted) {
+  // Triangle 2's third corner on its first: the reader merges them, and the triangle goes.
+  int collapsed = -1;
+  const core::TriangleMesh mesh = readTriangleMeshFromMemory(
+      tetrahedronStl(2, 3, "0 0 0"), "stl", "t.stl", Eigen::Vector3d::Ones(), &collapsed);
+  EXPECT_EQ(mesh.triangles.size(), 3u);
+  EXPECT_EQ(collapsed, 1);
+}
+
+// The message of the error reading `bytes` as a file `name`, from disk and from memory (the
+// same).
+std::string nonFiniteError(const std::string& name, const std::string& bytes) {
+  const std::string path = writeTemporary(name, bytes);
+  const std::string from_file = errorOf(path);
+  std::filesystem::remove(path);
+  std::string from_memory = "(read)";
+  try {
+    readTriangleMeshFromMemory(bytes, std::filesystem::path(name).extension().string().substr(1),
+                               path);
+  } catch (const TriangleMeshError& e) {
+    from_memory = e.what();
+  }
+  EXPECT_EQ(from_file, from_memory);
+  EXPECT_NE(from_file.find(path), std::string::npos) << from_file;
+  return from_file.substr(from_file.find(path) + path.size());
+}
+
+TEST(TriangleMeshReader, ANonFiniteCoordinateIsAnErrorNamingTheFileTriangleAndCorner) {
+  EXPECT_EQ(nonFiniteError("nan.stl", tetrahedronStl(3, 2, "nan 0 1")),
+            "': corner 2 of triangle 3 has a non-finite coordinate (nan 0 1)");
+  EXPECT_EQ(nonFiniteError("inf.stl", tetrahedronStl(4, 1, "0 inf 0")),
+            "': corner 1 of triangle 4 has a non-finite coordinate (0 inf 0)");
+  EXPECT_EQ(nonFiniteError("nan_binary.stl",
+                           tetrahedronBinaryStl(2, 3, std::numeric_limits<float>::quiet_NaN())),
+            "': corner 3 of triangle 2 has a non-finite coordinate (nan 0 1)");
+  EXPECT_EQ(nonFiniteError("inf.obj", "v 0 0 0\nv 1 0 0\nv 0 1 -inf\nf 1 2 3\n"),
+            "': corner 3 of triangle 1 has a non-finite coordinate (0 1 -inf)");
+  // A finite coordinate that the scale makes infinite, too.
+  const std::string path = writeTemporary("big.stl", tetrahedronStl(1, 1, "1e38 0 0"));
+  EXPECT_THROW(readTriangleMesh(path, Eigen::Vector3d::Constant(1e300)), TriangleMeshError);
+  std::filesystem::remove(path);
 }
 
 TEST(TriangleMeshReader, ResolvesUris) {

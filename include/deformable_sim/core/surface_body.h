@@ -1,5 +1,5 @@
-// A body's grid and drawn surface from a triangle surface: voxelize, then embed the surface in
-// the cells (core/voxelization.h, core/embedded_surface.h).
+// A body's grid and drawn surface from a triangle surface: check it, voxelize, then embed the
+// surface in the cells (core/surface_check.h, core/voxelization.h, core/embedded_surface.h).
 #pragma once
 
 #include <string>
@@ -16,11 +16,13 @@ struct SurfaceBody {
   EmbeddedSurface surface;
 };
 
-/// Voxelizes `surface` on the grid `settings` ask for and embeds it. Throws std::invalid_argument
-/// for settings that make no grid and for a surface that encloses nothing. A warning naming the
-/// separate pieces is appended to `warnings`.
+/// Checks and repairs `surface` (core/surface_check.h), voxelizes it on the grid `settings` ask
+/// for and embeds it. Throws std::invalid_argument for settings that make no grid and for a
+/// surface that encloses nothing. The check's warnings and one naming the separate pieces are
+/// appended to `warnings`. `zero_area_dropped`: triangles a reader already dropped (their corners
+/// coincided), counted in the check's warning.
 SurfaceBody bodyFromSurface(TriangleMesh surface, const VoxelSettings& settings,
-                            std::vector<std::string>* warnings);
+                            std::vector<std::string>* warnings, int zero_area_dropped = 0);
 
 /// "3 separate pieces (120, 14 and 3 cells) that move independently", or empty for one piece.
 std::string piecesWarning(const std::vector<int>& piece_sizes);

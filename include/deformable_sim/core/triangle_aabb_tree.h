@@ -1,5 +1,6 @@
 // A bounding-box tree over a fixed set of triangles, built once, for nearest-point queries that
-// allocate nothing (a static obstacle's mesh is queried for every node at every step).
+// allocate nothing (a static obstacle's mesh is queried for every node at every step) and for the
+// triangles near a box (a surface's check for where it crosses itself).
 #pragma once
 
 #include <Eigen/Core>
@@ -24,6 +25,11 @@ class TriangleAabbTree {
 
   /// The point of `mesh` (the one the tree was built over) nearest to `p`.
   Nearest nearest(const TriangleMesh& mesh, const Eigen::Vector3d& p) const;
+
+  /// Appends to `found` the triangles of every leaf whose box meets the box [min, max]: all the
+  /// triangles whose own box meets it, and maybe a few more. Allocates only as `found` grows.
+  void trianglesNear(const Eigen::Vector3d& min, const Eigen::Vector3d& max,
+                     std::vector<int>& found) const;
 
  private:
   struct Node {

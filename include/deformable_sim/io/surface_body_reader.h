@@ -12,8 +12,10 @@ namespace deformable_sim::io {
 
 /// Reads the surface at `path` (a file path; resolve URIs with resolveMeshUri first) and makes a
 /// body of it. Throws TriangleMeshError naming the file when it is missing, empty, of an unknown
-/// format, encloses nothing or the settings make no grid; a warning naming the file and its
-/// separate pieces is appended to `warnings`. The surface is placed at `pose` first.
+/// format, has a non-finite coordinate, encloses nothing or the settings make no grid. The
+/// surface check's warnings (core/surface_check.h: dropped triangles, open edges, turned
+/// triangles or shells, voids, crossings) and the separate pieces are appended to `warnings`,
+/// each naming the file. The surface is placed at `pose` first.
 core::SurfaceBody readSurfaceBody(const std::string& path, const core::VoxelSettings& settings,
                                   std::vector<std::string>* warnings,
                                   const Eigen::Isometry3d& pose = Eigen::Isometry3d::Identity());

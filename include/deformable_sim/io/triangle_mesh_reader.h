@@ -28,9 +28,19 @@ std::string resolveMeshUri(const std::string& uri, const PackageResolver& resolv
 /// Reads the triangles of every mesh in the file, with the file's own transforms and units
 /// applied and then multiplied by `scale` per axis. Positions that coincide exactly (an STL
 /// repeats each vertex for every triangle) become one vertex; triangles left with fewer than
-/// three distinct vertices are dropped. Throws TriangleMeshError naming the file when it is
-/// missing, of an unknown format, unreadable, or holds no triangle.
+/// three distinct vertices are dropped, and counted in `collapsed` if given. Throws
+/// TriangleMeshError naming the file when it is missing, of an unknown format, unreadable, holds
+/// no triangle, or has a corner with a coordinate that is not finite (NaN or infinite: "corner 2
+/// of triangle 5 has a non-finite coordinate (nan 0 1)", triangles counted from 1).
 core::TriangleMesh readTriangleMesh(const std::string& path,
-                                    const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
+                                    const Eigen::Vector3d& scale = Eigen::Vector3d::Ones(),
+                                    int* collapsed = nullptr);
+
+/// As readTriangleMesh, from the file's bytes: `format` is the extension that names the format
+/// ("stl" for ascii and binary STL alike, "obj", ...) and `name` is what errors call the file. A
+/// format that refers to other files (an OBJ's .mtl) reads without them.
+core::TriangleMesh readTriangleMeshFromMemory(
+    const std::string& bytes, const std::string& format, const std::string& name,
+    const Eigen::Vector3d& scale = Eigen::Vector3d::Ones(), int* collapsed = nullptr);
 
 }  // namespace deformable_sim::io
