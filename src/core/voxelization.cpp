@@ -11,6 +11,7 @@
 #include "deformable_sim/core/cell.h"
 #include "deformable_sim/core/grid_inside.h"
 #include "deformable_sim/core/mesh_pieces.h"
+#include "deformable_sim/core/ray_winding.h"
 
 namespace deformable_sim::core {
 
@@ -251,7 +252,10 @@ Voxelization voxelize(const TriangleMesh& surface, const VoxelGrid& grid, int le
   result.grid = grid;
   buildMesh(grid, fractions, result);
   if (result.mesh.cells.empty()) throw std::invalid_argument(nothingEnclosed(surface, grid));
-  result.enclosed_volume = enclosedVolume(surface);
+  // An open surface encloses no volume of its own: closed by the caps the inside test uses, it
+  // encloses what the grid should hold.
+  result.enclosed_volume = enclosedVolume(surface) +
+                           (isClosedSurface(surface) ? 0.0 : enclosedVolume(holeCaps(surface)));
   result.piece_sizes = pieceSizes(result.mesh);
   return result;
 }

@@ -44,6 +44,10 @@
 // triangle left out, so open: the rays count with a cap over the hole, less the cap's own winding
 // number (core/grid_inside.h). Counters: cells, triangles.
 //
+// CheckScan: core::checkSurface on the same blob (copied each time, as a body's surface is):
+// zero-area, repeated and misoriented triangles, edges, shells and crossing pairs. Counters:
+// triangles, crossings.
+//
 // MachineRead/<KiB> and MachineFma: what one core does at best (perf/machine_floor.h), the
 // floors under the step's parts in doc/performance.md. Counters: GB/s read from an array of that
 // size, read again and again (in L1, L2, L3 or memory by its size); GFlop/s of multiply-adds.
@@ -60,6 +64,7 @@
 #include "deformable_sim/core/contact.h"
 #include "deformable_sim/core/loads.h"
 #include "deformable_sim/core/strain.h"
+#include "deformable_sim/core/surface_check.h"
 #include "deformable_sim/core/voxelization.h"
 #include "deformable_sim/perf/blocks_on_floor.h"
 #include "deformable_sim/perf/bullet_peer.h"
@@ -319,6 +324,17 @@ void VoxelizeScan(benchmark::State& state) {
   state.counters["triangles"] = static_cast<double>(surface.triangles.size());
 }
 
+void CheckScan(benchmark::State& state) {
+  static const core::TriangleMesh blob = perf::makeScanBlob();
+  core::SurfaceCheck check;
+  for (auto _ : state) {
+    core::TriangleMesh surface = blob;
+    check = core::checkSurface(surface);
+  }
+  state.counters["triangles"] = static_cast<double>(blob.triangles.size());
+  state.counters["crossings"] = static_cast<double>(check.crossings.pairs);
+}
+
 void MachineRead(benchmark::State& state) {
   const std::size_t count = static_cast<std::size_t>(state.range(0)) * 1024 / sizeof(double);
   std::vector<double> values(count, 1.0);
@@ -402,6 +418,7 @@ BENCHMARK(MatVec)
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
 
+BENCHMARK(CheckScan)->Unit(benchmark::kMillisecond);
 BENCHMARK(VoxelizeScan)
     ->Args({26, 1})
     ->Args({58, 1})

@@ -6,7 +6,9 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,7 @@
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/corotational_elasticity.h"
 #include "deformable_sim/core/voxelization.h"
+#include "deformable_sim/perf/scan_blob.h"
 
 namespace dc = deformable_sim::core;
 namespace dt = deformable_sim::test;
@@ -207,4 +210,80 @@ TEST(GridStiffness, StepsCostAboutAsManyIterationsAsABoxGridOfTheSameCells) {
     const double cube = iterationsHeld(boxGridOf(grid.mesh.cells.size()));
     EXPECT_LE(held, 2.0 * cube) << held << " against " << cube << " iterations a step, held";
   }
+}
+
+namespace {
+
+// The blob of the voxelization benchmark with `holes` patches of triangles cut out.
+dc::TriangleMesh blobWithHoles(int holes) {
+  dc::TriangleMesh blob = deformable_sim::perf::makeScanBlob();
+  std::vector<Eigen::Vector3i> kept;
+  for (const Eigen::Vector3i& t : blob.triangles) {
+    const Eigen::Vector3d& p = blob.vertices[t[0]];
+    bool in_hole = false;
+    for (int h = 0; h < holes; ++h) {
+      const double angle = 2.0 * M_PI * h / holes;
+      const Eigen::Vector3d direction(std::cos(angle), std::sin(angle), 0.3);
+      in_hole = in_hole || p.normalized().dot(direction.normalized()) > 0.995;
+    }
+    if (!in_hole) kept.push_back(t);
+  }
+  blob.triangles = kept;
+  return blob;
+}
+
+// One row of the report: the grid of `surface` at `settings`, its mass against the volume
+// `enclosed`, and how its steps and static solve go held by its lowest fifth.
+void reportRow(const std::string& name, const dc::TriangleMesh& surface,
+               const dc::VoxelSettings& settings, double enclosed) {
+  const auto start = std::chrono::steady_clock::now();
+  const dc::Mesh mesh = dc::voxelize(surface, dc::voxelGridFor(surface, settings), 3).mesh;
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  double mass = 0.0;
+  for (double m : dc::lumpedMasses(mesh, material().density)) mass += m;
+  dc::Mesh uncut = mesh;
+  for (dc::OctantFractions& f : uncut.cell_fractions) f.fill(1.0);
+  dc::BodyEffects effects;
+  effects.warping = true;
+  effects.gravity = Eigen::Vector3d(0, 0, -9.81);
+  dc::Body body(name, mesh, material(), effects, dc::SolverSettings{});
+  body.fixNodes(nodesNearTheBottom(mesh, 0.5 * kCell));
+  const dc::StaticReport statics = body.solveStatic(dc::StaticSettings{});
+  std::printf("| %s | %zu | %.0f ms | %+.3f %% | %.0f %% | %.1f | %.1f | %.1f | %s, %d |\n",
+              name.c_str(), mesh.cells.size(), 1e3 * seconds,
+              100.0 * (mass / (material().density * enclosed) - 1.0),
+              100.0 * dc::partialCellMassFraction(mesh), iterationsHeld(mesh),
+              iterationsHeld(uncut), iterationsHeld(boxGridOf(mesh.cells.size())),
+              statics.converged ? "converges" : "does not converge", statics.iterations);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+// The table of doc/physics.md ("Cells a surface cuts"): run with --gtest_also_run_disabled_tests.
+TEST(GridStiffness, DISABLED_ReportOnTheObjectsTried) {
+  std::printf(
+      "| surface | cells | voxelization | mass error | mass in cut cells | CG a step "
+      "held | uncut | cube | static (iterations) |\n|---|---|---|---|---|---|---|---|---|\n");
+  dc::VoxelSettings at_cell;
+  at_cell.cell_size = kCell;
+  const dc::TriangleMesh shell = dt::sphericalShell(0.04, 0.03, Eigen::Vector3d::Zero(), 24, 48);
+  reportRow("shell one cell thick", shell, at_cell, dc::enclosedVolume(shell));
+  const dc::TriangleMesh saddle = dt::thickSaddle(0.045, 12.0, 0.02, 30);
+  reportRow("saddle two cells thick", saddle, at_cell, dc::enclosedVolume(saddle));
+  const dc::TriangleMesh sheet = dt::thickSaddle(0.06, 10.0, 0.012, 30);
+  reportRow("saddle 1.2 cells thick", sheet, at_cell, dc::enclosedVolume(sheet));
+  const dc::TriangleMesh noisy =
+      dt::noisySphereWithHoles(0.045, Eigen::Vector3d::Zero(), 30, 0.001, 4, 0.008);
+  // The same noise without holes (the holes are drawn after it) encloses the reference volume.
+  const dc::TriangleMesh closed =
+      dt::noisySphereWithHoles(0.045, Eigen::Vector3d::Zero(), 30, 0.001, 0, 0.008);
+  reportRow("noisy sphere with 4 holes", noisy, at_cell, dc::enclosedVolume(closed));
+  const dc::TriangleMesh blob = deformable_sim::perf::makeScanBlob();
+  dc::VoxelSettings coarse;
+  coarse.longest_side_cells = 22;
+  reportRow("scan-like blob, 69,732 triangles", blob, coarse, dc::enclosedVolume(blob));
+  const dc::TriangleMesh holes = blobWithHoles(3);
+  reportRow("the blob with 3 holes", holes, coarse, dc::enclosedVolume(blob));
 }

@@ -70,8 +70,10 @@ struct Voxelization {
   /// Hexahedra in the grid's x-fastest order, nodes likewise (numbered from 1), with
   /// cell_fractions: the same nodes and cells as makeBoxMesh for a box that fills the grid.
   Mesh mesh;
-  std::vector<int> cell_at;      ///< per grid cell (VoxelGrid::cellIndex), its mesh cell or -1
-  double enclosed_volume = 0.0;  ///< of the surface, by the divergence theorem, m^3
+  std::vector<int> cell_at;  ///< per grid cell (VoxelGrid::cellIndex), its mesh cell or -1
+  /// Of the surface, by the divergence theorem (with its holes capped as the inside test caps
+  /// them), m^3.
+  double enclosed_volume = 0.0;
   /// Cells per separate piece (groups of cells that share no node), largest first.
   std::vector<int> piece_sizes;
 };
