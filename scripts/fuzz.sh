@@ -50,8 +50,7 @@ flags=(-std=c++17 -O1 -gline-tables-only -fno-omit-frame-pointer -Wno-unknown-pr
 numeric=(src/core/block_sparse_matrix.cpp src/core/corotational_elasticity.cpp
   src/core/linear_solver.cpp src/core/rigid_mode_coarse_space.cpp src/core/rotation.cpp
   src/core/tetrahedron.cpp src/core/body.cpp src/core/strain.cpp src/core/reduced_dynamics.cpp
-  src/core/winding_number.cpp src/core/box_occupancy.cpp src/core/ray_winding.cpp
-  src/core/grid_inside.cpp)
+  src/core/winding_number.cpp src/core/box_occupancy.cpp)
 
 # True when object $1 (with its .d file) is missing or older than one of its dependencies.
 stale() {

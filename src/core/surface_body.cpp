@@ -9,6 +9,9 @@ namespace deformable_sim::core {
 
 SurfaceBody bodyFromSurface(TriangleMesh surface, const VoxelSettings& settings,
                             std::vector<std::string>* warnings, int zero_area_dropped) {
+  // First what the grid refuses outright (a coordinate that is not finite, too many cells): the
+  // check would count a triangle with an infinite corner as one of zero area.
+  voxelGridFor(surface, settings);
   const SurfaceCheck check = checkSurface(surface, zero_area_dropped);
   std::vector<std::string> found = surfaceWarnings(check);
   Voxelization voxels;

@@ -5,7 +5,9 @@
 #include <array>
 #include <cmath>
 
+#include "deformable_sim/core/ray_winding.h"
 #include "deformable_sim/core/surface_topology.h"
+#include "deformable_sim/core/voxelization.h"
 #include "deformable_sim/core/winding_number.h"
 
 namespace deformable_sim::core {
@@ -165,9 +167,10 @@ void orient(TriangleMesh& surface, const SurfaceTopology& topology, SurfaceCheck
   for (size_t t = 0; t < surface.triangles.size(); ++t) {
     if (topology.against_neighbours[t]) turn(surface.triangles[t]);
   }
-  double volume = 0.0;
-  for (const Shell& shell : shellsOf(surface, topology)) volume += shell.volume;
-  if (volume < 0.0) {
+  // With its holes capped the surface is closed, and its volume does not depend on the point
+  // it is taken about (an open one's does: a cup open at the bottom, taken about its top, can
+  // come out negative).
+  if (enclosedVolume(surface) + enclosedVolume(holeCaps(surface)) < 0.0) {
     check.inside_out = true;
     for (Eigen::Vector3i& t : surface.triangles) turn(t);
   }

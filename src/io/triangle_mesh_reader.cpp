@@ -37,9 +37,10 @@ class VertexMerger {
 };
 
 // "(nan 0 1)": a corner as the file gives it.
-std::string coordinates(const aiVector3D& v) {
+template <typename Vector>
+std::string coordinates(const Vector& v) {
   std::ostringstream text;
-  text << "(" << v.x << " " << v.y << " " << v.z << ")";
+  text << "(" << v[0] << " " << v[1] << " " << v[2] << ")";
   return text.str();
 }
 
@@ -63,9 +64,11 @@ void appendTriangles(const aiScene& scene, const Eigen::Vector3d& scale, const s
         const aiVector3D& v = part.mVertices[face.mIndices[c]];
         const Eigen::Vector3d position = scale.cwiseProduct(Eigen::Vector3d(v.x, v.y, v.z));
         if (!position.allFinite()) {
-          throw TriangleMeshError("mesh file '" + name + "': corner " + std::to_string(c + 1) +
-                                  " of triangle " + std::to_string(number) +
-                                  " has a non-finite coordinate " + coordinates(v));
+          throw TriangleMeshError(
+              "mesh file '" + name + "': corner " + std::to_string(c + 1) + " of triangle " +
+              std::to_string(number) + " has a non-finite coordinate " + coordinates(v) +
+              (Eigen::Vector3d(v.x, v.y, v.z).allFinite() ? " once scaled by " + coordinates(scale)
+                                                          : std::string()));
         }
         triangle[c] = merger.index(position);
       }

@@ -138,8 +138,8 @@ double iterationsFree(const dc::Mesh& mesh) {
   return iterationsPerStep(body);
 }
 
-// The body held by its lowest fifth under gravity that pulls it sideways too: how a user meets
-// it (a surface body's nearly free motions, before, grew here and took hundreds of iterations).
+// The body held by its lowest fifth under gravity that pulls it sideways too, as a user holds
+// one: nearly free motions of its cells would grow here and take hundreds of iterations a step.
 double iterationsHeld(const dc::Mesh& mesh) {
   dc::BodyEffects effects;
   effects.warping = true;
