@@ -11,6 +11,13 @@
 set -euo pipefail
 export PATH=/usr/bin:/bin:$PATH  # Debian's python3, which has python3-matplotlib
 
+case "${1:-}" in
+  -h|--help)
+    echo "usage: scripts/accuracy_chart.sh [PATH/TO/deformable_sim_bench]"
+    sed -n '2,/^set -euo/s/^# \{0,1\}//p' "$0"
+    exit 0 ;;
+esac
+
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 out=$repo/test/data/bench
 bench=${1:-${DEFORMABLE_SIM_WS:-$HOME/deformable_sim_ws}/devel/lib/deformable_sim/deformable_sim_bench}

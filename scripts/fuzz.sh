@@ -21,6 +21,12 @@
 # test_fuzz_corpus keeps it fixed. Inputs that reached new code stay in <build>/<target>/corpus/.
 set -euo pipefail
 
+case "${1:-}" in
+  -h|--help)
+    echo "usage: scripts/fuzz.sh [seconds-per-target]"
+    sed -n '2,/^set -euo/s/^# \{0,1\}//p' "$0"
+    exit 0 ;;
+esac
 seconds=${1:-20}
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${DEFORMABLE_SIM_FUZZ_BUILD:-/tmp/deformable_sim_fuzz}

@@ -11,6 +11,7 @@ writes into OUTPUT_DIR:
   advice.md             the budget table for the README, read off the measured Pareto fronts
 Needs only Debian's python3-matplotlib (Agg backend: no display).
 """
+import argparse
 import csv
 import math
 import re
@@ -311,13 +312,21 @@ def surface_table(rows):
     return "\n".join(lines) + "\n"
 
 
+def parse_arguments(argv):
+    parser = argparse.ArgumentParser(
+        prog="plot_accuracy.py", formatter_class=argparse.RawDescriptionHelpFormatter,
+        description=__doc__)
+    parser.add_argument("csv", help="the CSV deformable_sim_bench wrote")
+    parser.add_argument("output_dir", help="where the charts and advice.md go")
+    return parser.parse_args(argv)
+
+
 def main():
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    rows = read_rows(sys.argv[1])
-    out_dir = Path(sys.argv[2])
+    arguments = parse_arguments(sys.argv[1:])
+    rows = read_rows(arguments.csv)
+    out_dir = Path(arguments.output_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    machine_file = Path(sys.argv[1]).with_name("machine.txt")
+    machine_file = Path(arguments.csv).with_name("machine.txt")
     machine = machine_file.read_text().strip().splitlines()[0] if machine_file.exists() else ""
     for case in CASES:
         mine = [r for r in rows if r["case"] == case]

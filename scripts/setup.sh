@@ -13,7 +13,12 @@ set -euo pipefail
 
 mode=${1:-demo}
 rviz=false
-case "$mode" in demo|test) ;; *) echo "usage: $0 demo [--rviz] | test" >&2; exit 2 ;; esac
+usage="usage: $0 demo [--rviz] | test"
+case "$mode" in
+  demo|test) ;;
+  -h|--help) echo "$usage"; sed -n '2,/^set -euo/s/^# \{0,1\}//p' "$0"; exit 0 ;;
+  *) echo "$usage" >&2; exit 2 ;;
+esac
 if [ "${2:-}" = "--rviz" ]; then rviz=true; fi
 
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)

@@ -6,9 +6,8 @@ deformable_sim_mesh and doc/physics.md ("Bodies from a surface"):
   torus.stl         radii 0.1 m and 0.04 m, 64 x 32 quads
   turned_cube.stl   0.1 m cube turned 0.5 rad about (1, 2, 3)
   turned_beam.stl   the reference cantilever (1 x 0.1 x 0.1 m) turned 30 deg about x
-
-usage: scripts/test_surfaces.py OUT_DIR
 """
+import argparse
 import math
 import os
 import sys
@@ -96,9 +95,11 @@ def box(low, high, turn):
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit(__doc__)
-    out = sys.argv[1]
+    parser = argparse.ArgumentParser(
+        prog="test_surfaces.py", formatter_class=argparse.RawDescriptionHelpFormatter,
+        description=__doc__)
+    parser.add_argument("out_dir", help="where the STL files go (made if missing)")
+    out = parser.parse_args(sys.argv[1:]).out_dir
     os.makedirs(out, exist_ok=True)
     norm = math.sqrt(14.0)
     write_stl(os.path.join(out, "sphere.stl"), *sphere(0.1, 32, 64))

@@ -28,6 +28,7 @@ constexpr const char* kUsage =
     "                   stops repeating once its runs have taken 3 s)\n"
     "  --cases LIST     only these cases: A (static), B (large deflection), C2 (free vibration),\n"
     "                   T (dynamic trajectory)\n"
+    "  --help, -h       print this usage and exit\n"
     "A progress bar goes to standard error.\n";
 
 struct Options {
@@ -38,10 +39,13 @@ struct Options {
   std::vector<std::string> cases = {"A", "B", "C2", "T"};
 };
 
-bool parseArguments(int argc, char** argv, Options& options) {
+enum class Parsed { kRun, kHelp, kBad };
+
+Parsed parseArguments(int argc, char** argv, Options& options) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
+    if (arg == "--help" || arg == "-h") return Parsed::kHelp;
     if (arg == "--short") {
       options.size = bench::SweepSize::kShort;
     } else if (arg == "--out" && has_value) {
@@ -51,25 +55,31 @@ bool parseArguments(int argc, char** argv, Options& options) {
     } else if (arg == "--repeat" && has_value) {
       char* end = nullptr;
       options.repeat = static_cast<int>(std::strtol(argv[++i], &end, 10));
-      if (*end != '\0' || options.repeat < 1) return false;
+      if (*end != '\0' || options.repeat < 1) return Parsed::kBad;
     } else if (arg == "--cases" && has_value) {
       options.cases.clear();
       std::stringstream list(argv[++i]);
       for (std::string c; std::getline(list, c, ',');) options.cases.push_back(c);
     } else {
-      return false;
+      return Parsed::kBad;
     }
   }
-  return true;
+  return Parsed::kRun;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   Options options;
-  if (!parseArguments(argc, argv, options)) {
-    std::cerr << kUsage;
-    return 2;
+  switch (parseArguments(argc, argv, options)) {
+    case Parsed::kHelp:
+      std::cout << kUsage;
+      return 0;
+    case Parsed::kBad:
+      std::cerr << kUsage;
+      return 2;
+    case Parsed::kRun:
+      break;
   }
   try {
     const std::vector<bench::BenchSetting> settings =

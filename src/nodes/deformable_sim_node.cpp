@@ -28,9 +28,12 @@ constexpr const char* kUsage =
     "                           force times the body's size)\n"
     "  ~max_target_distance M   how far a fixed-node target or grasp move may be (default 10)\n"
     "  ~max_steps_per_call N    the most ~step takes in one call (default 1000)\n"
+    "  ~link_delay S            robot links are placed where tf had them this long ago\n"
+    "                           (default 0.05)\n"
     "Subscribes: ~wrench ~node_wrench ~fixed_nodes ~grasp\n"
     "Publishes:  ~state ~stats ~mesh ~markers ~applied ~scene ~reactions/<body>\n"
     "            ~grasps/<name>/wrench /tf /diagnostics\n"
+    "            with contact: ~contacts, and ~contacts/<link>/wrench per robot link\n"
     "Services:   ~reset ~pause ~resume ~step ~grasp; live tuning: dynamic_reconfigure\n";
 
 std::atomic<bool> stop_requested{false};  // lock-free: safe in a signal handler

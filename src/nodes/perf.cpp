@@ -54,6 +54,8 @@
 #include <benchmark/benchmark.h>
 
 #include <array>
+#include <cstdio>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <tuple>
@@ -76,6 +78,17 @@ namespace {
 
 namespace core = deformable_sim::core;
 namespace perf = deformable_sim::perf;
+
+constexpr const char* kUsage =
+    "usage: deformable_sim_perf [--benchmark_filter=REGEX] [--benchmark_repetitions=N]\n"
+    "                           [--benchmark_report_aggregates_only=true] [--benchmark_...]\n"
+    "  What a step costs, per mesh size, preconditioner, thread count, effect, body model and\n"
+    "  number of bodies, next to Bullet's deformable solver (the families: the comment at the top\n"
+    "  of src/nodes/perf.cpp; results: doc/performance.md). Report medians:\n"
+    "  --benchmark_repetitions=5 --benchmark_report_aggregates_only=true\n"
+    "  --benchmark_list_tests=true lists them; --benchmark_filter=Step/ runs only those.\n"
+    "  --help, -h   print this usage and Google Benchmark's flags, and exit\n"
+    "Google Benchmark's flags:\n";
 
 // About 1.5k, 9k, 49k and 98k tetrahedra; 9 216 is the size peers are usually quoted at.
 const std::array<Eigen::Vector3i, 4> kCells = {Eigen::Vector3i(16, 4, 4), Eigen::Vector3i(24, 8, 8),
@@ -440,6 +453,25 @@ BENCHMARK(MachineRead)
     ->UseRealTime();
 BENCHMARK(MachineFma)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// BENCHMARK_MAIN with a usage of our own for --help and -h.
+bool helpAsked(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  if (helpAsked(argc, argv)) {
+    std::fputs(kUsage, stdout);
+    benchmark::PrintDefaultHelp();
+    return 0;
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

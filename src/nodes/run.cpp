@@ -27,7 +27,9 @@ constexpr const char* kUsage =
     "               write body,vertex,x0,y0,z0,ux,uy,uz per vertex of the surfaces that bodies\n"
     "               were made from (mesh: {surface: ..}); vertices numbered from 1 in the\n"
     "               file's order, an STL's repeated vertices once\n"
-    "  --quiet      print only the summary, not every step\n"
+    "  --quiet      print only the summary (bodies, mean time per step, energies), not every\n"
+    "               step\n"
+    "Robot links (urdf.links) are not simulated offline: give them as obstacles instead.\n"
     "  --help, -h   print this usage and exit\n";
 
 struct Options {
@@ -147,15 +149,17 @@ void printContacts(const deformable_sim::core::StepReport& r) {
   if (r.self_contacts > 0) std::printf(", %d with itself", r.self_contacts);
 }
 
-// Takes the steps and prints each (unless quiet) and the energies at the end; true when every
-// solve converged.
+// Takes the steps and prints each (unless quiet), then the mean time per step and the energies;
+// true when every solve converged.
 bool stepDynamically(Simulation& sim, const Options& options) {
   bool converged = true;
   std::vector<deformable_sim::core::StepReport> reports;
+  double total_ms = 0.0;
   for (long s = 0; s < options.steps; ++s) {
     const auto start = Clock::now();
     sim.step(reports);
     const double ms = millisecondsSince(start);
+    total_ms += ms;
     for (size_t b = 0; b < reports.size(); ++b) {
       converged = converged && reports[b].solve.converged;
       if (options.quiet) continue;
@@ -166,6 +170,10 @@ bool stepDynamically(Simulation& sim, const Options& options) {
       printContacts(reports[b]);
       std::printf("\n");
     }
+  }
+  if (options.steps > 0) {
+    std::printf("%ld steps in %.1f ms: %.3f ms per step (mean)\n", options.steps, total_ms,
+                total_ms / static_cast<double>(options.steps));
   }
   for (const auto& body : sim.bodies()) {
     std::printf("after %ld steps %s: kinetic %.6g J, elastic %.6g J\n", sim.stepCount(),
@@ -187,11 +195,22 @@ deformable_sim::io::SurfaceSources surfaceProgress() {
   return sources;
 }
 
+// The scene's robot links move with tf in the node; offline nothing places them, so they are left
+// out, and the user is told so.
+void warnAboutRobotLinks(const deformable_sim::core::SceneSpec& spec) {
+  if (spec.urdf_links.empty()) return;
+  std::string names;
+  for (const std::string& link : spec.urdf_links) names += (names.empty() ? "" : ", ") + link;
+  std::cerr << "warning: urdf.links (" << names
+            << "): robot links are not simulated offline; give them as obstacles\n";
+}
+
 // Runs the scene as the options say; the process's exit status.
 int run(const Options& options) {
   std::vector<std::string> warnings;
-  Simulation sim = deformable_sim::io::buildSimulation(
-      deformable_sim::io::readSceneFile(options.scene), &warnings, surfaceProgress());
+  const deformable_sim::core::SceneSpec spec = deformable_sim::io::readSceneFile(options.scene);
+  warnAboutRobotLinks(spec);
+  Simulation sim = deformable_sim::io::buildSimulation(spec, &warnings, surfaceProgress());
   for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
   printBodies(sim);
   const bool converged = options.quasi_static ? solveStatic(sim) : stepDynamically(sim, options);
