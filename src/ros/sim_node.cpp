@@ -1,41 +1,13 @@
 #include "deformable_sim/ros/sim_node.h"
 
-#include <chrono>
-#include <functional>
-#include <memory>
-#include <string>
-
 #include "deformable_sim/Scene.h"
 #include "deformable_sim/core/body_activity.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/ros/conversions.h"
 #include "deformable_sim/ros/session_messages.h"
+#include "deformable_sim/ros/voxel_progress_log.h"
 
 namespace deformable_sim::ros_layer {
-
-namespace {
-
-// A line in the log at each tenth of a body's voxelization once it has taken more than a second:
-// a large grid would otherwise stall the node's start without a word.
-std::function<void(const std::string&, long, long)> voxelProgressLog() {
-  struct Shown {
-    std::chrono::steady_clock::time_point start;
-    int tenth = -1;
-  };
-  auto shown = std::make_shared<Shown>();
-  return [shown](const std::string& body, long done, long total) {
-    const auto now = std::chrono::steady_clock::now();
-    if (done == 0) *shown = Shown{now, -1};
-    const double seconds = std::chrono::duration<double>(now - shown->start).count();
-    const int tenth = total > 0 ? static_cast<int>(10 * done / total) : 10;
-    if (seconds < 1.0 || tenth == shown->tenth) return;
-    shown->tenth = tenth;
-    ROS_INFO("voxelizing body '%s': %d %% of %ld grid cells in %.1f s", body.c_str(), 10 * tenth,
-             total, seconds);
-  };
-}
-
-}  // namespace
 
 SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
     : params_(readNodeParameters(private_node)),
