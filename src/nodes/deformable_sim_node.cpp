@@ -29,7 +29,7 @@ constexpr const char* kUsage =
     "  ~max_target_distance M   how far a fixed-node target or grasp move may be (default 10)\n"
     "  ~max_steps_per_call N    the most ~step takes in one call (default 1000)\n"
     "Subscribes: ~wrench ~node_wrench ~fixed_nodes ~grasp\n"
-    "Publishes:  ~state ~stats ~mesh ~markers ~applied ~scene ~reactions/<body>\n"
+    "Publishes:  ~state ~stats ~mesh ~markers ~obstacles ~applied ~scene ~reactions/<body>\n"
     "            ~grasps/<name>/wrench /tf /diagnostics\n"
     "Services:   ~reset ~pause ~resume ~step ~grasp; live tuning: dynamic_reconfigure\n";
 

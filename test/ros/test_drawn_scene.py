@@ -51,6 +51,8 @@ class DrawnScene(unittest.TestCase):
         rospy.init_node('test_drawn_scene')
         cls.sim = SimClient()
         time.sleep(1.0)  # the node is up and has drawn its obstacles before anyone asks
+        # The first subscriber of ~mesh there is: the one an earlier node greeted with a DELETEALL.
+        cls.first_mesh = first_message(NODE + '/mesh', Marker)
 
     def test_obstacles_are_latched_shapes_in_grey(self):
         array = first_message(NODE + '/obstacles', MarkerArray)
@@ -81,7 +83,7 @@ class DrawnScene(unittest.TestCase):
         self.assertTrue(close((q.x, q.y, q.z, q.w), (math.sin(0.1), 0, 0, math.cos(0.1))), q)
 
     def test_first_mesh_message_is_a_mesh(self):
-        marker = first_message(NODE + '/mesh', Marker)
+        marker = self.first_mesh
         self.assertEqual(marker.action, Marker.ADD)
         self.assertEqual(marker.type, Marker.TRIANGLE_LIST)
         self.assertGreater(len(marker.points), 0)
