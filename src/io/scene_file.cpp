@@ -366,7 +366,7 @@ class SceneParser {
     expectMap(node, key);
     checkKeys(node, key,
               {"name", "mesh", "model", "material", "effects", "fixed", "loads", "groups",
-               "wrench_radius", "velocity"});
+               "wrench_radius", "velocity", "colour"});
     remember(key, node);
     core::BodySpec body;
     if (!node["name"]) fail(node, key + ".name", "missing");
@@ -397,8 +397,21 @@ class SceneParser {
       body.velocity = vector3(node["velocity"], key + ".velocity");
       remember(key + ".velocity", node["velocity"]);
     }
+    if (node["colour"]) body.colour = colour(node["colour"], key + ".colour");
     parseLoads(node["loads"], key + ".loads", body.loads);
     return body;
+  }
+
+  // [r, g, b], each in [0, 1].
+  Eigen::Vector3d colour(const YAML::Node& node, const std::string& key) const {
+    if (!node.IsSequence() || node.size() != 3) fail(node, key, "expected [r, g, b] in [0, 1]");
+    Eigen::Vector3d rgb;
+    for (int k = 0; k < 3; ++k) {
+      const std::string item = key + "[" + std::to_string(k) + "]";
+      rgb[k] = number(node[k], item);
+      if (!(rgb[k] >= 0.0 && rgb[k] <= 1.0)) fail(node[k], item, "must be in [0, 1]");
+    }
+    return rgb;
   }
 
   void parseFixed(const YAML::Node& fixed, const std::string& key,
@@ -661,10 +674,12 @@ class SceneParser {
     core::Shape shape;
     shape.kind = core::Shape::Kind::kMesh;
     try {
-      const std::string path = resolveMeshUri(text(node["file"], key + ".file"));
-      std::filesystem::path file = path;
+      const std::string uri = text(node["file"], key + ".file");
+      std::filesystem::path file = resolveMeshUri(uri);
       if (file.is_relative()) file = std::filesystem::path(base_directory_) / file;
       const std::string name = file.lexically_normal().string();
+      shape.mesh_uri = meshResourceUri(uri, name);
+      shape.mesh_scale = scale;
       try {
         shape.mesh =
             load_mesh_

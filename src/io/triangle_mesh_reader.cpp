@@ -119,6 +119,13 @@ std::string resolveMeshUri(const std::string& uri, const PackageResolver& resolv
   return uri;
 }
 
+std::string meshResourceUri(const std::string& uri, const std::string& path) {
+  if (startsWith(uri, "package://")) return uri;
+  std::error_code error;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, error);
+  return "file://" + (error ? path : absolute.lexically_normal().string());
+}
+
 core::TriangleMesh readTriangleMesh(const std::string& path, const Eigen::Vector3d& scale,
                                     int* collapsed) {
   std::error_code error;

@@ -22,6 +22,8 @@ bool readMeshShape(const urdf::Mesh& mesh, const std::string& link, const Packag
     try {
       shape.mesh = std::make_shared<const core::TriangleMeshShape>(
           readTriangleMesh(path.lexically_normal().string(), scale));
+      shape.mesh_uri = meshResourceUri(mesh.filename, path.lexically_normal().string());
+      shape.mesh_scale = scale;
     } catch (const std::invalid_argument& e) {
       throw TriangleMeshError("mesh file '" + path.string() + "': " + e.what());
     }

@@ -31,7 +31,7 @@ constexpr const char* kUsage =
     "  ~link_delay S            robot links are placed where tf had them this long ago\n"
     "                           (default 0.05)\n"
     "Subscribes: ~wrench ~node_wrench ~fixed_nodes ~grasp\n"
-    "Publishes:  ~state ~stats ~mesh ~markers ~applied ~scene ~reactions/<body>\n"
+    "Publishes:  ~state ~stats ~mesh ~markers ~obstacles ~applied ~scene ~reactions/<body>\n"
     "            ~grasps/<name>/wrench /tf /diagnostics\n"
     "            with contact: ~contacts, and ~contacts/<link>/wrench per robot link\n"
     "Services:   ~reset ~pause ~resume ~step ~grasp; live tuning: dynamic_reconfigure\n";

@@ -1,7 +1,9 @@
 #include "deformable_sim/ros/markers.h"
 
 #include <algorithm>
+#include <utility>
 
+#include "deformable_sim/core/body_colours.h"
 #include "deformable_sim/core/drawn_interactions.h"
 #include "deformable_sim/ros/conversions.h"
 
@@ -40,8 +42,12 @@ std_msgs::ColorRGBA strainColour(double strain, double scale) {
 
 }  // namespace
 
-SurfaceMarkers::SurfaceMarkers(const core::Simulation& simulation, double strain_scale)
-    : surfaces_(simulation), strain_scale_(strain_scale) {}
+SurfaceMarkers::SurfaceMarkers(const core::Simulation& simulation, double strain_scale,
+                               std::vector<Eigen::Vector3d> colours, double lifetime_s)
+    : surfaces_(simulation),
+      strain_scale_(strain_scale),
+      colours_(std::move(colours)),
+      lifetime_s_(lifetime_s) {}
 
 const visualization_msgs::Marker& SurfaceMarkers::marker(const core::Body& body, int index,
                                                          const std_msgs::Header& header) {
@@ -56,7 +62,11 @@ const visualization_msgs::Marker& SurfaceMarkers::marker(const core::Body& body,
   m.action = visualization_msgs::Marker::ADD;
   m.pose.orientation.w = 1.0;
   m.scale.x = m.scale.y = m.scale.z = 1.0;
-  m.color = rgba(1.0f, 0.55f, 0.1f);
+  const Eigen::Vector3d colour =
+      index < static_cast<int>(colours_.size()) ? colours_[index] : core::paletteColour(index);
+  m.color = rgba(static_cast<float>(colour.x()), static_cast<float>(colour.y()),
+                 static_cast<float>(colour.z()));
+  m.lifetime = ros::Duration(lifetime_s_);
   m.points.resize(corners.size());
   for (size_t c = 0; c < corners.size(); ++c) m.points[c] = toPoint(corners[c]);
   m.colors.resize(strains.size());

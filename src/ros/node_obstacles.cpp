@@ -1,17 +1,24 @@
 #include "deformable_sim/ros/node_obstacles.h"
 
 #include <ros/console.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include <utility>
 
+#include "deformable_sim/ros/obstacle_markers.h"
+
 namespace deformable_sim::ros_layer {
 
-NodeObstacles::NodeObstacles(const core::SceneSpec& scene, RobotLinks& links,
-                             const FrameResolver& frames, double link_delay_s, Apply apply)
+NodeObstacles::NodeObstacles(const NodeParameters& params, RobotLinks& links,
+                             const FrameResolver& frames, Apply apply,
+                             ros::NodeHandle& private_node)
     : frames_(frames),
-      link_delay_s_(link_delay_s),
+      link_delay_s_(params.link_delay_s),
       apply_(std::move(apply)),
-      obstacles_(sceneObstacles(scene, links)) {}
+      obstacles_(sceneObstacles(params.scene, links)),
+      world_frame_(params.world_frame) {
+  markers_pub_ = private_node.advertise<visualization_msgs::MarkerArray>("obstacles", 1, true);
+}
 
 std::optional<Eigen::Isometry3d> NodeObstacles::linkPose(const std::string& link,
                                                          const ros::Time& now,
@@ -32,6 +39,7 @@ bool NodeObstacles::update(const ros::Time& now) {
         return pose;
       });
   if (!obstacles) return false;
+  if (!drawn_once_ || *obstacles != drawn_) draw(*obstacles);
   if (*obstacles != applied_) {  // recorded (and applied) only when tf moved one
     try {
       apply_(core::SetObstaclesCommand{*obstacles});
@@ -41,6 +49,14 @@ bool NodeObstacles::update(const ros::Time& now) {
     }
   }
   return true;
+}
+
+void NodeObstacles::draw(const std::vector<core::PlacedShape>& obstacles) {
+  std_msgs::Header header;
+  header.frame_id = world_frame_;  // no stamp: a late subscriber places them with the latest tf
+  markers_pub_.publish(obstacleMarkers(obstacles, header));
+  drawn_ = obstacles;
+  drawn_once_ = true;
 }
 
 }  // namespace deformable_sim::ros_layer

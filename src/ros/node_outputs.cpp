@@ -1,7 +1,10 @@
 #include "deformable_sim/ros/node_outputs.h"
 
+#include <algorithm>
+
 #include "deformable_sim/Stats.h"
 #include "deformable_sim/core/body_activity.h"
+#include "deformable_sim/core/body_colours.h"
 #include "deformable_sim/ros/body_frames.h"
 #include "deformable_sim/ros/conversions.h"
 
@@ -15,6 +18,11 @@ visualization_msgs::MarkerArray deleteAllArray() {
   return array;
 }
 
+// How long rviz keeps a body's mesh not sent again: ten marker periods, and at least 3 s so that a
+// long step does not blank it. The meshes of an earlier run of the node that died without
+// clearing them vanish after that, with no DELETEALL on ~mesh before the first mesh.
+double meshLifetime(double marker_rate_hz) { return std::max(3.0, 10.0 / marker_rate_hz); }
+
 }  // namespace
 
 NodeOutputs::NodeOutputs(ros::NodeHandle& node, ros::NodeHandle& private_node,
@@ -23,7 +31,8 @@ NodeOutputs::NodeOutputs(ros::NodeHandle& node, ros::NodeHandle& private_node,
       diagnostics_(node, private_node),
       marker_schedule_(1.0 / params.marker_rate_hz),
       stats_schedule_(1.0 / params.stats_rate_hz),
-      surfaces_(session.simulation(), params.strain_colour_scale) {
+      surfaces_(session.simulation(), params.strain_colour_scale, core::bodyColours(params.scene),
+                meshLifetime(params.marker_rate_hz)) {
   state_pub_ = private_node.advertise<BodyState>("state", 10);
   stats_pub_ = private_node.advertise<Stats>("stats", 10);
   mesh_pub_ = private_node.advertise<visualization_msgs::Marker>("mesh", 2);
@@ -84,10 +93,6 @@ void NodeOutputs::clearMarkers() {
 void NodeOutputs::publishMarkers(const core::Session& session, const std_msgs::Header& header) {
   const std::vector<core::Body>& bodies = session.simulation().bodies();
   if (mesh_pub_.getNumSubscribers() > 0) {
-    // rviz, still showing an earlier run of this node, forgets its meshes (~markers start with
-    // a DELETEALL anyway).
-    if (!mesh_cleared_) mesh_pub_.publish(deleteAllMarker());
-    mesh_cleared_ = true;
     for (size_t b = 0; b < bodies.size(); ++b) {
       mesh_pub_.publish(surfaces_.marker(bodies[b], static_cast<int>(b), header));
     }

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "deformable_sim/core/body_colours.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/io/triangle_mesh_reader.h"
 #include "deformable_sim/ros/obstacle_mesh_messages.h"
@@ -100,9 +101,9 @@ ReplayReport Replay::run(std::FILE* progress) {
 core::ResimulationReport Replay::resimulate(std::FILE* progress) {
   std::unique_ptr<ResimulatedBag> out;
   if (!options_.output.empty()) {
-    out = std::make_unique<ResimulatedBag>(options_.output, recorded_->node, recorded_->scene,
-                                           resimulation_->session().simulation(),
-                                           recorded_->state_headers, options_.marker_rate);
+    out = std::make_unique<ResimulatedBag>(
+        options_.output, recorded_->node, recorded_->scene, resimulation_->session().simulation(),
+        recorded_->state_headers, options_.marker_rate, core::bodyColours(sceneSpec()));
   }
   std::optional<core::ProgressBar> bar;
   if (progress) bar.emplace(resimulation_->plannedSteps(), progress, "steps");

@@ -3,6 +3,8 @@
 #include <rosbag/exceptions.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <utility>
+
 #include "deformable_sim/ros/body_frames.h"
 #include "deformable_sim/ros/conversions.h"
 #include "deformable_sim/ros/markers.h"
@@ -20,13 +22,13 @@ ros::Time bagTime(const ros::Time& stamp) { return stamp.isZero() ? ros::TIME_MI
 ResimulatedBag::ResimulatedBag(const std::string& path, const std::string& node, const Scene& scene,
                                const core::Simulation& simulation,
                                const std::vector<std_msgs::Header>& state_headers,
-                               double marker_rate)
+                               double marker_rate, std::vector<Eigen::Vector3d> colours)
     : node_(node),
       scene_(scene),
       state_headers_(state_headers),
       marker_period_(1.0 / marker_rate),
       marker_schedule_(marker_period_),
-      surfaces_(simulation, kDefaultStrainScale) {
+      surfaces_(simulation, kDefaultStrainScale, std::move(colours)) {
   try {
     bag_.open(path, rosbag::bagmode::Write);
   } catch (const rosbag::BagException& e) {

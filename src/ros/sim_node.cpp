@@ -17,7 +17,7 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
       robot_links_(params_.scene.urdf_file) {
   startSession();
   auto apply = [this](const core::SessionCommand& c) { return this->apply(c); };
-  obstacles_.emplace(params_.scene, robot_links_, frames_, params_.link_delay_s, apply);
+  obstacles_.emplace(params_, robot_links_, frames_, apply, private_node);
   status_.paused = params_.start_paused;
   applied_pub_ = private_node.advertise<Applied>("applied", 1000);
   scene_pub_ = private_node.advertise<Scene>("scene", 1, true);  // latched: a bag holds it

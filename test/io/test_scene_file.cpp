@@ -455,3 +455,34 @@ TEST(SceneFile, ContactBetweenBodiesAndWithItselfIsTurnedOnByTheSceneAndOffByABo
   EXPECT_FALSE(plain.contact->self);
   EXPECT_NE(errorOf(replaced(kScene, "effects: {", "effects: {contact: {self: 2}, ")), "");
 }
+
+TEST(SceneFile, ABodyHasItsOwnColourOrThePalettes) {
+  const std::string coloured =
+      replaced(kScene, "    model: fem\n", "    model: fem\n    colour: [0.2, 1, 0]\n");
+  const dc::SceneSpec spec = dio::parseScene(coloured, "test.yaml", ".");
+  ASSERT_TRUE(spec.bodies[0].colour.has_value());
+  EXPECT_EQ(*spec.bodies[0].colour, Eigen::Vector3d(0.2, 1.0, 0.0));
+  EXPECT_FALSE(dio::parseScene(kScene, "test.yaml", ".").bodies[0].colour.has_value());
+  EXPECT_EQ(errorOf(replaced(coloured, "[0.2, 1, 0]", "[0.2, 1.5, 0]")),
+            "test.yaml:10: bodies[0].colour[1]: must be in [0, 1]");
+  EXPECT_EQ(errorOf(replaced(coloured, "[0.2, 1, 0]", "[0.2, 1, -0.1]")),
+            "test.yaml:10: bodies[0].colour[2]: must be in [0, 1]");
+  EXPECT_EQ(errorOf(replaced(coloured, "[0.2, 1, 0]", "[0.2, 1]")),
+            "test.yaml:10: bodies[0].colour: expected [r, g, b] in [0, 1]");
+  EXPECT_EQ(errorOf(replaced(coloured, "[0.2, 1, 0]", "[0.2, 1, 0, 1]")),
+            "test.yaml:10: bodies[0].colour: expected [r, g, b] in [0, 1]");
+  EXPECT_EQ(errorOf(replaced(coloured, "[0.2, 1, 0]", "red")),
+            "test.yaml:10: bodies[0].colour: expected [r, g, b] in [0, 1]");
+}
+
+TEST(SceneFile, MeshObstaclesKeepTheirFileForViewers) {
+  const std::string yaml = std::string(kScene) + R"(obstacles:
+  - {name: table, mesh: {file: meshes/cube_binary.stl, scale: [1, 2, 0.1]}}
+)";
+  const std::string scene = replaced(yaml, "effects: {", "effects: {contact: {}, ");
+  const std::string data = std::string(DEFORMABLE_SIM_SOURCE_DIR) + "/test/data";
+  const dc::SceneSpec spec = dio::parseScene(scene, "test.yaml", data);
+  ASSERT_EQ(spec.obstacles.size(), 1u);
+  EXPECT_EQ(spec.obstacles[0].shape.mesh_uri, "file://" + data + "/meshes/cube_binary.stl");
+  EXPECT_EQ(spec.obstacles[0].shape.mesh_scale, Eigen::Vector3d(1, 2, 0.1));
+}

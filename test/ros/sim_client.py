@@ -65,7 +65,7 @@ class SimClient:
 
 
 def surface_marker(topic, timeout=10.0):
-    """The first TRIANGLE_LIST on a node's ~mesh (a new node starts with a DELETEALL)."""
+    """The first TRIANGLE_LIST on a node's ~mesh (skipping the DELETEALL of one that stops)."""
     deadline = time.time() + timeout
     while True:
         marker = rospy.wait_for_message(topic, Marker, timeout=max(deadline - time.time(), 0.1))

@@ -70,6 +70,9 @@ struct BodySpec {
   /// The velocity every node starts with, m/s (key `velocity`): a body thrown or dropped at
   /// speed. A body with fixed nodes starts at rest.
   Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  /// The colour it is drawn in, red, green and blue in [0, 1] (key `colour`); unset: the
+  /// palette's colour of its index (core/body_colours.h).
+  std::optional<Eigen::Vector3d> colour;
 };
 
 /// Where a scene file gives the entries that can only be checked once the spec is built (a mesh

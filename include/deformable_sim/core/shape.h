@@ -21,6 +21,10 @@ struct Shape {
   double length = 0.0;                             ///< kCylinder: along z, m
   /// kMesh: shared, since the tree is built once and the shape is copied with every pose.
   std::shared_ptr<const TriangleMeshShape> mesh;
+  /// kMesh: the file it was read from as a URI a viewer can load (package://, or file:// with an
+  /// absolute path), and the scale applied to the file's coordinates; empty when it has no file.
+  std::string mesh_uri;
+  Eigen::Vector3d mesh_scale = Eigen::Vector3d::Ones();
 };
 
 /// Throws std::invalid_argument naming `what` unless every dimension is finite and > 0.

@@ -25,6 +25,10 @@ using PackageResolver = std::function<std::string(const std::string& uri)>;
 /// that finds nothing) and for other schemes.
 std::string resolveMeshUri(const std::string& uri, const PackageResolver& resolver = {});
 
+/// The URI a viewer loads a mesh by: `uri` itself when it is a `package://` URI, else `file://`
+/// followed by `path` (the file it was read from) made absolute.
+std::string meshResourceUri(const std::string& uri, const std::string& path);
+
 /// Reads the triangles of every mesh in the file, with the file's own transforms and units
 /// applied and then multiplied by `scale` per axis. Positions that coincide exactly (an STL
 /// repeats each vertex for every triangle) become one vertex; triangles left with fewer than

@@ -20,12 +20,15 @@ namespace deformable_sim::ros_layer {
 constexpr double kDefaultStrainScale = 0.1;
 
 /// The bodies' surfaces as rviz markers, for the node's ~mesh and the replay's output bag: a
-/// TRIANGLE_LIST a body (core::DrawnSurfaces' corners), namespace = the body's name. A body with
-/// stress_colouring has its vertices coloured by their strain, from blue (0) to red (>=
-/// strain_scale).
+/// TRIANGLE_LIST a body (core::DrawnSurfaces' corners), namespace = the body's name, in the
+/// body's colour (`colours`, by body index; core::paletteColour where it has none). A body with
+/// stress_colouring has its vertices coloured by their strain instead, from blue (0) to red (>=
+/// strain_scale). A marker with a lifetime (s, > 0) vanishes from rviz when it is not sent again
+/// within it; 0: it stays until replaced.
 class SurfaceMarkers {
  public:
-  SurfaceMarkers(const core::Simulation& simulation, double strain_scale);
+  SurfaceMarkers(const core::Simulation& simulation, double strain_scale,
+                 std::vector<Eigen::Vector3d> colours = {}, double lifetime_s = 0.0);
   /// The marker of `body`, the `index`th of the bodies, as it is now (reused between calls).
   const visualization_msgs::Marker& marker(const core::Body& body, int index,
                                            const std_msgs::Header& header);
@@ -33,6 +36,8 @@ class SurfaceMarkers {
  private:
   core::DrawnSurfaces surfaces_;
   double strain_scale_;
+  std::vector<Eigen::Vector3d> colours_;
+  double lifetime_s_;
   visualization_msgs::Marker marker_;
 };
 

@@ -1,6 +1,7 @@
 // What the node publishes of a running session: ~state and tf every tick, ~mesh and ~markers at
 // ~marker_rate (with contact forces), ~stats at ~stats_rate, ~reactions/<body>, and /diagnostics.
-// rviz is told to forget old markers when the node starts and when it stops (DELETEALL).
+// rviz is told to forget the node's markers when it stops (DELETEALL); ~markers start with one
+// each time, and the meshes on ~mesh have a lifetime, so that those of a run that died go too.
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
@@ -53,7 +54,6 @@ class NodeOutputs {
   diagnostic_updater::Updater diagnostics_;
   core::PeriodicSchedule marker_schedule_, stats_schedule_;
   core::OncePerStamp tf_stamps_;
-  bool mesh_cleared_ = false;  ///< the first publication on ~mesh was a DELETEALL
   SurfaceMarkers surfaces_;
   std::vector<core::ContactPair> contact_pairs_;
   BodyState state_message_;

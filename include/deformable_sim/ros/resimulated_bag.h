@@ -23,10 +23,12 @@ class ResimulatedBag {
  public:
   /// `simulation` gives the bodies' surfaces; `state_headers` are the recorded states' headers
   /// (a compared state's `source` indexes them); both are read, not kept. `marker_rate` is in Hz
-  /// of simulated time. Throws ReplayError when the file cannot be written.
+  /// of simulated time; `colours` are the bodies' (core::bodyColours). Throws ReplayError when the
+  /// file cannot be written.
   ResimulatedBag(const std::string& path, const std::string& node, const Scene& scene,
                  const core::Simulation& simulation,
-                 const std::vector<std_msgs::Header>& state_headers, double marker_rate);
+                 const std::vector<std_msgs::Header>& state_headers, double marker_rate,
+                 std::vector<Eigen::Vector3d> colours);
 
   /// The re-simulated state (with the recorded one's header), the bodies' frames with the first
   /// body, and its surface at the marker rate.
