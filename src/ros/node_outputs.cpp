@@ -18,10 +18,11 @@ visualization_msgs::MarkerArray deleteAllArray() {
   return array;
 }
 
-// How long rviz keeps a body's mesh not sent again: ten marker periods, and at least 3 s so that a
-// long step does not blank it. The meshes of an earlier run of the node that died without
-// clearing them vanish after that, with no DELETEALL on ~mesh before the first mesh.
-double meshLifetime(double marker_rate_hz) { return std::max(3.0, 10.0 / marker_rate_hz); }
+// How long rviz keeps a body's mesh not sent again: ten marker periods, and at least 10 s so that
+// slow ticks (a real-time factor of 0.01 makes a 30 Hz tick last 3.3 s) do not blank it. The
+// meshes of an earlier run of the node that died without clearing them vanish after that, with
+// no DELETEALL on ~mesh before the first mesh.
+double meshLifetime(double marker_rate_hz) { return std::max(10.0, 10.0 / marker_rate_hz); }
 
 }  // namespace
 
