@@ -5,41 +5,37 @@
 #include <cmath>
 #include <map>
 
+#include "deformable_sim/core/hole_caps.h"
+
 namespace deformable_sim::core {
 
 namespace {
 
-// The cells the bounding boxes of the caps' triangles cover, summed: what binning them for the
-// rays would store. Caps over a few holes cover a few cells each; a surface whose triangles face
-// every which way has open edges all over, and fans across the whole grid.
-double capBinEntries(const TriangleMesh& caps, const VoxelGrid& grid) {
-  double sum = 0.0;
-  for (const Eigen::Vector3i& t : caps.triangles) {
-    const Eigen::Vector3d& a = caps.vertices[t[0]];
-    const Eigen::Vector3d& b = caps.vertices[t[1]];
-    const Eigen::Vector3d& c = caps.vertices[t[2]];
-    const Eigen::Array3d span =
-        (a.cwiseMax(b).cwiseMax(c) - a.cwiseMin(b).cwiseMin(c)).array() / grid.cell_size + 1.0;
-    sum += span.min(grid.cells.cast<double>().array()).prod();
-  }
-  return sum;
-}
-
 // Caps that would cost more than this many bin entries per triangle of the surface and cell of
 // the grid are not worth it: the generalized winding number's tree asks the surface instead.
+// Caps over a few holes cover a few cells each; a surface whose triangles face every which way
+// has open edges all over, and fans across the whole grid.
 constexpr double kMostCapEntriesPerItem = 4.0;
+// Nor the surface and caps together beyond this many: large triangles slanting across a fine
+// grid (a long cylinder's sides, turned) would bin into most of its cells each.
+constexpr double kMostBinEntriesPerItem = 16.0;
+// Past this many holes their bounds cost more per query than they save: the caps' tree is asked
+// at every point instead.
+constexpr size_t kMostCapBounds = 16;
 
 }  // namespace
 
 GridInside::GridInside(const TriangleMesh& surface, const VoxelGrid& grid)
     : caps_(holeCaps(surface)) {
-  if (caps_.triangles.empty()) {
-    rays_.emplace(surface, grid);
+  const double items = static_cast<double>(surface.triangles.size() + grid.numCells());
+  const double cap_entries = rayBinEntries(caps_, grid);
+  if (cap_entries > kMostCapEntriesPerItem * items ||
+      rayBinEntries(surface, grid) + cap_entries > kMostBinEntriesPerItem * items) {
+    whole_winding_.emplace(surface);
     return;
   }
-  const double items = static_cast<double>(surface.triangles.size() + grid.numCells());
-  if (capBinEntries(caps_, grid) > kMostCapEntriesPerItem * items) {
-    whole_winding_.emplace(surface);
+  if (caps_.triangles.empty()) {
+    rays_.emplace(surface, grid);
     return;
   }
   closed_ = surface;
@@ -47,6 +43,10 @@ GridInside::GridInside(const TriangleMesh& surface, const VoxelGrid& grid)
   closed_.triangles.insert(closed_.triangles.end(), caps_.triangles.begin(), caps_.triangles.end());
   rays_.emplace(closed_, grid);
   cap_winding_.emplace(caps_);
+  boundCaps();
+}
+
+void GridInside::boundCaps() {
   // Each cap triangle is (b, a, apex): one bound per apex.
   std::map<int, CapBound> by_apex;
   for (const Eigen::Vector3i& t : caps_.triangles) {
@@ -58,9 +58,9 @@ GridInside::GridInside(const TriangleMesh& surface, const VoxelGrid& grid)
     }
     bound.area += 0.5 * (caps_.vertices[t[0]] - apex).cross(caps_.vertices[t[1]] - apex).norm();
   }
+  if (by_apex.size() > kMostCapBounds) return;
   for (const auto& [apex, bound] : by_apex) cap_bounds_.push_back(bound);
 }
-
 double GridInside::capBound(const Eigen::Vector3d& q) const {
   double sum = 0.0;
   for (const CapBound& cap : cap_bounds_) {
@@ -74,8 +74,9 @@ double GridInside::capBound(const Eigen::Vector3d& q) const {
 bool GridInside::at(const Eigen::Vector3d& q) const {
   if (whole_winding_) return whole_winding_->at(q) >= 0.5;
   const int count = rays_->at(q);
+  if (!cap_winding_) return count >= 1;
   // Caps that subtend less than half a sphere cannot take a whole number across 1/2.
-  if (!cap_winding_ || capBound(q) < 0.5) return count >= 1;
+  if (!cap_bounds_.empty() && capBound(q) < 0.5) return count >= 1;
   return count - cap_winding_->at(q) >= 0.5;
 }
 

@@ -3,88 +3,48 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <utility>
 
 namespace deformable_sim::core {
 
 namespace {
 
-// Per edge (lower vertex, higher vertex): its uses from lower to higher less the others.
-std::map<std::pair<int, int>, int> edgeBalance(const TriangleMesh& surface) {
-  std::map<std::pair<int, int>, int> balance;
-  for (const Eigen::Vector3i& t : surface.triangles) {
-    for (int c = 0; c < 3; ++c) {
-      const int u = t[c], v = t[(c + 1) % 3];
-      if (u == v) continue;
-      balance[{std::min(u, v), std::max(u, v)}] += u < v ? 1 : -1;
-    }
-  }
-  return balance;
+// The first and last cell along each axis of the box of triangle t, clamped to the grid (a vertex
+// a rounding off it still counts): the same floor as a query's, so that the cell holding a
+// crossing has the triangle.
+std::pair<Eigen::Array3i, Eigen::Array3i> boxCells(const TriangleMesh& surface, int t,
+                                                   const VoxelGrid& grid) {
+  const Eigen::Array3i last = grid.cells.array() - 1;
+  const auto cellOf = [&](const Eigen::Vector3d& p) -> Eigen::Array3i {
+    return ((p - grid.origin).array() / grid.cell_size).floor().cast<int>().max(0).min(last);
+  };
+  const Eigen::Vector3d& a = surface.vertices[surface.triangles[t][0]];
+  const Eigen::Vector3d& b = surface.vertices[surface.triangles[t][1]];
+  const Eigen::Vector3d& c = surface.vertices[surface.triangles[t][2]];
+  return {cellOf(a.cwiseMin(b).cwiseMin(c)), cellOf(a.cwiseMax(b).cwiseMax(c))};
 }
 
 }  // namespace
 
-bool isClosedSurface(const TriangleMesh& surface) {
-  const std::map<std::pair<int, int>, int> balance = edgeBalance(surface);
-  return std::all_of(balance.begin(), balance.end(), [](const auto& e) { return e.second == 0; });
-}
-
-TriangleMesh holeCaps(const TriangleMesh& surface) {
-  std::vector<std::pair<std::pair<int, int>, int>> open;  // (from, to) and how often
-  for (const auto& [edge, excess] : edgeBalance(surface)) {
-    if (excess > 0) open.push_back({edge, excess});
-    if (excess < 0) open.push_back({{edge.second, edge.first}, -excess});
+double rayBinEntries(const TriangleMesh& surface, const VoxelGrid& grid) {
+  double sum = 0.0;
+  for (int t = 0; t < static_cast<int>(surface.triangles.size()); ++t) {
+    const auto [low, high] = boxCells(surface, t, grid);
+    sum += (high - low + 1).cast<double>().prod();
   }
-  // The holes: the open edges joined at their vertices (a union-find of vertices).
-  std::vector<int> root(surface.vertices.size());
-  for (size_t v = 0; v < root.size(); ++v) root[v] = static_cast<int>(v);
-  const auto find = [&root](int v) {
-    while (root[v] != v) v = root[v] = root[root[v]];
-    return v;
-  };
-  for (const auto& [edge, count] : open) root[find(edge.first)] = find(edge.second);
-  TriangleMesh caps;
-  caps.vertices = surface.vertices;
-  std::map<int, int> apex_of;  // per hole (its root vertex): its apex
-  std::map<int, std::pair<Eigen::Vector3d, int>> sums;
-  for (const auto& [edge, count] : open) {
-    auto& [sum, ends] =
-        sums.try_emplace(find(edge.first), Eigen::Vector3d::Zero(), 0).first->second;
-    sum += surface.vertices[edge.first] + surface.vertices[edge.second];
-    ends += 2;
-  }
-  for (const auto& [hole, sum] : sums) {
-    apex_of[hole] = static_cast<int>(caps.vertices.size());
-    caps.vertices.push_back(sum.first / sum.second);
-  }
-  // An edge used `count` times more from a to b: that many triangles b -> a -> apex cancel it;
-  // their edges to the apex cancel around the hole, whose every vertex its edges enter as often
-  // as they leave.
-  for (const auto& [edge, count] : open) {
-    for (int k = 0; k < count; ++k) {
-      caps.triangles.emplace_back(edge.second, edge.first, apex_of[find(edge.first)]);
-    }
-  }
-  return caps;
+  return sum;
 }
 
 RayWinding::RayWinding(const TriangleMesh& surface, const VoxelGrid& grid)
     : surface_(surface), grid_(grid), bins_(grid.numCells()) {
   yz_boxes_.reserve(surface.triangles.size());
-  const Eigen::Array3i last = grid.cells.array() - 1;
-  const auto cellOf = [&](const Eigen::Vector3d& p) -> Eigen::Array3i {
-    return ((p - grid.origin).array() / grid.cell_size).floor().cast<int>().max(0).min(last);
-  };
   for (int t = 0; t < static_cast<int>(surface.triangles.size()); ++t) {
     const Eigen::Vector3d& a = surface.vertices[surface.triangles[t][0]];
     const Eigen::Vector3d& b = surface.vertices[surface.triangles[t][1]];
     const Eigen::Vector3d& c = surface.vertices[surface.triangles[t][2]];
     yz_boxes_.push_back({std::min({a.y(), b.y(), c.y()}), std::max({a.y(), b.y(), c.y()}),
                          std::min({a.z(), b.z(), c.z()}), std::max({a.z(), b.z(), c.z()})});
-    // The same floor as the query's, so that the cell holding a crossing has the triangle.
-    const Eigen::Array3i low = cellOf(a.cwiseMin(b).cwiseMin(c));
-    const Eigen::Array3i high = cellOf(a.cwiseMax(b).cwiseMax(c));
+    const auto [low, high] = boxCells(surface, t, grid);
     for (int k = low.z(); k <= high.z(); ++k) {
       for (int j = low.y(); j <= high.y(); ++j) {
         for (int i = low.x(); i <= high.x(); ++i) bins_[grid.cellIndex({i, j, k})].push_back(t);
@@ -146,7 +106,9 @@ int RayWinding::crossings(double from, double y, double z, int j, int k, int beg
       if (y < box[0] || y > box[1] || z < box[2] || z > box[3]) continue;
       double x = 0.0;
       int sign = 0;
-      if (!meets(t, y, z, x, sign) || !(upwards ? x > from : x < from)) continue;
+      // A crossing at x == from counts along +x, not along -x: q is taken as moved by an
+      // infinitesimal towards -x, so that a point on a face is on one side of it in every row.
+      if (!meets(t, y, z, x, sign) || !(upwards ? x >= from : x < from)) continue;
       // A triangle in the bins of several cells along the row counts in the cell that holds
       // the crossing, once.
       if (std::clamp(static_cast<int>(std::floor((x - grid_.origin.x()) / h)), 0, last) == i) {

@@ -29,12 +29,14 @@ bool boxesOverlap(const TriangleMesh& surface, const Eigen::Vector3i& a, const E
 
 }  // namespace
 
-SelfCrossings selfCrossings(const TriangleMesh& surface, int max_tests_per_triangle) {
+SelfCrossings selfCrossings(const TriangleMesh& surface, int max_candidates_per_triangle) {
   SelfCrossings found;
   const int n = static_cast<int>(surface.triangles.size());
   if (n < 2) return found;
   const TriangleAabbTree tree(surface);
-  long budget = static_cast<long>(max_tests_per_triangle) * n;
+  // Every candidate the tree gives is charged, whether or not it is then tested: many triangles
+  // about one vertex (a fan) are each other's candidates but never a pair to test.
+  const long budget = static_cast<long>(max_candidates_per_triangle) * n;
   std::vector<int> near;
   const auto& v = surface.vertices;
   for (int t = 0; t < n && found.complete; ++t) {
@@ -43,12 +45,13 @@ SelfCrossings selfCrossings(const TriangleMesh& surface, int max_tests_per_trian
     tree.trianglesNear(v[a[0]].cwiseMin(v[a[1]]).cwiseMin(v[a[2]]),
                        v[a[0]].cwiseMax(v[a[1]]).cwiseMax(v[a[2]]), near);
     for (int u : near) {
-      const Eigen::Vector3i& b = surface.triangles[u];
-      if (u <= t || shareAVertex(a, b) || !boxesOverlap(surface, a, b)) continue;
-      if (--budget < 0) {
+      if (found.candidates == budget) {
         found.complete = false;
         break;
       }
+      ++found.candidates;
+      const Eigen::Vector3i& b = surface.triangles[u];
+      if (u <= t || shareAVertex(a, b) || !boxesOverlap(surface, a, b)) continue;
       found.pairs += trianglesCross(v[a[0]], v[a[1]], v[a[2]], v[b[0]], v[b[1]], v[b[2]]);
     }
   }

@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <numeric>
+
+#include "deformable_sim/core/disjoint_sets.h"
 
 namespace deformable_sim::core {
 
@@ -40,19 +41,11 @@ std::vector<HalfEdge> sortedHalfEdges(const TriangleMesh& surface) {
   return half;
 }
 
-int root(std::vector<int>& parent, int i) {
-  while (parent[i] != i) {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
-  }
-  return i;
-}
-
 // Counts the open and overused edges, links the triangles across edges of two and joins every
-// group of triangles sharing an edge in `parent` (union-find).
+// group of triangles sharing an edge in `shells`.
 // `on_rim` marks the triangles with an edge that is not shared by exactly two.
 void joinAcrossEdges(const std::vector<HalfEdge>& half, SurfaceTopology& topology,
-                     std::vector<std::array<Link, 3>>& links, std::vector<int>& parent,
+                     std::vector<std::array<Link, 3>>& links, DisjointSets& shells,
                      std::vector<char>& on_rim) {
   for (size_t begin = 0, end = 0; begin < half.size(); begin = end) {
     end = begin + 1;
@@ -61,7 +54,7 @@ void joinAcrossEdges(const std::vector<HalfEdge>& half, SurfaceTopology& topolog
     if (users == 1) ++topology.open_edges;
     if (users > 2) ++topology.overused_edges;
     for (size_t k = begin + 1; k < end; ++k) {
-      parent[root(parent, half[k].triangle)] = root(parent, half[begin].triangle);
+      shells.join(half[begin].triangle, half[k].triangle);
     }
     if (users != 2) {
       for (size_t k = begin; k < end; ++k) on_rim[half[k].triangle] = 1;
@@ -127,15 +120,14 @@ SurfaceTopology surfaceTopology(const TriangleMesh& surface) {
   const int n = static_cast<int>(surface.triangles.size());
   SurfaceTopology topology;
   std::vector<std::array<Link, 3>> links(n);
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
+  DisjointSets shells(n);
   std::vector<char> on_rim(n, 0);
-  joinAcrossEdges(sortedHalfEdges(surface), topology, links, parent, on_rim);
+  joinAcrossEdges(sortedHalfEdges(surface), topology, links, shells, on_rim);
   markAgainstNeighbours(links, topology);
   std::vector<int> shell_of_root(n, -1);
   topology.shell_of.resize(n);
   for (int t = 0; t < n; ++t) {
-    int& shell = shell_of_root[root(parent, t)];
+    int& shell = shell_of_root[shells.root(t)];
     if (shell < 0) {
       shell = topology.shells++;
       topology.shell_closed.push_back(1);

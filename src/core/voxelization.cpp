@@ -11,7 +11,6 @@
 #include "deformable_sim/core/cell.h"
 #include "deformable_sim/core/grid_inside.h"
 #include "deformable_sim/core/mesh_pieces.h"
-#include "deformable_sim/core/ray_winding.h"
 
 namespace deformable_sim::core {
 
@@ -75,8 +74,26 @@ void checkCellCount(const Eigen::Array3d& cells, double cell_size, long max_cell
       " cells, more than max_cells (" + std::to_string(max_cells) +
       "); voxelizing them would take " + bytesText(count * kVoxelBytesPerGridCell) +
       " and a body of them up to " + bytesText(count * kBodyBytesPerCell) +
-      ". Choose a larger cell_size or fewer cells, or raise max_cells (a key of the body's mesh "
-      "entry, beside cell_size)");
+      ". Choose a larger cell_size or fewer cells" +
+      (max_cells < kMostGridCells
+           ? ", or raise max_cells (a key of the body's mesh entry, beside cell_size)"
+           : " (max_cells is at its most, what a mesh's int indices number)"));
+}
+
+// Refuses a grid whose cells or nodes int indices cannot number (a mesh's are int), whatever
+// max_cells allows.
+void checkIndexRange(const Eigen::Array3d& cells, double cell_size) {
+  const double most = static_cast<double>(kMostGridCells);
+  const double nodes = (cells + 1.0).prod();
+  if (cells.maxCoeff() <= most && nodes <= most) return;
+  char size[32];
+  std::snprintf(size, sizeof size, "%.6g m", cell_size);
+  throw std::invalid_argument(
+      "voxel grid: cells of " + std::string(size) + " make " + countText(cells.x()) + " x " +
+      countText(cells.y()) + " x " + countText(cells.z()) + " cells with " + countText(nodes) +
+      " nodes, more than a mesh can number (" + std::to_string(kMostGridCells) +
+      " along a side and nodes in all, whatever max_cells says). Choose "
+      "a larger cell_size or fewer cells");
 }
 
 // f(i, j, k) for every (i, j, k) of a grid of `size`, x fastest.
@@ -236,6 +253,7 @@ VoxelGrid voxelGridFor(const TriangleMesh& surface, const VoxelSettings& setting
   const Eigen::Array3d cells =
       (extent.array() / grid.cell_size - kWholeCellTolerance).ceil().max(1.0);
   checkCellCount(cells, grid.cell_size, settings.max_cells);
+  checkIndexRange(cells, grid.cell_size);
   grid.cells = cells.cast<int>();
   grid.origin = box.center() - 0.5 * grid.cell_size * cells.matrix();
   return grid;
@@ -252,10 +270,9 @@ Voxelization voxelize(const TriangleMesh& surface, const VoxelGrid& grid, int le
   result.grid = grid;
   buildMesh(grid, fractions, result);
   if (result.mesh.cells.empty()) throw std::invalid_argument(nothingEnclosed(surface, grid));
-  // An open surface encloses no volume of its own: closed by the caps the inside test uses, it
-  // encloses what the grid should hold.
-  result.enclosed_volume = enclosedVolume(surface) +
-                           (isClosedSurface(surface) ? 0.0 : enclosedVolume(holeCaps(surface)));
+  // An open surface encloses no volume of its own: closed by the caps over its holes (none for a
+  // closed one), it encloses what the grid should hold.
+  result.enclosed_volume = enclosedVolume(surface) + enclosedVolume(inside.caps());
   result.piece_sizes = pieceSizes(result.mesh);
   return result;
 }

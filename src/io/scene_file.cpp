@@ -14,6 +14,7 @@
 
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/default_scene.h"
+#include "deformable_sim/core/voxelization.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/surface_body_reader.h"
 #include "deformable_sim/io/triangle_mesh_reader.h"
@@ -538,9 +539,14 @@ class SceneParser {
     if (node["cells"]) {
       spec.voxels.longest_side_cells = atLeast(node["cells"], key + ".cells", 1);
     }
-    if (node["max_cells"]) {  // a long: a limit past 2^31 cells is a choice too
+    if (node["max_cells"]) {  // up to what a mesh's int indices number
       spec.voxels.max_cells = integer(node["max_cells"], key + ".max_cells");
       if (spec.voxels.max_cells < 1) fail(node["max_cells"], key + ".max_cells", "must be >= 1");
+      if (spec.voxels.max_cells > core::kMostGridCells) {
+        fail(node["max_cells"], key + ".max_cells",
+             "must be <= " + std::to_string(core::kMostGridCells) +
+                 " (a mesh numbers its cells and nodes by int)");
+      }
     }
     spec.pose = pose(node, key);
     return spec;

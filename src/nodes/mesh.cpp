@@ -6,11 +6,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "deformable_sim/core/late_progress_bar.h"
+#include "deformable_sim/core/voxelization.h"
 #include "deformable_sim/io/gmsh_writer.h"
 #include "deformable_sim/io/surface_body_reader.h"
 
@@ -22,8 +23,8 @@ constexpr const char* kUsage =
     "  SURFACE        a closed surface: STL, DAE, OBJ (as the scene key mesh: {surface: ..})\n"
     "  --cell-size H  the grid's cell size, m\n"
     "  --cells N      or N cells along the longest side of the surface's bounding box\n"
-    "  --max-cells M  refuse a grid of more than M cells (default 1000000, the scene key\n"
-    "                 max_cells)\n"
+    "  --max-cells M  refuse a grid of more than M cells (default 1000000, at most\n"
+    "                 2147483647; the scene key max_cells)\n"
     "  --out OUT.msh  write the grid's hexahedra as a Gmsh 2.2 ASCII file\n"
     "  --help, -h     print this usage and exit\n"
     "Prints the cells, nodes, the part of the mass in cells the surface cuts, the volume the\n"
@@ -77,7 +78,8 @@ bool takeOption(const std::string& arg, const std::string& value, Options& optio
     options.settings.longest_side_cells =
         static_cast<int>(countValue(arg, value, kMostCellsAlongASide, error));
   } else if (arg == "--max-cells") {
-    options.settings.max_cells = countValue(arg, value, std::numeric_limits<long>::max(), error);
+    options.settings.max_cells =
+        countValue(arg, value, deformable_sim::core::kMostGridCells, error);
   } else if (arg == "--out") {
     options.out = value;
   } else {
@@ -119,9 +121,15 @@ int run(Options options) {
   core::LateProgressBar bar(stderr, "grid cells voxelized");
   options.settings.progress = [&bar](long done, long total) { bar.update(done, total); };
   std::vector<std::string> warnings;
-  const core::SurfaceBody body =
-      deformable_sim::io::readSurfaceBody(options.surface, options.settings, &warnings);
+  std::optional<core::SurfaceBody> read;
+  try {
+    read.emplace(deformable_sim::io::readSurfaceBody(options.surface, options.settings, &warnings));
+  } catch (...) {
+    bar.finish();  // so that the error starts a line of its own
+    throw;
+  }
   bar.finish();
+  const core::SurfaceBody& body = *read;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
@@ -160,7 +168,7 @@ int main(int argc, char** argv) {
     return run(options);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
-    if (std::string(e.what()).find("max_cells") != std::string::npos) {
+    if (std::string(e.what()).find("raise max_cells") != std::string::npos) {
       std::cerr << "(here --max-cells M raises the limit)\n";
     }
     return 1;

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <random>
 
+#include "deformable_sim/core/uv_sphere.h"
+
 namespace deformable_sim::perf {
 
 namespace {
@@ -19,38 +21,16 @@ double lobedRadius(double polar, double azimuth) {
   return kRadius * (1.0 + lobes);
 }
 
-Eigen::Vector3d direction(double polar, double azimuth) {
-  return {std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth),
-          std::cos(polar)};
-}
-
 }  // namespace
 
 core::TriangleMesh makeScanBlob(int rings, int segments) {
   std::mt19937 random(2018);
   std::uniform_real_distribution<double> rough(-kRoughness, kRoughness);
-  core::TriangleMesh mesh;
-  mesh.vertices.push_back(lobedRadius(M_PI, 0.0) * direction(M_PI, 0.0));  // south pole
-  for (int r = 1; r < rings; ++r) {
-    const double polar = M_PI * (1.0 - static_cast<double>(r) / rings);
-    for (int s = 0; s < segments; ++s) {
-      const double azimuth = 2.0 * M_PI * s / segments;
-      const double radius = lobedRadius(polar, azimuth) * (1.0 + rough(random));
-      mesh.vertices.push_back(radius * direction(polar, azimuth));
-    }
-  }
-  mesh.vertices.push_back(lobedRadius(0.0, 0.0) * direction(0.0, 0.0));  // north pole
-  const int north = static_cast<int>(mesh.vertices.size()) - 1;
-  auto ring = [&](int r, int s) { return 1 + (r - 1) * segments + s % segments; };
-  for (int s = 0; s < segments; ++s) {
-    mesh.triangles.emplace_back(0, ring(1, s + 1), ring(1, s));
-    mesh.triangles.emplace_back(north, ring(rings - 1, s), ring(rings - 1, s + 1));
-    for (int r = 1; r + 1 < rings; ++r) {
-      mesh.triangles.emplace_back(ring(r, s), ring(r, s + 1), ring(r + 1, s + 1));
-      mesh.triangles.emplace_back(ring(r, s), ring(r + 1, s + 1), ring(r + 1, s));
-    }
-  }
-  return mesh;
+  // Rough everywhere but at the poles.
+  return core::uvSphere(rings, segments, [&](double polar, double azimuth) {
+    const bool pole = polar == 0.0 || polar == M_PI;
+    return lobedRadius(polar, azimuth) * (pole ? 1.0 : 1.0 + rough(random));
+  });
 }
 
 }  // namespace deformable_sim::perf

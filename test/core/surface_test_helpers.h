@@ -7,6 +7,7 @@
 #include <string>
 
 #include "deformable_sim/core/triangle_mesh.h"
+#include "deformable_sim/core/uv_sphere.h"
 
 namespace deformable_sim::test {
 
@@ -19,27 +20,9 @@ inline void addQuad(core::TriangleMesh& mesh, int a, int b, int c, int d) {
 /// A UV sphere of radius r about `centre`, its poles merged into single vertices.
 inline core::TriangleMesh sphereSurface(double radius, const Eigen::Vector3d& centre, int rings,
                                         int segments) {
-  core::TriangleMesh mesh;
-  mesh.vertices.push_back(centre - radius * Eigen::Vector3d::UnitZ());  // south pole
-  for (int r = 1; r < rings; ++r) {
-    const double polar = M_PI * (1.0 - static_cast<double>(r) / rings);  // from the south
-    for (int s = 0; s < segments; ++s) {
-      const double azimuth = 2.0 * M_PI * s / segments;
-      mesh.vertices.push_back(centre + radius * Eigen::Vector3d(std::sin(polar) * std::cos(azimuth),
-                                                                std::sin(polar) * std::sin(azimuth),
-                                                                std::cos(polar)));
-    }
-  }
-  mesh.vertices.push_back(centre + radius * Eigen::Vector3d::UnitZ());  // north pole
-  const int north = static_cast<int>(mesh.vertices.size()) - 1;
-  auto ring = [&](int r, int s) { return 1 + (r - 1) * segments + s % segments; };
-  for (int s = 0; s < segments; ++s) {
-    mesh.triangles.emplace_back(0, ring(1, s + 1), ring(1, s));
-    mesh.triangles.emplace_back(north, ring(rings - 1, s), ring(rings - 1, s + 1));
-    for (int r = 1; r + 1 < rings; ++r) {
-      addQuad(mesh, ring(r, s), ring(r, s + 1), ring(r + 1, s + 1), ring(r + 1, s));
-    }
-  }
+  core::TriangleMesh mesh =
+      core::uvSphere(rings, segments, [radius](double, double) { return radius; });
+  for (Eigen::Vector3d& v : mesh.vertices) v += centre;
   return mesh;
 }
 
@@ -59,6 +42,28 @@ inline core::TriangleMesh torusSurface(double major, double minor, int around, i
     for (int j = 0; j < tube; ++j) {
       addQuad(mesh, index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1));
     }
+  }
+  return mesh;
+}
+
+/// A cylinder about z from z = 0 to `length`, as CAD writes one: long slivers down its side and
+/// each end a fan of `segments` triangles about its centre.
+inline core::TriangleMesh cylinderSurface(double radius, double length, int segments) {
+  core::TriangleMesh mesh;
+  for (int s = 0; s < segments; ++s) {
+    const double azimuth = 2.0 * M_PI * s / segments;
+    const Eigen::Vector3d rim(radius * std::cos(azimuth), radius * std::sin(azimuth), 0.0);
+    mesh.vertices.push_back(rim);
+    mesh.vertices.push_back(rim + length * Eigen::Vector3d::UnitZ());
+  }
+  const int bottom = static_cast<int>(mesh.vertices.size()), top = bottom + 1;
+  mesh.vertices.emplace_back(0.0, 0.0, 0.0);
+  mesh.vertices.emplace_back(0.0, 0.0, length);
+  for (int s = 0; s < segments; ++s) {
+    const int low = 2 * s, next = 2 * ((s + 1) % segments);
+    addQuad(mesh, low, next, next + 1, low + 1);
+    mesh.triangles.emplace_back(bottom, next, low);
+    mesh.triangles.emplace_back(top, low + 1, next + 1);
   }
   return mesh;
 }

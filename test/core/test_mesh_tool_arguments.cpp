@@ -46,6 +46,8 @@ TEST(MeshTool, BadNumbersNameTheArgumentAndTheValue) {
   expectUsageError(kCube + " --cells -3", "--cells -3: must be >= 1");
   expectUsageError(kCube + " --cells 2.5", "--cells 2.5: must be a whole number >= 1");
   expectUsageError(kCube + " --cells 4 --max-cells 0", "--max-cells 0: must be >= 1");
+  expectUsageError(kCube + " --cells 4 --max-cells 5000000000",
+                   "--max-cells 5000000000: must be <= 2147483647");
 }
 
 TEST(MeshTool, UnknownMissingAndExtraArguments) {
@@ -71,5 +73,4 @@ TEST(MeshTool, CellsTooLargeOrTooManySaySo) {
   EXPECT_NE(many.output.find("--max-cells M raises the limit"), std::string::npos) << many.output;
   const Result quick = runMesh(kCube + " --cells 4");
   EXPECT_EQ(quick.exit_code, 0) << quick.output;
-  EXPECT_EQ(quick.output.find("voxelized"), std::string::npos) << quick.output;  // no bar
 }

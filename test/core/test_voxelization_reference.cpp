@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "deformable_sim/core/box_occupancy.h"
+#include "deformable_sim/core/grid_inside.h"
+#include "deformable_sim/core/hole_caps.h"
 #include "deformable_sim/core/ray_winding.h"
 #include "deformable_sim/core/voxelization.h"
 #include "deformable_sim/core/winding_number.h"
@@ -138,6 +140,31 @@ TEST(VoxelizationReference, SelfIntersectingAndOpenShapesToo) {
   expectReferenceFractions(open, 0.04, 2, false);
 }
 
+TEST(RayWinding, APointOnAnAlignedFaceIsOnTheSameSideInEveryRow) {
+  // Box a, [0, 1]^3, and box b, [2, 3] x [0, 0.5] x [0, 1]: rows through b walk from a's face at
+  // x = 1 towards -x (fewer triangles that way), rows above it towards +x.
+  dc::TriangleMesh two = dt::boxSurface(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones());
+  const dc::TriangleMesh b = dt::boxSurface(Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(3, 0.5, 1));
+  for (const Eigen::Vector3i& t : b.triangles) two.triangles.push_back(t.array() + 8);
+  two.vertices.insert(two.vertices.end(), b.vertices.begin(), b.vertices.end());
+  dc::VoxelGrid grid;  // no face of the boxes on a face between cells
+  grid.origin = Eigen::Vector3d::Constant(-0.1);
+  grid.cell_size = 0.4;
+  grid.cells = Eigen::Vector3i(8, 3, 3);
+  const dc::RayWinding rays(two, grid);
+  // On a face, a point is where it is moved a little towards -x: inside at a's face x = 1 and
+  // b's x = 3, outside at x = 0 and x = 2.
+  for (double y : {0.05, 0.2, 0.45, 0.6, 0.8, 0.95}) {
+    for (double z : {0.1, 0.45, 0.9}) {
+      EXPECT_EQ(rays.at({1.0, y, z}), 1) << "y " << y << " z " << z;
+      EXPECT_EQ(rays.at({0.0, y, z}), 0) << "y " << y << " z " << z;
+      if (y > 0.5) continue;
+      EXPECT_EQ(rays.at({3.0, y, z}), 1) << "y " << y << " z " << z;
+      EXPECT_EQ(rays.at({2.0, y, z}), 0) << "y " << y << " z " << z;
+    }
+  }
+}
+
 TEST(VoxelizationReference, HoleCapsCloseTheSurface) {
   const dc::TriangleMesh open =
       withoutCap(dt::torusSurface(0.1, 0.04, 24, 12), std::numeric_limits<double>::infinity());
@@ -186,6 +213,41 @@ TEST(VoxelGrid, TooManyCellsAreRefusedSayingHowManyHowMuchMemoryAndWhichKey) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("more than max_cells"), std::string::npos) << e.what();
   }
+}
+
+TEST(VoxelGrid, AGridIntIndicesCannotNumberIsRefusedWhateverMaxCellsSays) {
+  dc::VoxelSettings settings;
+  settings.cell_size = 1.0;
+  settings.max_cells = std::numeric_limits<long>::max();
+  // 3e9 cells along x, one along y and z: an axis past INT_MAX.
+  const dc::TriangleMesh rod = dt::boxSurface(Eigen::Vector3d::Zero(), Eigen::Vector3d(3e9, 1, 1));
+  try {
+    dc::voxelGridFor(rod, settings);
+    FAIL() << "3e9 cells along a side accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("3000000000 x 1 x 1 cells"), std::string::npos) << message;
+    EXPECT_NE(message.find("more than a mesh can number (2147483647"), std::string::npos)
+        << message;
+  }
+  // At the most max_cells may be, the error does not ask to raise it.
+  settings.max_cells = dc::kMostGridCells;
+  try {
+    dc::voxelGridFor(rod, settings);
+    FAIL() << "3e9 cells accepted under max_cells " << settings.max_cells;
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("more than max_cells (2147483647)"), std::string::npos) << message;
+    EXPECT_EQ(message.find("raise max_cells"), std::string::npos) << message;
+  }
+  // 1290^3 cells are fewer than INT_MAX, their 1291^3 nodes are not.
+  const dc::TriangleMesh cube =
+      dt::boxSurface(Eigen::Vector3d::Zero(), Eigen::Vector3d::Constant(1290.0));
+  EXPECT_THROW(dc::voxelGridFor(cube, settings), std::invalid_argument);
+  // One cell fewer along a side: 1289^3 cells, 1290^3 nodes, both numbered.
+  const dc::TriangleMesh smaller =
+      dt::boxSurface(Eigen::Vector3d::Zero(), Eigen::Vector3d::Constant(1289.0));
+  EXPECT_EQ(dc::voxelGridFor(smaller, settings).cells, Eigen::Vector3i::Constant(1289));
 }
 
 TEST(VoxelGrid, ACoordinateThatIsNotFiniteIsNamedNotCountedInCells) {
@@ -260,28 +322,67 @@ TEST(VoxelizationReference, FacesARoundingOutsideTheGridStillCount) {
 }
 
 TEST(VoxelizationReference, ASurfaceFacingEveryWhichWayIsAskedByTheTree) {
-  // Every other triangle of a sphere turned inside out: open edges everywhere, caps that would
-  // cross the whole grid. It is asked as before, by the generalized winding number's tree.
-  dc::TriangleMesh mixed = dt::sphereSurface(0.1, Eigen::Vector3d::Zero(), 8, 16);
+  // A closed ball inside a shell of which every other triangle is turned inside out: open edges
+  // everywhere, caps that would cross the whole grid. It is asked by the generalized winding
+  // number's tree, which finds the ball (the shell's turned halves all but cancel).
+  dc::TriangleMesh mixed = dt::sphereSurface(0.12, Eigen::Vector3d::Zero(), 8, 16);
   for (size_t t = 0; t < mixed.triangles.size(); t += 2) {
     std::swap(mixed.triangles[t][1], mixed.triangles[t][2]);
   }
   EXPECT_GT(dc::holeCaps(mixed).triangles.size(), mixed.triangles.size() / 2);
+  const dc::TriangleMesh ball = dt::sphereSurface(0.1, Eigen::Vector3d::Zero(), 12, 24);
+  const int offset = static_cast<int>(mixed.vertices.size());
+  mixed.vertices.insert(mixed.vertices.end(), ball.vertices.begin(), ball.vertices.end());
+  for (const Eigen::Vector3i& t : ball.triangles) mixed.triangles.push_back(t.array() + offset);
   dc::VoxelSettings settings;
   settings.cell_size = 0.04;
   const dc::VoxelGrid grid = dc::voxelGridFor(mixed, settings);
+  EXPECT_FALSE(dc::GridInside(mixed, grid).countsRays());
   const dc::WindingNumber tree(mixed);
   const std::vector<dc::OctantFractions> reference = bruteForceFractions(
       mixed, grid, 2, false, [&tree](const Eigen::Vector3d& q) { return tree.at(q) >= 0.5; });
-  try {
-    const dc::Voxelization voxels = dc::voxelize(mixed, grid, 2);
-    for (long index = 0; index < grid.numCells(); ++index) {
-      const int cell = voxels.cell_at[index];
-      for (int o = 0; o < 8; ++o) {
-        EXPECT_EQ(cell < 0 ? 0.0 : voxels.mesh.cell_fractions[cell][o], reference[index][o]);
-      }
+  dc::Voxelization voxels;
+  ASSERT_NO_THROW(voxels = dc::voxelize(mixed, grid, 2));
+  EXPECT_GT(voxels.mesh.cells.size(), 8u);
+  for (long index = 0; index < grid.numCells(); ++index) {
+    const int cell = voxels.cell_at[index];
+    for (int o = 0; o < 8; ++o) {
+      EXPECT_EQ(cell < 0 ? 0.0 : voxels.mesh.cell_fractions[cell][o], reference[index][o]);
     }
-  } catch (const std::invalid_argument&) {  // nothing inside: nor in the reference
-    for (const dc::OctantFractions& f : reference) EXPECT_EQ(f, dc::OctantFractions{});
   }
+}
+
+TEST(VoxelizationReference, LargeTrianglesSlantingAcrossAFineGridAreAskedByTheTree) {
+  // A long rod turned towards the diagonal: the box of each sliver down its side fills much of
+  // the grid, so binning them for the rays would store about the triangles times the cells.
+  dc::TriangleMesh rod = dt::cylinderSurface(0.02, 0.3, 64);
+  const Eigen::Quaterniond turn =
+      Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Ones());
+  for (Eigen::Vector3d& v : rod.vertices) v = turn * v;
+  dc::VoxelSettings settings;
+  settings.cell_size = 0.0125;
+  const dc::VoxelGrid grid = dc::voxelGridFor(rod, settings);
+  const double items = static_cast<double>(rod.triangles.size() + grid.numCells());
+  EXPECT_GT(dc::rayBinEntries(rod, grid), 16.0 * items);
+  EXPECT_FALSE(dc::GridInside(rod, grid).countsRays());
+  expectReferenceFractions(rod, settings.cell_size, 2, false);
+  // A closed ball's few entries per cell keep the rays.
+  const dc::TriangleMesh ball = dt::sphereSurface(0.1, Eigen::Vector3d::Zero(), 12, 24);
+  EXPECT_TRUE(dc::GridInside(ball, dc::voxelGridFor(ball, settings)).countsRays());
+}
+
+TEST(VoxelizationReference, ManySmallHolesGiveTheExactWindingNumbersFractions) {
+  // Every ninth triangle of a ball taken away: a couple of hundred holes, each capped.
+  const dc::TriangleMesh ball = dt::sphereSurface(0.1, Eigen::Vector3d::Zero(), 24, 48);
+  dc::TriangleMesh holey = ball;
+  holey.triangles.clear();
+  for (size_t t = 0; t < ball.triangles.size(); ++t) {
+    if (t % 9 != 4) holey.triangles.push_back(ball.triangles[t]);
+  }
+  const dc::TriangleMesh caps = dc::holeCaps(holey);
+  EXPECT_GT(caps.vertices.size(), holey.vertices.size() + 100);  // an apex per hole
+  dc::VoxelSettings settings;
+  settings.cell_size = 0.04;
+  EXPECT_TRUE(dc::GridInside(holey, dc::voxelGridFor(holey, settings)).countsRays());
+  expectReferenceFractions(holey, settings.cell_size, 2, false);
 }

@@ -52,10 +52,15 @@ class SurfaceGridLimits : public ::testing::Test {
 TEST_F(SurfaceGridLimits, MaxCellsIsReadAndChecked) {
   EXPECT_EQ(scene("{surface: ball.stl, cells: 8}").bodies[0].surface_mesh->voxels.max_cells,
             dc::kMaxBoxMeshCells);
-  EXPECT_EQ(scene("{surface: ball.stl, cells: 8, max_cells: 5000000000}")
+  EXPECT_EQ(scene("{surface: ball.stl, cells: 8, max_cells: 2147483647}")
                 .bodies[0]
                 .surface_mesh->voxels.max_cells,
-            5000000000L);
+            2147483647L);
+  // Past what a mesh's int indices number: refused, however much memory there is.
+  EXPECT_NE(sceneError("{surface: ball.stl, cells: 8, max_cells: 5000000000}")
+                .find("bodies[0].mesh.max_cells: must be <= 2147483647"),
+            std::string::npos)
+      << sceneError("{surface: ball.stl, cells: 8, max_cells: 5000000000}");
   EXPECT_NE(sceneError("{surface: ball.stl, cells: 8, max_cells: 0}")
                 .find("bodies[0].mesh.max_cells: must be >= 1"),
             std::string::npos)

@@ -3,12 +3,15 @@
 // +x, -1 for one facing -x). For a surface whose every edge is used as often in each direction
 // (closed, though it may cut through itself) this is the generalized winding number
 // (winding_number.h) at every point off the surface, to the bit. An open surface is closed by
-// caps over its holes (holeCaps): its winding number is that of surface and caps, counted so,
+// caps over its holes (hole_caps.h): its winding number is that of surface and caps, counted so,
 // less that of the caps alone, a few triangles.
 //
 // A ray through an edge or a vertex is moved by (0, e, e^2) for an infinitesimal e (simulation of
 // simplicity, Edelsbrunner and Muecke 1990): each edge's side is computed from its lower-numbered
 // vertex, so the two triangles of an edge see it alike and the ray crosses exactly one of them.
+// A point on a face is likewise moved by an infinitesimal towards -x: a triangle at its very x
+// counts along +x and not along -x, so that it is on the same side whichever way its row is
+// walked.
 // A query walks the grid's row of cells from the point's cell to the nearer end (the one with
 // fewer triangles binned on the way: along -x the crossings count with opposite sign), testing
 // only the triangles binned there (by bounding box: a crossing at x lies in the bin of the cell
@@ -25,16 +28,11 @@
 
 namespace deformable_sim::core {
 
-/// Whether every edge of `surface` is used as often from a to b as from b to a (by vertex
-/// index): the surface is closed, and RayWinding gives its winding number.
-bool isClosedSurface(const TriangleMesh& surface);
-
-/// Triangles that close every hole of `surface`: for each edge used more often one way than the
-/// other, as many triangles from it, reversed, to its hole's apex (the mean of the vertices of the
-/// hole: the open edges that share vertices with it). The vertices are the surface's, then one
-/// apex per hole; the triangles only the caps' (none for a closed surface). The surface's
-/// triangles and these together are closed.
-TriangleMesh holeCaps(const TriangleMesh& surface);
+/// How many (cell, triangle) entries RayWinding(surface, grid) bins: per triangle, the cells of
+/// `grid` its bounding box overlaps. Counted without binning, so that a caller can refuse a
+/// surface of large triangles slanting across a fine grid (their boxes' volumes, summed, can
+/// reach the triangles times the cells) before anything is allocated.
+double rayBinEntries(const TriangleMesh& surface, const VoxelGrid& grid);
 
 class RayWinding {
  public:
@@ -47,8 +45,8 @@ class RayWinding {
   int at(const Eigen::Vector3d& q) const;
 
  private:
-  /// The sum of the signs of the triangles the line {(x, y, z)} meets at x > from (`upwards`) or
-  /// x < from, counted in cells [begin, end) of the row (j, k).
+  /// The sum of the signs of the triangles the line {(x, y, z)} meets at x >= from (`upwards`)
+  /// or x < from, counted in cells [begin, end) of the row (j, k).
   int crossings(double from, double y, double z, int j, int k, int begin, int end,
                 bool upwards) const;
   /// Where the line {(x, y, z)} meets triangle t, when it does: its x, m, and +1 (the triangle

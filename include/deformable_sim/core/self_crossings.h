@@ -9,13 +9,17 @@ namespace deformable_sim::core {
 
 struct SelfCrossings {
   int pairs = 0;         ///< pairs of triangles that cross (core/triangles_cross.h)
-  bool complete = true;  ///< false: the check stopped after its budget of pair tests
+  bool complete = true;  ///< false: the check stopped after its budget of candidates
+  long candidates = 0;   ///< pairs the tree gave and the check examined, tested or not
 };
 
 /// The pairs of triangles of `surface` that cross, except pairs that share a vertex (neighbours
-/// touch by construction, and a fold at a shared corner is left alone). Stops after
-/// `max_tests_per_triangle` times the number of triangles pair tests, so that a soup of
-/// triangles piled in one place cannot take quadratic time.
-SelfCrossings selfCrossings(const TriangleMesh& surface, int max_tests_per_triangle = 64);
+/// touch by construction, and a fold at a shared corner is left alone). Stops after examining
+/// `max_candidates_per_triangle` times the number of triangles candidate pairs (those whose boxes
+/// the tree finds overlapping, each pair seen from both sides, tested or not), so that a soup of
+/// triangles piled in one place, or a fan of many about one vertex (a CAD cylinder's end: each
+/// of its triangles is a candidate of every other), cannot take quadratic time. The default lets
+/// a cylinder's ends of a few hundred triangles each be checked whole.
+SelfCrossings selfCrossings(const TriangleMesh& surface, int max_candidates_per_triangle = 256);
 
 }  // namespace deformable_sim::core

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,10 @@ using VoxelProgress = std::function<void(long done, long total)>;
 constexpr double kVoxelBytesPerGridCell = 300.0;
 constexpr double kBodyBytesPerCell = 12000.0;
 
+/// The most cells, and the most nodes, any grid may have whatever max_cells says: a mesh numbers
+/// its nodes and cells by int.
+constexpr long kMostGridCells = std::numeric_limits<int>::max();
+
 /// How fine the grid is: cell_size if > 0, else longest_side_cells along the longest side of the
 /// surface's bounding box.
 struct VoxelSettings {
@@ -48,8 +53,8 @@ struct VoxelSettings {
   int longest_side_cells = 0;  ///< cells along the bounding box's longest side
   /// Near the surface a cell is cut into 2^levels parts per axis to measure its fraction.
   int levels = 3;
-  /// The most cells the grid may have (scene key max_cells of a surface body's mesh entry): a
-  /// grid of more is refused before anything is allocated.
+  /// The most cells the grid may have (scene key max_cells of a surface body's mesh entry), at
+  /// most kMostGridCells: a grid of more is refused before anything is allocated.
   long max_cells = kMaxBoxMeshCells;
   VoxelProgress progress;  ///< if set, told how far voxelize is
 };
@@ -57,8 +62,9 @@ struct VoxelSettings {
 /// The grid that covers the bounding box of `surface` with whole cells, centred on it (an
 /// extent that is a whole number of cells, within 1e-5 of one, is covered exactly). Throws
 /// std::invalid_argument for settings that give no cell size, a surface with a coordinate that is
-/// not finite, or a grid of more than settings.max_cells cells (saying how many cells and about
-/// how much memory it would take).
+/// not finite, a grid of more than settings.max_cells cells (saying how many cells and about
+/// how much memory it would take), or one that int indices cannot number: more than
+/// kMostGridCells cells along a side or nodes in all, whatever settings.max_cells says.
 VoxelGrid voxelGridFor(const TriangleMesh& surface, const VoxelSettings& settings);
 
 /// Per cell of `grid` (VoxelGrid::cellIndex), the triangles of `surface` that may cross it: every
@@ -71,8 +77,9 @@ struct Voxelization {
   /// cell_fractions: the same nodes and cells as makeBoxMesh for a box that fills the grid.
   Mesh mesh;
   std::vector<int> cell_at;  ///< per grid cell (VoxelGrid::cellIndex), its mesh cell or -1
-  /// Of the surface, by the divergence theorem (with its holes capped as the inside test caps
-  /// them), m^3.
+  /// Of the surface, by the divergence theorem, with its holes closed by holeCaps (hole_caps.h)
+  /// however points are asked, m^3. The ray count asks the surface so closed; the tree that asks
+  /// a surface facing every which way (grid_inside.h) does not, and may hold more or less.
   double enclosed_volume = 0.0;
   /// Cells per separate piece (groups of cells that share no node), largest first.
   std::vector<int> piece_sizes;
