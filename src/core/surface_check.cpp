@@ -5,7 +5,7 @@
 #include <array>
 #include <cmath>
 
-#include "deformable_sim/core/ray_winding.h"
+#include "deformable_sim/core/hole_caps.h"
 #include "deformable_sim/core/surface_topology.h"
 #include "deformable_sim/core/voxelization.h"
 #include "deformable_sim/core/winding_number.h"
