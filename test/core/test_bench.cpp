@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "command_output.h"
 #include "deformable_sim/bench/csv_table.h"
 
 namespace fs = std::filesystem;
@@ -43,10 +44,9 @@ class ShortBench : public ::testing::Test {
     fs::remove(csv);
     const std::string command =
         std::string(DEFORMABLE_SIM_BENCH) + " --short --repeat 1 --out " + csv.string() + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    char buffer[512];
-    while (fgets(buffer, sizeof buffer, pipe)) output_ += buffer;
-    exit_code_ = WEXITSTATUS(pclose(pipe));
+    const deformable_sim::test::CommandOutput run = deformable_sim::test::runCommand(command);
+    output_ = run.output;
+    exit_code_ = run.exit_code;
     if (exit_code_ != 0) return;
     table_ = bench::readCsvTable(csv.string());
     auto at = [&](const std::vector<std::string>& row, const char* name) {

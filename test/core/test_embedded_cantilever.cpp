@@ -11,6 +11,7 @@
 #include <fstream>
 #include <regex>
 
+#include "command_output.h"
 #include "deformable_sim/bench/reference_results.h"
 #include "deformable_sim/core/voxelization.h"
 #include "deformable_sim/io/mesh_reader.h"
@@ -47,19 +48,8 @@ std::string sceneFor(int cells) {
          std::to_string(-kTipLoad) + "]}]\n";
 }
 
-struct CommandResult {
-  int exit_code = -1;
-  std::string output;
-};
-
-CommandResult runCommand(const std::string& command) {
-  CommandResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  char buffer[512];
-  while (fgets(buffer, sizeof buffer, pipe)) result.output += buffer;
-  result.exit_code = WEXITSTATUS(pclose(pipe));
-  return result;
-}
+using CommandResult = deformable_sim::test::CommandOutput;
+using deformable_sim::test::runCommand;
 
 // The number after `label` in the tool's output, or NaN.
 double printed(const std::string& output, const std::string& label) {

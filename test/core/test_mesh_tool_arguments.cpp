@@ -6,20 +6,15 @@
 #include <cstdio>
 #include <string>
 
+#include "command_output.h"
+
 namespace {
 
-struct Result {
-  std::string output;  // stdout and stderr
-  int exit_code = -1;
-};
+using Result = deformable_sim::test::CommandOutput;
 
 Result runMesh(const std::string& arguments) {
-  Result result;
-  FILE* pipe = popen((std::string(DEFORMABLE_SIM_MESH) + " " + arguments + " 2>&1").c_str(), "r");
-  char buffer[512];
-  while (fgets(buffer, sizeof buffer, pipe)) result.output += buffer;
-  result.exit_code = WEXITSTATUS(pclose(pipe));
-  return result;
+  return deformable_sim::test::runCommand(std::string(DEFORMABLE_SIM_MESH) + " " + arguments +
+                                          " 2>&1");
 }
 
 const std::string kCube =

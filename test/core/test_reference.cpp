@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "command_output.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -24,19 +26,15 @@ const std::string kReference = DEFORMABLE_SIM_REFERENCE_DIR;
 
 using NodeVectors = std::map<long, Eigen::Vector3d>;
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;
+struct RunResult : deformable_sim::test::CommandOutput {
   NodeVectors displacement;
 };
 
 // Runs a shell command; its exit code and what it wrote to its stdout.
 RunResult runCommand(const std::string& command) {
   RunResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  char buffer[512];
-  while (fgets(buffer, sizeof buffer, pipe)) result.output += buffer;
-  result.exit_code = WEXITSTATUS(pclose(pipe));
+  static_cast<deformable_sim::test::CommandOutput&>(result) =
+      deformable_sim::test::runCommand(command);
   return result;
 }
 

@@ -7,22 +7,16 @@
 #include <regex>
 #include <string>
 
+#include "command_output.h"
+
 namespace {
 
-struct Result {
-  std::string output;  // stdout and stderr
-  int exit_code = -1;
-};
+using Result = deformable_sim::test::CommandOutput;
 
 Result runScene(const std::string& scene, const std::string& arguments) {
   const std::string command = std::string(DEFORMABLE_SIM_RUN) + " " + DEFORMABLE_SIM_SOURCE_DIR +
                               "/config/scenes/" + scene + " " + arguments + " 2>&1";
-  Result result;
-  FILE* pipe = popen(command.c_str(), "r");
-  char buffer[512];
-  while (fgets(buffer, sizeof buffer, pipe)) result.output += buffer;
-  result.exit_code = WEXITSTATUS(pclose(pipe));
-  return result;
+  return deformable_sim::test::runCommand(command);
 }
 
 // The mean ms per step of the summary line "N steps in T ms: M ms per step (mean)", or -1.
