@@ -61,20 +61,24 @@ std::string bytesText(double bytes) {
   return text;
 }
 
+// "voxel grid: cells of 0.01 m make 10 x 20 x 30": the start of a refusal.
+std::string gridText(const Eigen::Array3d& cells, double cell_size) {
+  char size[32];
+  std::snprintf(size, sizeof size, "%.6g m", cell_size);
+  return "voxel grid: cells of " + std::string(size) + " make " + countText(cells.x()) + " x " +
+         countText(cells.y()) + " x " + countText(cells.z());
+}
+
 // Refuses a grid of more than max_cells cells before anything is allocated, saying how many it
 // would take and what that costs.
 void checkCellCount(const Eigen::Array3d& cells, double cell_size, long max_cells) {
   const double count = cells.prod();
   if (count <= static_cast<double>(max_cells)) return;
-  char size[32];
-  std::snprintf(size, sizeof size, "%.6g m", cell_size);
   throw std::invalid_argument(
-      "voxel grid: cells of " + std::string(size) + " make " + countText(cells.x()) + " x " +
-      countText(cells.y()) + " x " + countText(cells.z()) + " = " + countText(count) +
-      " cells, more than max_cells (" + std::to_string(max_cells) +
-      "); voxelizing them would take " + bytesText(count * kVoxelBytesPerGridCell) +
-      " and a body of them up to " + bytesText(count * kBodyBytesPerCell) +
-      ". Choose a larger cell_size or fewer cells" +
+      gridText(cells, cell_size) + " = " + countText(count) + " cells, more than max_cells (" +
+      std::to_string(max_cells) + "); voxelizing them would take " +
+      bytesText(count * kVoxelBytesPerGridCell) + " and a body of them up to " +
+      bytesText(count * kBodyBytesPerCell) + ". Choose a larger cell_size or fewer cells" +
       (max_cells < kMostGridCells
            ? ", or raise max_cells (a key of the body's mesh entry, beside cell_size)"
            : " (max_cells is at its most, what a mesh's int indices number)"));
@@ -86,14 +90,11 @@ void checkIndexRange(const Eigen::Array3d& cells, double cell_size) {
   const double most = static_cast<double>(kMostGridCells);
   const double nodes = (cells + 1.0).prod();
   if (cells.maxCoeff() <= most && nodes <= most) return;
-  char size[32];
-  std::snprintf(size, sizeof size, "%.6g m", cell_size);
-  throw std::invalid_argument(
-      "voxel grid: cells of " + std::string(size) + " make " + countText(cells.x()) + " x " +
-      countText(cells.y()) + " x " + countText(cells.z()) + " cells with " + countText(nodes) +
-      " nodes, more than a mesh can number (" + std::to_string(kMostGridCells) +
-      " along a side and nodes in all, whatever max_cells says). Choose "
-      "a larger cell_size or fewer cells");
+  throw std::invalid_argument(gridText(cells, cell_size) + " cells with " + countText(nodes) +
+                              " nodes, more than a mesh can number (" +
+                              std::to_string(kMostGridCells) +
+                              " along a side and nodes in all, whatever max_cells says). Choose "
+                              "a larger cell_size or fewer cells");
 }
 
 // f(i, j, k) for every (i, j, k) of a grid of `size`, x fastest.
