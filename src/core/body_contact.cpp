@@ -199,10 +199,16 @@ void BodyContact::separate(std::vector<StepReport>& reports) {
     }
     if (settled) break;
   }
+  // What is left after this round; the last round's is what the step ends with.
+  const size_t n = surfaces_.size();
+  for (ContactLoad& load : loads_) load.depth = 0.0;
   for (const Contact& c : contacts_) {
     const double left = std::max(0.0, -gap(c));
     for (int b : {c.node_body, c.triangle_body}) {
       reports[b].body_penetration = std::max(reports[b].body_penetration, left);
+    }
+    for (size_t pair : {c.node_body * n + c.triangle_body, c.triangle_body * n + c.node_body}) {
+      loads_[pair].depth = std::max(loads_[pair].depth, left);
     }
   }
 }

@@ -520,14 +520,19 @@ void ContactState::putBack(Body& body, int p, const Eigen::Vector3d& x,
   addForce(k, on_surface, body.nodalMasses()[i] * change / dt);
 }
 
-int ContactState::countTouching(const Body& body) {
+int ContactState::countTouching(const Body& body, const std::vector<PlacedShape>& obstacles) {
   int touching = 0;
-  for (ContactLoad& c : contacts_) c.points = 0, c.centre.setZero();
+  for (ContactLoad& c : contacts_) c.points = 0, c.centre.setZero(), c.depth = 0.0;
   for (size_t p = 0; p < points_.size(); ++p) {
     if (obstacle_[p] < 0) continue;
     ++touching;
-    ++contacts_[obstacle_[p]].points;
-    contacts_[obstacle_[p]].centre += weighted(body.positions(), static_cast<int>(p));
+    ContactLoad& load = contacts_[obstacle_[p]];
+    const Eigen::Vector3d x = weighted(body.positions(), static_cast<int>(p));
+    ++load.points;
+    load.centre += x;
+    const PlacedShape& obstacle = obstacles[obstacle_[p]];
+    const double inside = -signedDistance(obstacle.shape, obstacle.pose.inverse() * x);
+    load.depth = std::max(load.depth, inside);
   }
   for (ContactLoad& c : contacts_) {
     if (c.points > 0) c.centre /= c.points;
@@ -573,7 +578,7 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
     settleEmbedded(body, obstacle, static_cast<int>(k));
   }
   recordNodePlaces(body, obstacles);
-  const int touching = countTouching(body);
+  const int touching = countTouching(body, obstacles);
   int obstacles_touched = 0;
   for (const ContactLoad& c : contacts_) obstacles_touched += c.points > 0;
   // Touching several, or held otherwise, a body is not moved whole: what slides on them slides

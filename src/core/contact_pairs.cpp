@@ -14,6 +14,7 @@ void merge(ContactLoad& total, const ContactLoad& part) {
   total.force += part.force;
   total.torque += part.torque;
   total.penetration = std::max(total.penetration, part.penetration);
+  total.depth = std::max(total.depth, part.depth);
 }
 
 bool touched(const ContactLoad& load) { return load.points > 0 || !load.force.isZero(0.0); }

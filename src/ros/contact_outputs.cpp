@@ -18,6 +18,7 @@ ContactPair toMessage(const core::ContactPair& pair, const core::Simulation& sim
   m.torque = toVector3(pair.load.torque - pair.load.centre.cross(pair.load.force));
   m.centre = toPoint(pair.load.centre);
   m.points = static_cast<uint32_t>(pair.load.points);
+  m.depth = pair.load.depth;
   m.penetration = pair.load.penetration;
   return m;
 }

@@ -252,6 +252,34 @@ TEST(BodyContact, BodiesThrownAtEachOtherStopEachOtherWithMomentumKeptForEveryMo
   }
 }
 
+// Cubes meeting at 10 m/s go 5 cm into each other within a step; the pair's `penetration` says
+// so, its `depth` says what the step left: within the tolerance, the same for either side.
+TEST(BodyContact, APairsDepthIsWhatTheStepLeftItsPenetrationWhatItCorrected) {
+  dc::SceneSpec spec = bodyContactScene();
+  spec.bodies.push_back(
+      cube("left", {-0.35, -0.1, -0.1}, 0.2, dc::BodyModel::kFiniteElement, kThrownCells));
+  spec.bodies.push_back(
+      cube("right", {0.15, -0.07, -0.13}, 0.2, dc::BodyModel::kFiniteElement, kThrownCells));
+  for (dc::BodySpec& body : spec.bodies) body.material.youngs_modulus = kThrownStiffness;
+  dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+  setVelocity(sim.bodies()[0], {5.0, 0.0, 0.0});
+  setVelocity(sim.bodies()[1], {-5.0, 0.0, 0.0});
+  const double tolerance = sim.bodyContact()->tolerance(0, 1);
+  std::vector<dc::StepReport> reports;
+  double deepest_found = 0.0;
+  for (int s = 0; s < 30; ++s) {
+    sim.step(reports);
+    const dc::ContactLoad& left = sim.bodyContact()->load(0, 1);
+    const dc::ContactLoad& right = sim.bodyContact()->load(1, 0);
+    if (left.points == 0) continue;
+    deepest_found = std::max(deepest_found, left.penetration);
+    EXPECT_LE(left.depth, tolerance) << "step " << s;
+    EXPECT_EQ(left.depth, right.depth) << "step " << s;
+    EXPECT_LE(left.depth, reports[0].body_penetration) << "step " << s;
+  }
+  EXPECT_GT(deepest_found, 5.0 * tolerance);
+}
+
 TEST(BodyContact, ASoftCubeSquashedToAFifthOfItsHeightBetweenTwoPlatesComesBack) {
   dc::SceneSpec spec = bodyContactScene();
   spec.solver.method = dc::SolverSettings::Method::kConjugateGradient;

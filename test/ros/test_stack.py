@@ -74,7 +74,9 @@ class Stack(unittest.TestCase):
             self.assertAlmostEqual(mean_z(('cube%d' % k, 'cube%d' % (k - 1))), carried,
                                    delta=0.02 * carried, msg='cube%d' % k)
             self.assertAlmostEqual(below.force.z, -above.force.z, delta=1e-9 * carried)
-            self.assertLessEqual(above.penetration, TOLERANCE)
+            self.assertLessEqual(above.depth, TOLERANCE)
+            self.assertEqual(below.depth, above.depth)
+            self.assertGreaterEqual(above.penetration, 0.0)
             self.assertGreater(above.points, 0)
         for pair in self.contacts[STEPS].pairs:  # nothing else touches: no cube reaches two below
             self.assertIn((pair.body, pair.other),

@@ -42,8 +42,11 @@ struct ContactLoad {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< mean of the touching points, m
   int points =
       0;  ///< points (nodes, or vertices of an embedded surface) touching it after the step
-  /// the farthest a point was put back out of it (by the face it came in through), m
+  /// The deepest a point was found inside it before the step's correction put it back (by the
+  /// face it came in through), m: how far the bodies moved into one another within the step.
   double penetration = 0.0;
+  /// The deepest a touching point is still inside it after the correction, m: what one sees.
+  double depth = 0.0;
 };
 
 /// Which nodes touch which obstacle, from step to step. Sized once per body and per number of
@@ -158,7 +161,7 @@ class ContactState {
   /// Releases the nodes held in the step and gives the body its kick.
   void letGo(Body& body);
   /// Counts the touching points, per obstacle too, with their centre; returns them all.
-  int countTouching(const Body& body);
+  int countTouching(const Body& body, const std::vector<PlacedShape>& obstacles);
   /// After a step on its plane: point p lets go, sticks, or slides on against friction.
   void judgeOnPlane(const Body& body, const std::vector<PlacedShape>& obstacles,
                     const std::vector<Eigen::Isometry3d>& start_poses,
