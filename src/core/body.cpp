@@ -12,14 +12,13 @@
 
 #include "deformable_sim/core/cell.h"
 #include "deformable_sim/core/rotation.h"
+#include "deformable_sim/core/wall_clock.h"
 
 namespace deformable_sim::core {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+using Clock = WallClock;
 
 /// A plane spring's stiffness in units of its node's diagonal in the step matrix: stiff enough to
 /// keep the node within a thousandth of its way off the plane, soft enough for block-Jacobi.
@@ -515,8 +514,8 @@ int Body::updateStiffness(StepTimes* times) {
     matrix_changed_ = true;
   }
   if (times) {
-    times->rotations += seconds(rotated - start);
-    times->assembly += seconds(Clock::now() - rotated);
+    times->rotations += std::chrono::duration<double>(rotated - start).count();
+    times->assembly += secondsSince(rotated);
   }
   return inverted_elements_;
 }
@@ -619,7 +618,7 @@ StepReport Body::step(double dt) {
   }
   preparePlaneHolds(dt);
   advance(dt, 0, report);
-  report.times.total = seconds(Clock::now() - start);
+  report.times.total = secondsSince(start);
   return report;
 }
 
@@ -668,7 +667,7 @@ void Body::advance(double h, int depth, StepReport& report) {
     matrix_changed_ = true;
     settling.product_is_current = false;
     settling.solve_start_energy = elasticity_->elasticEnergy(x_);
-    report.times.assembly += seconds(Clock::now() - assembly_start);
+    report.times.assembly += secondsSince(assembly_start);
   }
   finishAdvance(a, h, settling.product_is_current);
 }
@@ -679,7 +678,7 @@ void Body::solveVelocity(const SystemMatrix& a, double h, bool step_start, StepR
   const double load_impulse = setStepRightHandSide(h);
   const auto solve_start = Clock::now();
   const SolveReport solved = solve(a, rhs_, next_, step_start, load_impulse);
-  report.times.solve += seconds(Clock::now() - solve_start);
+  report.times.solve += secondsSince(solve_start);
   report.times.preconditioner += solved.preconditioner_seconds;
   report.solve.iterations += solved.iterations;
   report.solve.relative_residual = solved.relative_residual;
@@ -691,7 +690,7 @@ CorotationalElasticity::RotationUpdate Body::rotateToEnd(double h, StepReport& r
   end_positions_ = x_ + h * next_;
   const auto rotations_start = Clock::now();
   const CorotationalElasticity::RotationUpdate end = elasticity_->updateRotations(end_positions_);
-  report.times.rotations += seconds(Clock::now() - rotations_start);
+  report.times.rotations += secondsSince(rotations_start);
   end_inverted_elements_ = end.inverted;
   elastic_energy_ = end.energy;
   report.largest_rotation_change = end.largest_change;
@@ -856,7 +855,7 @@ StepReport Body::stepReduced(double dt) {
                  nodeConstraints(), effects_.reactions ? &reaction_ : nullptr);
   nodes_stale_ = true;
   report.solves = 1;
-  report.times.total = report.times.solve = seconds(Clock::now() - start);
+  report.times.total = report.times.solve = secondsSince(start);
   return report;
 }
 

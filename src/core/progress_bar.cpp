@@ -4,15 +4,13 @@
 
 #include <algorithm>
 
+#include "deformable_sim/core/wall_clock.h"
+
 namespace deformable_sim::core {
 
 namespace {
 
 constexpr int kWidth = 30;
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 }  // namespace
 

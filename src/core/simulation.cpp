@@ -8,6 +8,7 @@
 #include "deformable_sim/core/parallel_for.h"
 #include "deformable_sim/core/selection.h"
 #include "deformable_sim/core/spec_error.h"
+#include "deformable_sim/core/wall_clock.h"
 #include "deformable_sim/core/wrench.h"
 
 namespace deformable_sim::core {
@@ -211,15 +212,14 @@ void Simulation::step(std::vector<StepReport>& reports) {
               [&](int b) { stepBody(b, reports[b]); });
   // Between bodies while their nodes on obstacles are still held, so that what presses on a body
   // goes through it to the obstacles under it; then the obstacles have the last say.
-  if (body_contact_) {
-    body_contact_->resolve(bodies_, dt_, reports);
-    ++body_contact_steps_;
-  }
+  if (body_contact_) resolveBetweenBodies(reports);
   parallelFor(threads, 0, static_cast<int>(bodies_.size()), [&](int b) {
     if (!contact_states_[b]) return;
+    const WallClock::time_point start = WallClock::now();
     contact_states_[b]->release(bodies_[b], obstacles_, obstacle_starts_, *contact_, dt_);
     reports[b].contacts =
         contact_states_[b]->project(bodies_[b], obstacles_, obstacle_starts_, *contact_, dt_);
+    reports[b].times.obstacle_contact += secondsSince(start);
   });
   for (size_t b = 0; b < bodies_.size(); ++b) {
     if (contact_states_[b]) ++contact_steps_;
@@ -234,11 +234,27 @@ void Simulation::step(std::vector<StepReport>& reports) {
   time_ += dt_;
 }
 
+void Simulation::resolveBetweenBodies(std::vector<StepReport>& reports) {
+  const WallClock::time_point start = WallClock::now();
+  body_contact_->resolve(bodies_, dt_, reports);
+  ++body_contact_steps_;
+  const double spent = secondsSince(start);
+  const int n = static_cast<int>(bodies_.size());
+  int taking_part = 0;
+  for (int b = 0; b < n; ++b) taking_part += body_contact_->takesPart(b);
+  for (int b = 0; b < n; ++b) {
+    if (body_contact_->takesPart(b)) reports[b].times.body_contact = spent / taking_part;
+  }
+}
+
 void Simulation::stepBody(int b, StepReport& report) {
   Body& body = bodies_[b];
   body.rememberState();
+  const WallClock::time_point start = WallClock::now();
   if (contact_states_[b]) contact_states_[b]->hold(body, obstacles_, dt_);
+  const double holding = secondsSince(start);
   report = body.step(dt_);
+  report.times.obstacle_contact = holding;
   // Constraint forces too: a tiny dt (1e-320 s) divides a finite solve into infinite forces.
   if (!std::isfinite(report.solve.relative_residual) || !body.stateIsFinite() ||
       !body.reactionForces().allFinite()) {

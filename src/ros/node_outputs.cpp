@@ -129,6 +129,9 @@ void NodeOutputs::publishStats(const core::Session& session, const TickStatus& s
     s.body = body.name();
     s.model = core::modelName(body.model());
     s.effects = core::activeEffects(sim, index);
+    s.elasticity_time = report.times.rotations + report.times.assembly;
+    s.solve_time = report.times.solve;
+    s.contact_time = report.times.obstacle_contact + report.times.body_contact;
     s.solver_iterations = static_cast<uint32_t>(report.solve.iterations);
     s.solves = static_cast<uint32_t>(report.solves);
     s.splits = static_cast<uint32_t>(report.splits);
@@ -153,7 +156,7 @@ void NodeOutputs::publishStats(const core::Session& session, const TickStatus& s
 void NodeOutputs::diagnose(diagnostic_updater::DiagnosticStatusWrapper& out) {
   if (!session_) return;
   const core::Simulation& sim = session_->simulation();
-  const core::Health health = core::health(*status_, sim, params_.substeps);
+  const core::Health health = core::health(*status_);
   using Status = diagnostic_msgs::DiagnosticStatus;
   out.summary(health.ok ? Status::OK : Status::WARN, health.summary);
   out.add("step", sim.stepCount());

@@ -107,6 +107,7 @@ void SimNode::publishScene() {
 
 void SimNode::onTimer(const ros::TimerEvent&) {
   const ros::Time now = ros::Time::now();
+  bool stepped = false;
   for (const std::string& source : wrench_timeouts_.expire(now.toSec())) {
     apply(core::ClearWrenchCommand{source});
   }
@@ -115,13 +116,26 @@ void SimNode::onTimer(const ros::TimerEvent&) {
     ROS_INFO_THROTTLE(2.0, "waiting for tf to place the obstacle links before stepping");
   } else if (!status_.paused) {
     advance(params_.substeps);
+    stepped = true;
   }
   real_time_factor_.sample(now.toSec(), sim().time());
   status_.real_time_factor = real_time_factor_.value();
+  watchRealTime(stepped);
   status_.recent_recovery =
       !last_recovery_.isZero() && (ros::WallTime::now() - last_recovery_).toSec() < 2.0;
   publishState(now);
   outputs_->publishPeriodic(*session_, status_, refusals_, now);
+}
+
+void SimNode::watchRealTime(bool stepped) {
+  const double wall = ros::WallTime::now().toSec();
+  slow_ticks_.sample(wall, status_.real_time_factor, stepped);
+  status_.slow = slow_ticks_.slow();
+  if (status_.slow) {
+    ROS_WARN_THROTTLE(10.0, "slower than real time for %.0f s (%.2g x real time): %s",
+                      slow_ticks_.slowFor(wall), status_.real_time_factor,
+                      core::costliestPart(status_).c_str());
+  }
 }
 
 void SimNode::advance(int steps) {
@@ -132,6 +146,7 @@ void SimNode::advance(int steps) {
     session_->step(status_.reports);
   }
   status_.step_time_s = (ros::WallTime::now() - start).toSec();
+  status_.steps = steps;
   long recoveries = 0;  // the watchdog's (core::Simulation::step): counted, warned, diagnosed
   for (size_t b = 0; b < sim().bodies().size(); ++b) {
     recoveries += sim().recoveries(static_cast<int>(b));
@@ -232,6 +247,7 @@ bool SimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& 
   wrench_timeouts_.clear();
   grasps_->clear();
   real_time_factor_.clear();
+  slow_ticks_.clear();
   status_.reports.assign(sim().bodies().size(), core::StepReport{});
   obstacles_->forget();
   tuning_->reapply();  // keep what was tuned live

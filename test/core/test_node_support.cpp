@@ -15,6 +15,7 @@
 #include "deformable_sim/core/pose_interpolation.h"
 #include "deformable_sim/core/real_time_factor.h"
 #include "deformable_sim/core/refusal_log.h"
+#include "deformable_sim/core/slow_tick_watch.h"
 #include "deformable_sim/core/tick_status.h"
 #include "deformable_sim/core/wrench_timeouts.h"
 #include "deformable_sim/io/scene_file.h"
@@ -213,27 +214,69 @@ TEST(RefusalLog, CountsEveryRefusalAndWarnsOnceASecondPerTopic) {
 }
 
 TEST(Health, WarnsOfRecoveriesMissedTolerancesAndLostRealTimeInThatOrder) {
-  Session session = defaultSession();
   TickStatus status;
   status.reports.resize(1);
   status.reports[0].solve.converged = true;
   status.reports[0].inverted_elements = 3;
-  status.real_time_factor = 0.5;  // but only 0 steps so far: starting up, not slow
-  Health h = health(status, session.simulation(), 1);
+  status.real_time_factor = 0.03;  // but not for long yet
+  status.steps = 1;
+  status.step_time_s = 0.29;
+  status.reports[0].times.body_contact = 0.28;
+  Health h = health(status);
   EXPECT_TRUE(h.ok);
   EXPECT_EQ(h.summary, "running");
   EXPECT_EQ(h.inverted_elements, 3);
-  for (int k = 0; k < 11; ++k) session.step(status.reports);
-  EXPECT_EQ(health(status, session.simulation(), 1).summary, "cannot keep real time");
-  EXPECT_TRUE(health(status, session.simulation(), 2).ok);  // 11 steps: 5 ticks of 2 substeps
+  status.slow = true;
+  EXPECT_EQ(
+      health(status).summary,
+      "cannot keep real time (0.03 x real time): contact between bodies 280 of 290 ms a step");
   status.paused = true;
-  EXPECT_EQ(health(status, session.simulation(), 1).summary, "paused");
+  EXPECT_EQ(health(status).summary, "paused");
   status.reports[0].solve.converged = false;
-  EXPECT_EQ(health(status, session.simulation(), 1).summary, "a solve did not reach its tolerance");
+  EXPECT_EQ(health(status).summary, "a solve did not reach its tolerance");
   status.recent_recovery = true;
-  h = health(status, session.simulation(), 1);
+  h = health(status);
   EXPECT_FALSE(h.ok);
   EXPECT_EQ(h.summary, "the watchdog undid a step that left a non-finite value");
+}
+
+// The costliest part of the last step, summed over the bodies, against the tick's time a step.
+TEST(Health, NamesTheCostliestPartOfAStep) {
+  TickStatus status;
+  status.steps = 10;
+  status.step_time_s = 0.05;  // 5 ms a step
+  status.reports.resize(2);
+  status.reports[0].times.rotations = 0.0005;
+  status.reports[0].times.assembly = 0.0010;
+  status.reports[1].times.assembly = 0.0010;
+  status.reports[0].times.solve = 0.0020;
+  status.reports[1].times.obstacle_contact = 0.0001;
+  EXPECT_EQ(costliestPart(status), "elasticity 2.5 of 5 ms a step");
+  status.reports[1].times.solve = 0.0010;
+  EXPECT_EQ(costliestPart(status), "linear solves 3 of 5 ms a step");
+  status.reports[0].times.obstacle_contact = 0.0040;
+  EXPECT_EQ(costliestPart(status), "contact with obstacles 4.1 of 5 ms a step");
+}
+
+// Slow for 5 s of wall time in a row, not at one slow tick; a pause or a fast tick starts over.
+TEST(SlowTickWatch, IsSlowAfterFiveSecondsUnderNineTenthsOfRealTime) {
+  SlowTickWatch watch;
+  for (double t = 0.0; t < 4.95; t += 0.1) {
+    watch.sample(t, 0.5, true);
+    ASSERT_FALSE(watch.slow()) << t;
+  }
+  watch.sample(5.0, 0.5, true);
+  EXPECT_TRUE(watch.slow());
+  EXPECT_DOUBLE_EQ(watch.slowFor(5.0), 5.0);
+  watch.sample(5.1, 0.95, true);  // caught up
+  EXPECT_FALSE(watch.slow());
+  EXPECT_EQ(watch.slowFor(5.1), 0.0);
+  for (double t = 6.0; t < 12.5; t += 1.0) watch.sample(t, 0.5, t != 9.0);
+  EXPECT_FALSE(watch.slow());  // the pause at 9 s started the count again
+  watch.sample(15.0, 0.5, true);
+  EXPECT_TRUE(watch.slow());
+  watch.sample(14.0, 0.5, true);  // the clock went back
+  EXPECT_FALSE(watch.slow());
 }
 
 TEST(LiveSettings, ChangeOnlyWhatDiffers) {

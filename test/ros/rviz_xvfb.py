@@ -73,5 +73,11 @@ def is_reaction_cyan(r, g, b):
     return g > 90 and b > 90 and r < 0.45 * min(g, b)
 
 
+def is_table_wood(r, g, b):
+    """The demo table's wood (0.6, 0.45, 0.3): the top in shade, the sides lit; not the grey
+    background, the gripper or the strain colours."""
+    return r > 30 and 0.65 * r < g < 0.85 * r and 0.4 * r < b < 0.62 * r
+
+
 def is_gripper_grey(r, g, b):
     return min(r, g, b) > 120 and max(r, g, b) - min(r, g, b) < 20

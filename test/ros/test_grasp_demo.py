@@ -17,7 +17,7 @@ from geometry_msgs.msg import WrenchStamped
 
 from deformable_sim.msg import BodyState
 from rviz_xvfb import (RvizUnderXvfb, count_pixels, is_gripper_grey, is_reaction_cyan,
-                       is_strain_coloured)
+                       is_strain_coloured, is_table_wood)
 
 CONFIG = os.path.join(rospkg.RosPack().get_path('deformable_sim'), 'config', 'grasp_demo.rviz')
 MASS = 150.0 * 0.06 ** 3  # kg: the block of config/scenes/grasp_demo.yaml
@@ -67,8 +67,10 @@ class GraspDemo(unittest.TestCase):
                 candidate = self.rviz.screenshot()
                 if candidate:
                     pixels = tuple(count_pixels(candidate, f) for f in
-                                   (is_strain_coloured, is_reaction_cyan, is_gripper_grey))
-                    if min(pixels) > 50:
+                                   (is_strain_coloured, is_reaction_cyan, is_gripper_grey,
+                                    is_table_wood))
+                    # The table under it covers a third of the view (about 150 000 pixels).
+                    if min(pixels[:3]) > 50 and pixels[3] > 20000:
                         shot, shot_pixels = candidate, pixels
                         keep = rospy.get_param('~screenshot', '')
                         if keep:
@@ -95,8 +97,9 @@ class GraspDemo(unittest.TestCase):
             self.assertTrue(all(np.all(np.isfinite(f)) for _, f in forces[side]))
         lifted = [f for side in forces for _, f in forces[side]]
         self.assertGreater(max(f[2] for f in lifted), 0.25 * MASS * 9.81)
-        self.assertIsNotNone(shot, 'rviz never showed block, reaction wrench and gripper together')
-        rospy.loginfo('screenshot pixels (block, wrench, gripper): %s', shot_pixels)
+        self.assertIsNotNone(shot, 'rviz never showed block, reaction wrench, gripper and table '
+                             'together')
+        rospy.loginfo('screenshot pixels (block, wrench, gripper, table): %s', shot_pixels)
 
 
 if __name__ == '__main__':

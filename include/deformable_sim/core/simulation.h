@@ -82,6 +82,8 @@ class Simulation {
   void followObstacles();
   /// Body b's own step, undone by the watchdog when it leaves a non-finite value.
   void stepBody(int b, StepReport& report);
+  /// Contact between bodies after their steps; its time shared among those taking part.
+  void resolveBetweenBodies(std::vector<StepReport>& reports);
   /// The watchdog: body b back where it started the step, at rest.
   void undoStep(int b, StepReport& report);
 

@@ -23,6 +23,7 @@
 #include "deformable_sim/core/real_time_factor.h"
 #include "deformable_sim/core/refusal_log.h"
 #include "deformable_sim/core/session.h"
+#include "deformable_sim/core/slow_tick_watch.h"
 #include "deformable_sim/core/wrench_timeouts.h"
 #include "deformable_sim/ros/contact_outputs.h"
 #include "deformable_sim/ros/frame_resolver.h"
@@ -53,6 +54,8 @@ class SimNode {
   core::Simulation& sim() { return session_->simulation(); }
   void onTimer(const ros::TimerEvent& event);
   void advance(int steps);
+  /// Warns (throttled) while the node has been slower than real time for a while.
+  void watchRealTime(bool stepped);
   /// Hands tf's poses of the obstacles to the simulation; false while tf has not placed them.
   void publishState(const ros::Time& now);
   void refuse(const std::string& topic, const std::string& reason);
@@ -73,6 +76,7 @@ class SimNode {
   core::MeshCatalogue obstacle_meshes_;  ///< meshes recorded in ~scene and ~applied, by id
   TickStatus status_;
   core::RealTimeFactor real_time_factor_;
+  core::SlowTickWatch slow_ticks_;
   core::WrenchTimeouts wrench_timeouts_;
   core::RefusalLog refusals_;
   ros::WallTime last_recovery_;  ///< zero: never
