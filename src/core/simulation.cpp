@@ -8,7 +8,6 @@
 #include "deformable_sim/core/parallel_for.h"
 #include "deformable_sim/core/selection.h"
 #include "deformable_sim/core/spec_error.h"
-#include "deformable_sim/core/wall_clock.h"
 #include "deformable_sim/core/wrench.h"
 
 namespace deformable_sim::core {
@@ -112,28 +111,9 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
                                   std::to_string(meshes.size()) + " meshes");
   }
   bodies_.reserve(spec.bodies.size());
-  if (contact_) contact_states_.reserve(spec.bodies.size());
   wrench_radii_.reserve(spec.bodies.size());
   for (size_t b = 0; b < spec.bodies.size(); ++b) addBody(spec, b, std::move(meshes[b]));
-  addBodyContact();
-}
-
-void Simulation::addBodyContact() {
-  if (!contact_ || (!contact_->bodies && !contact_->self)) return;
-  std::vector<bool> with_bodies, with_self;
-  for (const Body& body : bodies_) {
-    with_bodies.push_back(body.effects().contact_bodies.value_or(contact_->bodies) &&
-                          contact_->bodies);
-    // Only finite elements bend far enough to meet themselves.
-    with_self.push_back(body.effects().contact_self.value_or(contact_->self) && contact_->self &&
-                        body.model() == BodyModel::kFiniteElement);
-  }
-  const auto count = [](const std::vector<bool>& v) {
-    return std::count(v.begin(), v.end(), true);
-  };
-  if (count(with_bodies) < 2 && count(with_self) == 0) return;
-  if (count(with_bodies) < 2) with_bodies.assign(with_bodies.size(), false);
-  body_contact_.emplace(bodies_, *contact_, with_bodies, with_self);
+  if (contact_) contact_step_.emplace(bodies_, *contact_);
 }
 
 void Simulation::addBody(const SceneSpec& spec, size_t b, Mesh mesh) {
@@ -151,11 +131,6 @@ void Simulation::addBody(const SceneSpec& spec, size_t b, Mesh mesh) {
   }
   wrench_radii_.push_back(body_spec.wrench_radius);
   recoveries_.push_back(0);
-  // Contact acts on the nodes of finite-element bodies; rigid and pseudo-rigid ones pass through.
-  contact_states_.emplace_back();
-  if (contact_ && body.model() == BodyModel::kFiniteElement) {
-    contact_states_.back().emplace(body.numNodes());
-  }
   addGroups(body, body_spec, key);
   for (size_t k = 0; k < body_spec.fixed.size(); ++k) {
     body.fixNodes(
@@ -191,68 +166,32 @@ void Simulation::setDt(double dt) {
   dt_ = dt;
 }
 
-void Simulation::followObstacles() {
-  if (obstacle_starts_.size() == obstacles_.size()) return;
-  // Other obstacles than before (a scene's first step, a robot's links appearing in tf): they
-  // start where they are, and no node touches them yet.
-  obstacle_starts_.resize(obstacles_.size());  // allocates only when their number changes
-  for (size_t k = 0; k < obstacles_.size(); ++k) obstacle_starts_[k] = obstacles_[k].pose;
-  for (std::optional<ContactState>& state : contact_states_) {
-    if (state) state->forget();
-  }
-}
-
 void Simulation::step(std::vector<StepReport>& reports) {
   reports.resize(bodies_.size());
-  if (contact_) followObstacles();
+  if (contact_step_) contact_step_->begin(obstacles_);
   // Bodies step apart until they meet: on the solver's threads, a body each (a body's own loops
   // then run on one thread; its result is the same bits on any number).
   const int threads = bodies_.size() > 1 ? threads_ : 1;
   parallelFor(threads, 0, static_cast<int>(bodies_.size()),
               [&](int b) { stepBody(b, reports[b]); });
-  // Between bodies while their nodes on obstacles are still held, so that what presses on a body
-  // goes through it to the obstacles under it; then the obstacles have the last say.
-  if (body_contact_) resolveBetweenBodies(reports);
-  parallelFor(threads, 0, static_cast<int>(bodies_.size()), [&](int b) {
-    if (!contact_states_[b]) return;
-    const WallClock::time_point start = WallClock::now();
-    contact_states_[b]->release(bodies_[b], obstacles_, obstacle_starts_, *contact_, dt_);
-    reports[b].contacts =
-        contact_states_[b]->project(bodies_[b], obstacles_, obstacle_starts_, *contact_, dt_);
-    reports[b].times.obstacle_contact += secondsSince(start);
-  });
-  for (size_t b = 0; b < bodies_.size(); ++b) {
-    if (contact_states_[b]) ++contact_steps_;
-    // Contact too may be handed what no step can take (a grasp thrown 1e300 m away).
-    if ((contact_states_[b] || body_contact_) && !bodies_[b].stateIsFinite()) {
-      undoStep(static_cast<int>(b), reports[b]);
-      if (contact_states_[b]) contact_states_[b]->forget();
+  if (contact_step_) {
+    contact_step_->finish(bodies_, obstacles_, dt_, threads, reports);
+    for (size_t b = 0; b < bodies_.size(); ++b) {
+      // Contact too may be handed what no step can take (a grasp thrown 1e300 m away).
+      if (contact_step_->actsOn(static_cast<int>(b)) && !bodies_[b].stateIsFinite()) {
+        undoStep(static_cast<int>(b), reports[b]);
+        contact_step_->forget(static_cast<int>(b));
+      }
     }
   }
-  for (size_t k = 0; k < obstacle_starts_.size(); ++k) obstacle_starts_[k] = obstacles_[k].pose;
   ++step_count_;
   time_ += dt_;
-}
-
-void Simulation::resolveBetweenBodies(std::vector<StepReport>& reports) {
-  const WallClock::time_point start = WallClock::now();
-  body_contact_->resolve(bodies_, dt_, reports);
-  ++body_contact_steps_;
-  const double spent = secondsSince(start);
-  const int n = static_cast<int>(bodies_.size());
-  int taking_part = 0;
-  for (int b = 0; b < n; ++b) taking_part += body_contact_->takesPart(b);
-  for (int b = 0; b < n; ++b) {
-    if (body_contact_->takesPart(b)) reports[b].times.body_contact = spent / taking_part;
-  }
 }
 
 void Simulation::stepBody(int b, StepReport& report) {
   Body& body = bodies_[b];
   body.rememberState();
-  const WallClock::time_point start = WallClock::now();
-  if (contact_states_[b]) contact_states_[b]->hold(body, obstacles_, dt_);
-  const double holding = secondsSince(start);
+  const double holding = contact_step_ ? contact_step_->hold(b, body, obstacles_, dt_) : 0.0;
   report = body.step(dt_);
   report.times.obstacle_contact = holding;
   // Constraint forces too: a tiny dt (1e-320 s) divides a finite solve into infinite forces.
@@ -270,7 +209,7 @@ void Simulation::undoStep(int b, StepReport& report) {
 
 const std::vector<ContactLoad>& Simulation::obstacleContacts(int b) const {
   static const std::vector<ContactLoad> none;
-  return contact_states_[b] ? contact_states_[b]->obstacleContacts() : none;
+  return contact_step_ ? contact_step_->obstacleContacts(b) : none;
 }
 
 std::vector<StaticReport> Simulation::solveStatic() {
@@ -300,8 +239,7 @@ void Simulation::setEmbeddedSurface(int b, EmbeddedSurface surface) {
   embedded_surfaces_.resize(bodies_.size());
   surface.update(bodies_[b].positions());
   // Obstacles and bodies touch the user's surface, not the grid's boundary up to a cell outside.
-  if (contact_states_[b]) contact_states_[b]->embed(surface);
-  if (body_contact_) body_contact_->embed(b, surface, bodies_[b]);
+  if (contact_step_) contact_step_->embed(b, surface, bodies_[b]);
   embedded_surfaces_[b] = std::move(surface);
 }
 

@@ -65,6 +65,7 @@
 #include "deformable_sim/bench/heap_usage.h"
 #include "deformable_sim/core/contact.h"
 #include "deformable_sim/core/loads.h"
+#include "deformable_sim/core/simulation.h"
 #include "deformable_sim/core/strain.h"
 #include "deformable_sim/core/surface_check.h"
 #include "deformable_sim/core/voxelization.h"
@@ -247,40 +248,47 @@ void addTipLoad(core::Body& body) {
   core::addTotalForce(tip, {0.0, 0.0, -50.0}, body.externalForces());
 }
 
-void EffectCost(benchmark::State& state) {
-  const auto effect = static_cast<Effect>(state.range(0));
+// The loaded cantilever as a one-body simulation with only `effect`; with contact, over a floor
+// it sags onto.
+core::Simulation effectScene(Effect effect) {
   const perf::Cantilever c = loadedCantilever(1, effect);
-  core::Body body("cantilever", c.mesh, c.material, c.effects, c.solver);
-  body.fixNodes(c.clamped);
-  addTipLoad(body);
-  const bool contact = effect == kContact || effect == kAllEffects;
-  core::ContactState contacts(body.numNodes());
-  const core::ContactSettings friction;
-  core::PlacedShape floor;
-  floor.shape.size = Eigen::Vector3d(4.0, 4.0, 0.2);
-  floor.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.21);  // top at z = -0.11
-  const std::vector<core::PlacedShape> obstacles = {floor};
-  const std::vector<Eigen::Isometry3d> starts = {floor.pose};
+  core::SceneSpec spec;
+  spec.dt = c.dt;
+  spec.effects = c.effects;
+  spec.solver = c.solver;
+  if (effect == kContact || effect == kAllEffects) {
+    spec.contact = core::ContactSettings{};
+    core::PlacedShape floor;
+    floor.name = "floor";
+    floor.shape.size = Eigen::Vector3d(4.0, 4.0, 0.2);
+    floor.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.21);  // top at z = -0.11
+    spec.obstacles = {floor};
+  }
+  core::BodySpec body;
+  body.name = "cantilever";
+  body.material = c.material;
+  spec.bodies = {body};
+  core::Simulation sim(spec, {c.mesh});
+  sim.bodies()[0].fixNodes(c.clamped);
+  addTipLoad(sim.bodies()[0]);
+  return sim;
+}
+
+void EffectCost(benchmark::State& state) {
+  core::Simulation sim = effectScene(static_cast<Effect>(state.range(0)));
+  const core::Body& body = sim.bodies()[0];
+  std::vector<core::StepReport> reports;
   std::vector<double> strain;
   double iterations = 0.0;
-  int touching = 0;
   const auto step = [&] {
-    if (contact) {
-      body.rememberState();  // where project() looks back to, as Simulation::step
-      contacts.hold(body, obstacles, c.dt);
-    }
-    const core::StepReport report = body.step(c.dt);
-    if (contact) {
-      contacts.release(body, obstacles, starts, friction, c.dt);
-      touching = contacts.project(body, obstacles, starts, friction, c.dt);
-    }
+    sim.step(reports);
     if (body.effects().stress_colouring) core::nodalStrain(body, strain);
-    return report;
+    return reports[0];
   };
   for (int k = 0; k < kWarmUpSteps; ++k) step();
   for (auto _ : state) iterations += step().solve.iterations;
   state.counters["cg_iterations"] = iterations / static_cast<double>(state.iterations());
-  state.counters["contacts"] = touching;
+  state.counters["contacts"] = reports[0].contacts;
 }
 
 void ModelStep(benchmark::State& state) {

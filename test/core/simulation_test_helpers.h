@@ -48,6 +48,22 @@ inline core::NodeSelection boxSelection(const Eigen::Vector3d& min, const Eigen:
   return selection;
 }
 
+/// A scene with no body yet: gravity, warping, contact (friction 0.5; between bodies if
+/// `bodies`) and a 1 m x 1 m floor 10 cm thick whose top is at z = 0, 0.01 s steps.
+inline core::SceneSpec sceneOnAFloor(bool bodies) {
+  core::SceneSpec spec;
+  spec.dt = 0.01;
+  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
+  spec.effects.warping = true;
+  spec.contact = core::ContactSettings{0.5, bodies, false};
+  core::PlacedShape floor;
+  floor.name = "floor";
+  floor.shape.size = Eigen::Vector3d(1, 1, 0.1);
+  floor.pose.translation() = Eigen::Vector3d(0, 0, -0.05);
+  spec.obstacles.push_back(floor);
+  return spec;
+}
+
 /// The built-in default scene, runnable.
 inline core::Simulation defaultSimulation() { return boxMeshSimulation(core::defaultScene()); }
 

@@ -247,15 +247,7 @@ TEST(Allocations, NoneInContactWithAMeshObstacle) {
 // Bodies made from a surface touch the floor and each other with their surfaces' vertices, each
 // on its cell's nodes: holding, releasing and putting them back allocates nothing either.
 TEST(Allocations, NoneInContactOfSurfacesWithAnObstacleAndEachOther) {
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-  spec.effects.warping = true;
-  spec.contact = dc::ContactSettings{0.5, true, false};
-  dc::PlacedShape floor;
-  floor.shape.size = Eigen::Vector3d(1, 1, 0.1);
-  floor.pose.translation() = Eigen::Vector3d(0, 0, -0.05);
-  spec.obstacles.push_back(floor);
+  dc::SceneSpec spec = deformable_sim::test::sceneOnAFloor(true);
   dc::VoxelSettings settings;
   settings.longest_side_cells = 6;
   std::vector<dc::SurfaceBody> made;

@@ -8,6 +8,7 @@
 
 #include "deformable_sim/core/body.h"
 #include "deformable_sim/core/body_contact.h"
+#include "deformable_sim/core/contact_step.h"
 #include "deformable_sim/core/embedded_surface.h"
 #include "deformable_sim/core/mesh.h"
 #include "deformable_sim/core/scene.h"
@@ -55,11 +56,13 @@ class Simulation {
   /// body contact does not act on).
   const std::vector<ContactLoad>& obstacleContacts(int b) const;
   /// Body steps that ran the contact effect (zero without it): its counter, as Body's.
-  long contactSteps() const { return contact_steps_; }
+  long contactSteps() const { return contact_step_ ? contact_step_->obstacleSteps() : 0; }
   /// Steps that ran contact between bodies or of a body with itself (zero unless the scene turns
   /// it on for some body), and that contact, or null.
-  long bodyContactSteps() const { return body_contact_steps_; }
-  const BodyContact* bodyContact() const { return body_contact_ ? &*body_contact_ : nullptr; }
+  long bodyContactSteps() const { return contact_step_ ? contact_step_->bodySteps() : 0; }
+  const BodyContact* bodyContact() const {
+    return contact_step_ ? contact_step_->bodyContact() : nullptr;
+  }
 
   /// Quasi-static equilibrium of every body.
   std::vector<StaticReport> solveStatic();
@@ -76,14 +79,8 @@ class Simulation {
  private:
   /// Builds bodies()[b] from spec.bodies[b] and its mesh: groups, fixed nodes and loads.
   void addBody(const SceneSpec& spec, size_t b, Mesh mesh);
-  /// Contact between bodies and with themselves, if the scene and some body ask for it.
-  void addBodyContact();
-  /// Before a step: when the obstacles are others than in the last step, forgets their contacts.
-  void followObstacles();
   /// Body b's own step, undone by the watchdog when it leaves a non-finite value.
   void stepBody(int b, StepReport& report);
-  /// Contact between bodies after their steps; its time shared among those taking part.
-  void resolveBetweenBodies(std::vector<StepReport>& reports);
   /// The watchdog: body b back where it started the step, at rest.
   void undoStep(int b, StepReport& report);
 
@@ -95,14 +92,9 @@ class Simulation {
   std::vector<Body> bodies_;
   std::vector<double> wrench_radii_;
   std::optional<ContactSettings> contact_;
-  /// Per body, with the contact effect and a finite-element model.
-  std::vector<std::optional<ContactState>> contact_states_;
-  long contact_steps_ = 0;
-  std::optional<BodyContact> body_contact_;  ///< only when some body touches others or itself
-  long body_contact_steps_ = 0;
+  std::optional<ContactStep> contact_step_;  ///< with the contact effect
   std::vector<PlacedShape> obstacles_;
-  std::vector<Eigen::Isometry3d> obstacle_starts_;  ///< their poses at the step's start
-  std::vector<long> recoveries_;                    ///< per body: steps the watchdog undid
+  std::vector<long> recoveries_;  ///< per body: steps the watchdog undid
   /// Per body (sized by setEmbeddedSurface only), its embedded surface if it has one.
   std::vector<std::optional<EmbeddedSurface>> embedded_surfaces_;
 };
