@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "deformable_sim/core/cell.h"
+#include "deformable_sim/core/parameter_limits.h"
 #include "deformable_sim/core/rotation.h"
 #include "deformable_sim/core/wall_clock.h"
 
@@ -195,19 +196,12 @@ void Body::setMaterial(const LinearElasticMaterial& material) {
 }
 
 void Body::setDamping(const std::optional<RayleighDamping>& damping) {
-  if (damping && !(damping->mass >= 0.0 && damping->stiffness >= 0.0 &&
-                   std::isfinite(damping->mass) && std::isfinite(damping->stiffness))) {
-    throw std::invalid_argument("body '" + name_ +
-                                "': damping coefficients must be finite and >= 0");
-  }
+  if (damping) checkDamping(damping->mass, damping->stiffness, "body '" + name_ + "': ");
   effects_.damping = damping;
 }
 
 void Body::setSolverLimits(double tolerance, int max_iterations) {
-  if (!(tolerance > 0.0) || !std::isfinite(tolerance) || max_iterations < 1) {
-    throw std::invalid_argument("body '" + name_ +
-                                "': solver tolerance must be finite and > 0, max_iterations >= 1");
-  }
+  checkSolverLimits(tolerance, max_iterations, "body '" + name_ + "': ");
   solver_settings_.tolerance = tolerance;
   solver_settings_.max_iterations = max_iterations;
 }

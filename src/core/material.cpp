@@ -1,29 +1,13 @@
 #include "deformable_sim/core/material.h"
 
-#include <cmath>
-#include <sstream>
-#include <stdexcept>
+#include "deformable_sim/core/parameter_limits.h"
 
 namespace deformable_sim::core {
 
-namespace {
-[[noreturn]] void reject(const char* what, double value, const char* range) {
-  std::ostringstream message;
-  message << "material: " << what << " is " << value << ", it must be " << range;
-  throw std::invalid_argument(message.str());
-}
-}  // namespace
-
 void validate(const LinearElasticMaterial& m) {
-  if (!(m.youngs_modulus > 0.0) || !std::isfinite(m.youngs_modulus)) {
-    reject("youngs_modulus", m.youngs_modulus, "finite and > 0 Pa");
-  }
-  if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5)) {
-    reject("poisson_ratio", m.poisson_ratio, "in (-1, 0.5)");
-  }
-  if (!(m.density > 0.0) || !std::isfinite(m.density)) {
-    reject("density", m.density, "finite and > 0 kg/m^3");
-  }
+  checkParameter(Parameter::kYoungsModulus, m.youngs_modulus, "material: ");
+  checkParameter(Parameter::kPoissonRatio, m.poisson_ratio, "material: ");
+  checkParameter(Parameter::kDensity, m.density, "material: ");
 }
 
 double lameLambda(const LinearElasticMaterial& m) {

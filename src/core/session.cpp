@@ -3,6 +3,8 @@
 #include <cmath>
 #include <type_traits>
 
+#include "deformable_sim/core/parameter_limits.h"
+
 namespace deformable_sim::core {
 
 Session::Session(SceneSpec spec, std::vector<Mesh> meshes, CommandLimits limits,
@@ -87,18 +89,11 @@ int Session::applyTune(const TuneCommand& command) {
   // Check everything first, so that a refused command changes nothing.
   try {
     if (command.material) validate(*command.material);
+    if (command.damping) checkDamping(command.damping->mass, command.damping->stiffness);
+    checkSolverLimits(command.solver_tolerance.value_or(1.0),
+                      command.solver_max_iterations.value_or(1));
   } catch (const std::invalid_argument& e) {
     throw CommandError(std::string("tune: ") + e.what());
-  }
-  if (command.damping &&
-      !(command.damping->mass >= 0.0 && command.damping->stiffness >= 0.0 &&
-        std::isfinite(command.damping->mass) && std::isfinite(command.damping->stiffness))) {
-    throw CommandError("tune: damping coefficients must be finite and >= 0");
-  }
-  const double tolerance = command.solver_tolerance.value_or(1.0);
-  if (!(tolerance > 0.0) || !std::isfinite(tolerance) ||
-      command.solver_max_iterations.value_or(1) < 1) {
-    throw CommandError("tune: solver tolerance must be finite and > 0, max_iterations >= 1");
   }
   if (command.dt && !(*command.dt > 0.0 && std::isfinite(*command.dt))) {
     throw CommandError("tune: dt must be finite and > 0 s");

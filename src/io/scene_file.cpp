@@ -14,6 +14,7 @@
 
 #include "deformable_sim/core/box_mesh.h"
 #include "deformable_sim/core/default_scene.h"
+#include "deformable_sim/core/parameter_limits.h"
 #include "deformable_sim/core/voxelization.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/surface_body_reader.h"
@@ -110,6 +111,20 @@ class SceneParser {
   double nonNegative(const YAML::Node& node, const std::string& key) const {
     const double value = number(node, key);
     if (!(value >= 0.0)) fail(node, key, "must be >= 0");
+    return value;
+  }
+
+  // Fails unless `value` is one that `parameter` may be (core/parameter_limits.h).
+  void within(const YAML::Node& node, const std::string& key, core::Parameter parameter,
+              double value) const {
+    const std::string problem = core::parameterProblem(parameter, value);
+    if (!problem.empty()) fail(node, key, problem);
+  }
+
+  double parameter(const YAML::Node& node, const std::string& key,
+                   core::Parameter parameter) const {
+    const double value = number(node, key);
+    within(node, key, parameter, value);
     return value;
   }
 
@@ -270,9 +285,13 @@ class SceneParser {
         expectMap(damping, key + ".damping");
         checkKeys(damping, key + ".damping", {"mass", "stiffness"});
         core::RayleighDamping rayleigh;
-        if (damping["mass"]) rayleigh.mass = nonNegative(damping["mass"], key + ".damping.mass");
+        if (damping["mass"]) {
+          rayleigh.mass =
+              parameter(damping["mass"], key + ".damping.mass", core::Parameter::kDampingMass);
+        }
         if (damping["stiffness"]) {
-          rayleigh.stiffness = nonNegative(damping["stiffness"], key + ".damping.stiffness");
+          rayleigh.stiffness = parameter(damping["stiffness"], key + ".damping.stiffness",
+                                         core::Parameter::kDampingStiffness);
         }
         effects.damping = rayleigh;
       }
@@ -343,9 +362,15 @@ class SceneParser {
       solver.max_rotation_updates =
           atLeast(node["max_rotation_updates"], "solver.max_rotation_updates", 0);
     }
-    if (node["tolerance"]) solver.tolerance = positive(node["tolerance"], "solver.tolerance");
+    if (node["tolerance"]) {
+      solver.tolerance =
+          parameter(node["tolerance"], "solver.tolerance", core::Parameter::kSolverTolerance);
+    }
     if (node["max_iterations"]) {
-      solver.max_iterations = atLeast(node["max_iterations"], "solver.max_iterations", 1);
+      const long iterations = integer(node["max_iterations"], "solver.max_iterations");
+      within(node["max_iterations"], "solver.max_iterations", core::Parameter::kSolverMaxIterations,
+             static_cast<double>(iterations));
+      solver.max_iterations = static_cast<int>(iterations);
     }
   }
 
@@ -556,16 +581,12 @@ class SceneParser {
                      core::LinearElasticMaterial& material) const {
     expectMap(node, key);
     checkKeys(node, key, {"youngs_modulus", "poisson_ratio", "density"});
-    if (node["youngs_modulus"]) {
-      material.youngs_modulus = positive(node["youngs_modulus"], key + ".youngs_modulus");
-    }
-    if (node["poisson_ratio"]) {
-      material.poisson_ratio = number(node["poisson_ratio"], key + ".poisson_ratio");
-      if (!(material.poisson_ratio > -1.0 && material.poisson_ratio < 0.5)) {
-        fail(node["poisson_ratio"], key + ".poisson_ratio", "must be in (-1, 0.5)");
-      }
-    }
-    if (node["density"]) material.density = positive(node["density"], key + ".density");
+    const auto read = [&](const char* name, core::Parameter p, double& value) {
+      if (node[name]) value = parameter(node[name], key + "." + name, p);
+    };
+    read("youngs_modulus", core::Parameter::kYoungsModulus, material.youngs_modulus);
+    read("poisson_ratio", core::Parameter::kPoissonRatio, material.poisson_ratio);
+    read("density", core::Parameter::kDensity, material.density);
   }
 
   // A map with exactly one of nodes / box / sphere (other keys are checked by the caller).

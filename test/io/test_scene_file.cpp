@@ -6,6 +6,7 @@
 #include <string>
 
 #include "deformable_sim/core/default_scene.h"
+#include "deformable_sim/core/parameter_limits.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/scene_file.h"
 
@@ -126,6 +127,36 @@ TEST(SceneFile, ChoosesThePreconditionerAndItsRefresh) {
                       "test.yaml", ".");
   EXPECT_EQ(projected.solver.warm_start, dc::SolverSettings::WarmStart::kProjected);
   EXPECT_EQ(projected.solver.previous_solutions, 8);
+}
+
+// The scene reader refuses a material, damping or solver value with the words the bodies and live
+// tuning use (core/parameter_limits.h), at the value's line.
+TEST(SceneFile, ParametersAreRefusedAsTheBodiesAndLiveTuningRefuseThem) {
+  using dc::Parameter;
+  const struct {
+    const char* from;
+    const char* to;
+    Parameter parameter;
+    double value;
+    const char* where;
+  } cases[] = {
+      {"youngs_modulus: 2.0e6", "youngs_modulus: -5", Parameter::kYoungsModulus, -5.0,
+       "test.yaml:10: bodies[0].material.youngs_modulus: "},
+      {"density: 800.0", "density: 0", Parameter::kDensity, 0.0,
+       "test.yaml:10: bodies[0].material.density: "},
+      {"mass: 0.5", "mass: -1", Parameter::kDampingMass, -1.0,
+       "test.yaml:3: effects.damping.mass: "},
+      {"stiffness: 0.01", "stiffness: -0.01", Parameter::kDampingStiffness, -0.01,
+       "test.yaml:3: effects.damping.stiffness: "},
+      {"tolerance: 1.0e-8", "tolerance: 0", Parameter::kSolverTolerance, 0.0,
+       "test.yaml:4: solver.tolerance: "},
+      {"max_iterations: 50", "max_iterations: 0", Parameter::kSolverMaxIterations, 0.0,
+       "test.yaml:4: solver.max_iterations: "},
+  };
+  for (const auto& c : cases) {
+    EXPECT_EQ(errorOf(replaced(kScene, c.from, c.to)),
+              c.where + dc::parameterProblem(c.parameter, c.value));
+  }
 }
 
 TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
