@@ -1,0 +1,38 @@
+// A session recorded as a lab would: a scene with a material the test keeps secret is driven by
+// commands, the node's ~applied log is written to a bag, and what the lab measures goes beside
+// it — tracked frames on /tf (120 Hz, with noise) and a force/torque sensor on a WrenchStamped
+// topic (1 kHz, with noise). No ~scene and no ~state: the fit starts from a scene file.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "deformable_sim/core/session.h"
+
+namespace deformable_sim::test {
+
+struct TrackedNode {
+  std::string frame;
+  Eigen::Vector3d at;  ///< rest position of a mesh node, m
+};
+
+struct LabRecording {
+  std::string scene_yaml;  ///< with the secret values
+  double duration = 2.0;   ///< s
+  /// Commands by the step they are applied after.
+  std::multimap<long, core::SessionCommand> commands;
+  std::vector<TrackedNode> markers;
+  double marker_rate = 120.0, marker_noise = 0.001;  ///< Hz, m (1 sigma)
+  std::string sensor_topic = "/ft_sensor/wrench";    ///< empty: no sensor
+  std::string sensor_body = "beam";                  ///< its fixed nodes' reaction
+  double sensor_rate = 1000.0, force_noise = 0.02, torque_noise = 0.002;  ///< Hz, N, N m
+  unsigned seed = 7;
+};
+
+/// Runs the scene and writes the bag at `path` (stamps from 1000 s).
+void recordLab(const LabRecording& lab, const std::string& path);
+
+}  // namespace deformable_sim::test
