@@ -18,7 +18,8 @@ namespace {
 namespace rl = deformable_sim::ros_layer;
 
 constexpr const char* kUsage =
-    "usage: deformable_sim_identify FIT.yaml [--threads N] [--plot FILE.png] [--help]\n"
+    "usage: deformable_sim_identify FIT.yaml [--threads N] [--plot FILE.png]\n"
+    "                               [--max-iterations N] [--help]\n"
     "  Fits scene parameters to a recorded session: the bag's ~applied log is re-simulated with\n"
     "  trial values (bounded least squares, Ceres Solver) against the tracked frames (/tf) and\n"
     "  force/torque sensors (WrenchStamped) measured in the same session. FIT.yaml:\n"
@@ -36,6 +37,7 @@ constexpr const char* kUsage =
     "  ± STD' per parameter (1 sigma) and the RMS residual of each observation before and after.\n"
     "  --threads N        re-simulations at once (default: the machine's cores)\n"
     "  --plot FILE.png    draw measured against simulated (first guess, fit) over time\n"
+    "  --max-iterations N of the solver (default 30): a fit that needs more did not converge\n"
     "  -h, --help         this text\n"
     "  Exit status: 0 fitted, 1 input refused, 2 bad arguments, 3 the fit did not converge.\n";
 
@@ -45,11 +47,14 @@ bool parseArguments(int argc, char** argv, rl::IdentifyOptions& options, bool& h
     const char* next = i + 1 < argc ? argv[i + 1] : nullptr;
     if (arg == "-h" || arg == "--help") {
       help = true;
-    } else if (arg == "--threads" && next) {
+    } else if ((arg == "--threads" || arg == "--max-iterations") && next) {
       char* end = nullptr;
-      const long threads = std::strtol(next, &end, 10);
-      if (end == next || *end != '\0' || threads < 1 || threads > 64) return false;
-      options.threads = static_cast<int>(threads);
+      const long n = std::strtol(next, &end, 10);
+      if (end == next || *end != '\0' || n < 1 || n > (arg == "--threads" ? 64 : 10000)) {
+        std::cerr << "deformable_sim_identify: bad value of " << arg << ": '" << next << "'\n";
+        return false;
+      }
+      (arg == "--threads" ? options.threads : options.max_iterations) = static_cast<int>(n);
       ++i;
     } else if (arg == "--plot" && next) {
       options.plot = next;

@@ -59,7 +59,12 @@ ros::Time sessionStart(const RecordedSession& session, double dt) {
 }
 
 identify::RecordedExperiment loadExperiment(const identify::FitSpec& fit, std::string& yaml) {
-  RecordedSession session = readRecordedSession(fit.bag, "", fit.scene.empty());
+  RecordedSession session;
+  try {
+    session = readRecordedSession(fit.bag, "", fit.scene.empty());
+  } catch (const ReplayError& e) {
+    throw FitSpecError(std::string("bag: ") + e.what());
+  }
   if (session.applied_stamps.empty()) {
     throw FitSpecError("bag: " + fit.bag + " has no ~applied message: record the node's ~applied");
   }
@@ -131,6 +136,7 @@ IdentifyResult identify(const IdentifyOptions& options, std::FILE* out) {
   };
   identify::FitOptions fit_options;
   fit_options.threads = options.threads;
+  fit_options.max_iterations = options.max_iterations;
   fit_options.progress = [&](int iteration, double cost, const std::vector<double>& values) {
     std::fprintf(out, "iteration %d: cost %.6g%s\n", iteration, cost,
                  valuesText(fit.fit, values).c_str());

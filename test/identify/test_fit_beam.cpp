@@ -1,8 +1,10 @@
 // The fit on a session of its own: a cantilever with a secret stiffness and damping, pushed at its
 // tip and dragged by its clamp, measured by two tracked markers (1 mm noise) and a force/torque
 // sensor at the clamp (0.02 N noise); E and stiffness damping fitted from a guess 2.5x off.
+#include <geometry_msgs/WrenchStamped.h>
 #include <gtest/gtest.h>
 #include <ros/time.h>
+#include <rosbag/bag.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -65,44 +67,77 @@ LabRecording beamLab() {
   return lab;
 }
 
-struct FitFiles {
-  fs::path directory;
-  fs::path fit_file;
-};
+const std::string kFit =
+    "bag: experiment.bag\n"
+    "scene: guess.yaml\n"
+    "fit:\n"
+    "  - {body: beam, parameter: youngs_modulus, min: 1.0e4, max: 1.0e8}\n"
+    "  - {body: beam, parameter: damping_stiffness, min: 0.0, max: 0.05}\n"
+    "observations:\n"
+    "  - {tf: marker_tip, body: beam, at: [0.3, 0.02, 0.02], sigma: 0.001}\n"
+    "  - {tf: marker_mid, body: beam, at: [0.15, 0.02, 0.04], sigma: 0.001}\n"
+    "  - {wrench: /ft_sensor/wrench, reactions: beam, sigma: [0.02, 0.002]}\n"
+    "out: fitted.yaml\n";
 
-FitFiles writeBeamFit(const std::string& name) {
-  FitFiles files{fs::temp_directory_path() / ("deformable_sim_identify_" + name), {}};
-  fs::create_directories(files.directory);
-  recordLab(beamLab(), (files.directory / "experiment.bag").string());
-  std::ofstream(files.directory / "guess.yaml") << beamScene(2.5e6, 0.025);
-  files.fit_file = files.directory / "fit.yaml";
-  std::ofstream(files.fit_file)
-      << "bag: experiment.bag\n"
-         "scene: guess.yaml\n"
-         "fit:\n"
-         "  - {body: beam, parameter: youngs_modulus, min: 1.0e4, max: 1.0e8}\n"
-         "  - {body: beam, parameter: damping_stiffness, min: 0.0, max: 0.05}\n"
-         "observations:\n"
-         "  - {tf: marker_tip, body: beam, at: [0.3, 0.02, 0.02], sigma: 0.001}\n"
-         "  - {tf: marker_mid, body: beam, at: [0.15, 0.02, 0.04], sigma: 0.001}\n"
-         "  - {wrench: /ft_sensor/wrench, reactions: beam, sigma: [0.02, 0.002]}\n"
-         "out: fitted.yaml\n";
-  return files;
+// The recorded session and the guess, once for all tests.
+const fs::path& beamDirectory() {
+  static const fs::path directory = [] {
+    const fs::path d = fs::temp_directory_path() / "deformable_sim_identify_beam";
+    fs::create_directories(d);
+    recordLab(beamLab(), (d / "experiment.bag").string());
+    std::ofstream(d / "guess.yaml") << beamScene(2.5e6, 0.025);
+    return d;
+  }();
+  return directory;
 }
 
-TEST(FitBeam, FindsStiffnessAndDampingFromAGuessOff) {
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+struct FitRun {
+  ros_layer::IdentifyResult result;
+  std::string printed;
+  std::string refusal;  ///< what identify threw, if it did
+};
+
+// Runs the fit of `fit_text` on the recorded beam.
+FitRun identifyBeam(const std::string& fit_text, int max_iterations = 30) {
   ros::Time::init();
-  const FitFiles files = writeBeamFit("beam");
+  const fs::path fit_file = beamDirectory() / "fit.yaml";
+  std::ofstream(fit_file) << fit_text;
   ros_layer::IdentifyOptions options;
-  options.fit_file = files.fit_file.string();
+  options.fit_file = fit_file.string();
   options.threads = 2;
+  options.max_iterations = max_iterations;
   char* text = nullptr;
   std::size_t size = 0;
   std::FILE* out = open_memstream(&text, &size);
-  const ros_layer::IdentifyResult result = ros_layer::identify(options, out);
+  FitRun run;
+  try {
+    run.result = ros_layer::identify(options, out);
+  } catch (const std::exception& e) {
+    run.refusal = e.what();
+  }
   std::fclose(out);
-  const std::string printed(text, size);
+  run.printed.assign(text, size);
   std::free(text);
+  return run;
+}
+
+// The refusal's text after the fit file's path.
+std::string refusal(const std::string& fit_text) {
+  const std::string message = identifyBeam(fit_text).refusal;
+  const std::string prefix = (beamDirectory() / "fit.yaml").string() + ": ";
+  return message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message;
+}
+
+TEST(FitBeam, FindsStiffnessAndDampingFromAGuessOff) {
+  const FitRun run = identifyBeam(kFit);
+  const ros_layer::IdentifyResult& result = run.result;
+  const std::string& printed = run.printed;
   SCOPED_TRACE(printed);
 
   EXPECT_EQ(result.exit_code, 0);
@@ -118,9 +153,42 @@ TEST(FitBeam, FindsStiffnessAndDampingFromAGuessOff) {
   EXPECT_LT(result.after[2].first, 0.03);
   EXPECT_TRUE(std::regex_search(printed, std::regex("fitted beam youngs_modulus [0-9.e+]+ ± ")));
   EXPECT_TRUE(std::regex_search(printed, std::regex("iteration 1: cost ")));
-  const YAML::Node fitted = YAML::LoadFile((files.directory / "fitted.yaml").string());
+  const YAML::Node fitted = YAML::LoadFile((beamDirectory() / "fitted.yaml").string());
   EXPECT_DOUBLE_EQ(fitted["bodies"][0]["material"]["youngs_modulus"].as<double>(), E);
   EXPECT_NEAR(fitted["effects"]["damping"]["stiffness"].as<double>(), beta, 1e-9);
+}
+
+TEST(FitBeam, SaysWhenItDidNotConverge) {
+  const FitRun run = identifyBeam(kFit, 2);
+  EXPECT_EQ(run.result.exit_code, 3);
+  EXPECT_NE(run.printed.find("the fit did not converge"), std::string::npos) << run.printed;
+}
+
+TEST(FitBeam, RefusesWhatTheBagOrTheSceneDoesNotHold) {
+  EXPECT_EQ(refusal(replaced(kFit, "tf: marker_mid", "tf: marker_base")),
+            "observations[1].tf: the bag's /tf has no frame 'marker_base'");
+  EXPECT_EQ(refusal(replaced(kFit, "wrench: /ft_sensor/wrench", "wrench: /ft/wrench")),
+            "observations[2].wrench: the bag has no topic '/ft/wrench'");
+  EXPECT_EQ(refusal(replaced(kFit, "at: [0.15, 0.02, 0.04]", "at: [0.15, 0.02, 0.05]")),
+            "observations[1].at: [0.150000, 0.020000, 0.050000] is outside body 'beam' at rest");
+  EXPECT_EQ(refusal(replaced(kFit, "tf: marker_mid, body: beam", "tf: marker_mid, body: cable")),
+            "observations[1].body: the scene has no body 'cable'");
+  EXPECT_EQ(refusal(replaced(kFit, "{body: beam, parameter: damping_stiffness",
+                             "{body: cable, parameter: damping_stiffness")),
+            "fit[1].body: the scene has no body 'cable' (it has beam)");
+  EXPECT_EQ(refusal(replaced(kFit, "max: 1.0e8", "max: 2.0e6")),
+            "fit[0]: the scene's youngs_modulus of 'beam', 2.5e+06, the first guess, is outside "
+            "[min, max] = [10000, 2e+06]");
+  // A bag without ~applied: the recording of the sensor alone.
+  {
+    rosbag::Bag bag((beamDirectory() / "sensor_only.bag").string(), rosbag::bagmode::Write);
+    geometry_msgs::WrenchStamped message;
+    message.header.stamp = ros::Time(1000.0);
+    bag.write("/ft_sensor/wrench", message.header.stamp, message);
+  }
+  const std::string no_log = refusal(replaced(kFit, "bag: experiment.bag", "bag: sensor_only.bag"));
+  EXPECT_EQ(no_log.rfind("bag: ", 0), 0u) << no_log;
+  EXPECT_NE(no_log.find("no ~applied"), std::string::npos) << no_log;
 }
 
 }  // namespace
