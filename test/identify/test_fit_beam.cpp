@@ -7,6 +7,7 @@
 #include <rosbag/bag.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -104,7 +105,8 @@ struct FitRun {
 };
 
 // Runs the fit of `fit_text` on the recorded beam.
-FitRun identifyBeam(const std::string& fit_text, int max_iterations = 30) {
+FitRun identifyBeam(const std::string& fit_text, int max_iterations = 30,
+                    const std::string& plot = "") {
   ros::Time::init();
   const fs::path fit_file = beamDirectory() / "fit.yaml";
   std::ofstream(fit_file) << fit_text;
@@ -112,6 +114,8 @@ FitRun identifyBeam(const std::string& fit_text, int max_iterations = 30) {
   options.fit_file = fit_file.string();
   options.threads = 2;
   options.max_iterations = max_iterations;
+  options.plot = plot;
+  options.plot_script = DEFORMABLE_SIM_SOURCE_DIR "/scripts/plot_identify.py";
   char* text = nullptr;
   std::size_t size = 0;
   std::FILE* out = open_memstream(&text, &size);
@@ -135,7 +139,9 @@ std::string refusal(const std::string& fit_text) {
 }
 
 TEST(FitBeam, FindsStiffnessAndDampingFromAGuessOff) {
-  const FitRun run = identifyBeam(kFit);
+  const fs::path plot = beamDirectory() / "fit.png";
+  fs::remove(plot);
+  const FitRun run = identifyBeam(kFit, 30, plot.string());
   const ros_layer::IdentifyResult& result = run.result;
   const std::string& printed = run.printed;
   SCOPED_TRACE(printed);
@@ -156,6 +162,11 @@ TEST(FitBeam, FindsStiffnessAndDampingFromAGuessOff) {
   const YAML::Node fitted = YAML::LoadFile((beamDirectory() / "fitted.yaml").string());
   EXPECT_DOUBLE_EQ(fitted["bodies"][0]["material"]["youngs_modulus"].as<double>(), E);
   EXPECT_NEAR(fitted["effects"]["damping"]["stiffness"].as<double>(), beta, 1e-9);
+  // --plot: the chart, and the table it was drawn from (every sample of every observation).
+  EXPECT_GT(fs::file_size(plot), 10000u);
+  std::ifstream table(plot.string() + ".csv");
+  const long rows = std::count(std::istreambuf_iterator<char>(table), {}, '\n');
+  EXPECT_GT(rows, 2 * 3 * 300 + 6 * 2500);
 }
 
 TEST(FitBeam, SaysWhenItDidNotConverge) {
