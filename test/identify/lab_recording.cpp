@@ -4,6 +4,7 @@
 #include <rosbag/bag.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <limits>
 #include <random>
 
 #include "deformable_sim/core/mesh_catalogue.h"
@@ -32,12 +33,12 @@ int nodeAt(const core::Body& body, const Eigen::Vector3d& at) {
 void recordStep(const LabRecording& lab, const core::Session& session,
                 const std::vector<int>& nodes, Truth& truth) {
   const core::Simulation& sim = session.simulation();
-  const core::Body& body = sim.bodies()[sim.bodyIndex(lab.sensor_body)];
+  const int b = sim.bodyIndex(lab.body);
+  const core::Body& body = sim.bodies()[b];
   std::vector<Eigen::Vector3d> positions;
   for (int node : nodes) positions.push_back(body.positions().segment<3>(3 * node));
   truth.markers.push_back(positions);
-  const core::Wrench w =
-      session.commands().fixedReaction(sim.bodyIndex(lab.sensor_body), Eigen::Vector3d::Zero());
+  const core::Wrench w = session.commands().fixedReaction(b, Eigen::Vector3d::Zero());
   Eigen::Matrix<double, 6, 1> value;
   value << w.force, w.torque;
   truth.wrench.push_back(value);
@@ -47,7 +48,10 @@ void recordStep(const LabRecording& lab, const core::Session& session,
 Truth run(const LabRecording& lab, rosbag::Bag& bag) {
   const core::SceneSpec spec = io::parseScene(lab.scene_yaml, "lab.yaml", ".");
   std::vector<std::string> warnings;
-  core::Session session(spec, io::readMeshes(spec, &warnings));
+  // The lab's node was set up for the loads it applied.
+  const double unlimited = std::numeric_limits<double>::infinity();
+  core::Session session(spec, io::readMeshes(spec, &warnings),
+                        core::CommandLimits{unlimited, unlimited, unlimited});
   core::MeshCatalogue catalogue;
   session.setListener([&](const core::AppliedCommand& applied) {
     deformable_sim::Applied message = ros_layer::toMessage(applied.command, catalogue);
@@ -57,7 +61,8 @@ Truth run(const LabRecording& lab, rosbag::Bag& bag) {
     message.step = applied.step;
     bag.write("/deformable_sim/applied", message.header.stamp, message);
   });
-  const core::Body& body = session.simulation().bodies()[0];
+  const core::Simulation& sim = session.simulation();
+  const core::Body& body = sim.bodies()[sim.bodyIndex(lab.body)];
   std::vector<int> nodes;
   for (const TrackedNode& marker : lab.markers) nodes.push_back(nodeAt(body, marker.at));
   Truth truth;

@@ -20,14 +20,15 @@ struct TrackedNode {
 };
 
 struct LabRecording {
-  std::string scene_yaml;  ///< with the secret values
-  double duration = 2.0;   ///< s
+  std::string scene_yaml;     ///< with the secret values
+  std::string body = "beam";  ///< the markers' and the sensor's
+  double duration = 2.0;      ///< s
   /// Commands by the step they are applied after.
   std::multimap<long, core::SessionCommand> commands;
   std::vector<TrackedNode> markers;
   double marker_rate = 120.0, marker_noise = 0.001;  ///< Hz, m (1 sigma)
-  std::string sensor_topic = "/ft_sensor/wrench";    ///< empty: no sensor
-  std::string sensor_body = "beam";                  ///< its fixed nodes' reaction
+  /// The body's fixed nodes' reaction, in the world frame, on this topic; empty: no sensor.
+  std::string sensor_topic = "/ft_sensor/wrench";
   double sensor_rate = 1000.0, force_noise = 0.02, torque_noise = 0.002;  ///< Hz, N, N m
   unsigned seed = 7;
 };

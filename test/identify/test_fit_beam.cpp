@@ -15,6 +15,7 @@
 #include <regex>
 
 #include "deformable_sim/ros/identification.h"
+#include "fit_run.h"
 #include "lab_recording.h"
 
 namespace deformable_sim::test {
@@ -92,43 +93,10 @@ const fs::path& beamDirectory() {
   return directory;
 }
 
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const std::size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
-}
-
-struct FitRun {
-  ros_layer::IdentifyResult result;
-  std::string printed;
-  std::string refusal;  ///< what identify threw, if it did
-};
-
 // Runs the fit of `fit_text` on the recorded beam.
 FitRun identifyBeam(const std::string& fit_text, int max_iterations = 30,
                     const std::string& plot = "") {
-  ros::Time::init();
-  const fs::path fit_file = beamDirectory() / "fit.yaml";
-  std::ofstream(fit_file) << fit_text;
-  ros_layer::IdentifyOptions options;
-  options.fit_file = fit_file.string();
-  options.threads = 2;
-  options.max_iterations = max_iterations;
-  options.plot = plot;
-  options.plot_script = DEFORMABLE_SIM_SOURCE_DIR "/scripts/plot_identify.py";
-  char* text = nullptr;
-  std::size_t size = 0;
-  std::FILE* out = open_memstream(&text, &size);
-  FitRun run;
-  try {
-    run.result = ros_layer::identify(options, out);
-  } catch (const std::exception& e) {
-    run.refusal = e.what();
-  }
-  std::fclose(out);
-  run.printed.assign(text, size);
-  std::free(text);
-  return run;
+  return runFit(beamDirectory(), fit_text, max_iterations, plot);
 }
 
 // The refusal's text after the fit file's path.

@@ -1,0 +1,127 @@
+// Two more fits on sessions of their own: Poisson's ratio with E from a block squeezed by a load
+// on its top (nu shows in its bulge), and friction from a block sliding down a slope.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "fit_run.h"
+#include "lab_recording.h"
+
+namespace deformable_sim::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path recorded(const std::string& name, const LabRecording& lab, const std::string& guess) {
+  const fs::path directory = fs::temp_directory_path() / ("deformable_sim_identify_" + name);
+  fs::create_directories(directory);
+  recordLab(lab, (directory / "experiment.bag").string());
+  std::ofstream(directory / "guess.yaml") << guess;
+  return directory;
+}
+
+// A 10 cm foam cube on its fixed base, loaded on its top in steps up to 40 N.
+std::string squeezedScene(double youngs_modulus, double poisson_ratio) {
+  return "dt: 0.01\n"
+         "effects: {warping: true, damping: {mass: 0.0, stiffness: 0.005}}\n"
+         "solver: {method: direct}\n"
+         "bodies:\n"
+         "  - name: block\n"
+         "    mesh: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1], cells: [4, 4, 4]}}\n"
+         "    material: {youngs_modulus: " +
+         std::to_string(youngs_modulus) + ", poisson_ratio: " + std::to_string(poisson_ratio) +
+         ", density: 200.0}\n"
+         "    fixed: [{box: {min: [-1, -1, -0.001], max: [1, 1, 0.001]}}]\n"
+         "    groups: {top: {box: {min: [-1, -1, 0.099], max: [1, 1, 0.101]}}}\n";
+}
+
+TEST(FitBlock, FindsPoissonsRatioAndStiffnessFromTheBulge) {
+  LabRecording lab;
+  lab.scene_yaml = squeezedScene(5.0e4, 0.35);
+  lab.body = "block";
+  lab.duration = 1.2;
+  for (int load = 1; load <= 4; ++load) {
+    core::WrenchCommand press;
+    press.source = "press";
+    press.body = "block";
+    press.nodes.group = "top";
+    press.force = Eigen::Vector3d(0, 0, -10.0 * load);
+    lab.commands.emplace(20 * load, press);
+  }
+  lab.markers = {
+      {"top", {0.05, 0.05, 0.1}}, {"side_x", {0.1, 0.05, 0.05}}, {"side_y", {0.05, 0.1, 0.05}}};
+  const fs::path directory = recorded("block", lab, squeezedScene(1.0e5, 0.15));
+  const FitRun run =
+      runFit(directory,
+             "bag: experiment.bag\n"
+             "scene: guess.yaml\n"
+             "fit:\n"
+             "  - {body: block, parameter: youngs_modulus, min: 1.0e3, max: 1.0e7}\n"
+             "  - {body: block, parameter: poisson_ratio, min: 0.0, max: 0.49}\n"
+             "observations:\n"
+             "  - {tf: top, body: block, at: [0.05, 0.05, 0.1], sigma: 0.001}\n"
+             "  - {tf: side_x, body: block, at: [0.1, 0.05, 0.05], sigma: 0.001}\n"
+             "  - {tf: side_y, body: block, at: [0.05, 0.1, 0.05], sigma: 0.001}\n"
+             "  - {wrench: /ft_sensor/wrench, reactions: block, sigma: [0.02, 0.002]}\n"
+             "out: fitted.yaml\n");
+  SCOPED_TRACE(run.printed + run.refusal);
+  ASSERT_EQ(run.result.fit.values.size(), 2u);
+  EXPECT_EQ(run.result.exit_code, 0);
+  const double E = run.result.fit.values[0], nu = run.result.fit.values[1];
+  EXPECT_NEAR(E, 5.0e4, 0.03 * 5.0e4);
+  EXPECT_NEAR(nu, 0.35, 0.05 * 0.35);
+  EXPECT_LE(std::abs(E - 5.0e4), 3.0 * run.result.fit.standard_deviations[0]);
+  EXPECT_LE(std::abs(nu - 0.35), 3.0 * run.result.fit.standard_deviations[1]);
+}
+
+// A 10 cm block on a floor with gravity tilted by 30 degrees: a slope it slides down whenever
+// friction is below tan 30 = 0.577, given a nudge at the start.
+std::string slopeScene(double friction) {
+  return "dt: 0.01\n"
+         "effects: {gravity: [0, -4.905, -8.49571], warping: true,\n"
+         "          damping: {mass: 0.0, stiffness: 0.01}, contact: {friction: " +
+         std::to_string(friction) +
+         "}}\n"
+         "solver: {method: direct}\n"
+         "obstacles:\n"
+         "  - {name: floor, box: {size: [4, 4, 0.2]}, position: [0, 0, -0.1]}\n"
+         "bodies:\n"
+         "  - name: block\n"
+         "    mesh: {box: {min: [-0.05, -0.05, 0], max: [0.05, 0.05, 0.1], cells: [2, 2, 2]}}\n"
+         "    material: {youngs_modulus: 1.0e5, poisson_ratio: 0.3, density: 500.0}\n";
+}
+
+TEST(FitBlock, FindsFrictionFromASlide) {
+  LabRecording lab;
+  lab.scene_yaml = slopeScene(0.3);
+  lab.body = "block";
+  lab.duration = 1.0;
+  lab.sensor_topic.clear();
+  core::WrenchCommand nudge;
+  nudge.source = "nudge";
+  nudge.body = "block";
+  nudge.nodes.whole_body = true;
+  nudge.force = Eigen::Vector3d(0, -1.0, 0);
+  lab.commands.emplace(0, nudge);
+  lab.commands.emplace(5, core::ClearWrenchCommand{"nudge"});
+  lab.markers = {{"top", {0.0, 0.0, 0.1}}};
+  const fs::path directory = recorded("slope", lab, slopeScene(0.12));
+  const FitRun run = runFit(directory,
+                            "bag: experiment.bag\n"
+                            "scene: guess.yaml\n"
+                            "fit: [{body: block, parameter: friction, min: 0.01, max: 1.0}]\n"
+                            "observations:\n"
+                            "  - {tf: top, body: block, at: [0, 0, 0.1], sigma: 0.001}\n"
+                            "out: fitted.yaml\n");
+  SCOPED_TRACE(run.printed + run.refusal);
+  ASSERT_EQ(run.result.fit.values.size(), 1u);
+  EXPECT_EQ(run.result.exit_code, 0);
+  const double mu = run.result.fit.values[0];
+  EXPECT_NEAR(mu, 0.3, 0.03 * 0.3);
+  EXPECT_LE(std::abs(mu - 0.3), 3.0 * run.result.fit.standard_deviations[0]);
+}
+
+}  // namespace
+}  // namespace deformable_sim::test
