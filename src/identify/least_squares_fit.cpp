@@ -70,7 +70,10 @@ class SimulationCost : public ceres::CostFunction {
                 double** jacobians) const override {
     const double* x = parameters[0];
     const std::size_t n = coordinates_.size();
-    std::vector<std::vector<double>> points{values(x)};
+    // Ceres asks for the Jacobian at the point whose residuals it just had: kept, not re-run.
+    const bool known = jacobians && jacobians[0] && last_x_ == std::vector<double>(x, x + n);
+    std::vector<std::vector<double>> points;
+    if (!known) points.push_back(values(x));
     std::vector<double> steps(n, 0.0);
     if (jacobians && jacobians[0]) {
       for (std::size_t i = 0; i < n; ++i) {
@@ -81,10 +84,13 @@ class SimulationCost : public ceres::CostFunction {
         points.push_back(values(shifted.data()));
       }
     }
-    const std::vector<Eigen::VectorXd> r = evaluateAll(f_, points, threads_);
+    std::vector<Eigen::VectorXd> r = evaluateAll(f_, points, threads_);
+    if (known) r.insert(r.begin(), last_residuals_);
     for (const Eigen::VectorXd& one : r) {
       if (one.size() != num_residuals() || !one.allFinite()) return false;
     }
+    last_x_.assign(x, x + n);
+    last_residuals_ = r[0];
     Eigen::Map<Eigen::VectorXd>(residuals, num_residuals()) = r[0];
     if (jacobians && jacobians[0]) {
       Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(
@@ -98,6 +104,9 @@ class SimulationCost : public ceres::CostFunction {
   std::vector<Coordinate> coordinates_;
   const ResidualFunction& f_;
   int threads_;
+  // The last point evaluated and its residuals (Ceres evaluates from one thread).
+  mutable std::vector<double> last_x_;
+  mutable Eigen::VectorXd last_residuals_;
 };
 
 class ProgressCallback : public ceres::IterationCallback {
