@@ -153,6 +153,10 @@ IdentifyResult identify(const IdentifyOptions& options, std::FILE* out) {
                  result.fit.standard_deviations[i]);
   }
   printRms(out, fit, result.before, result.after);
+  // About 1 when the sigmas are the noise; well above it in a local minimum.
+  std::fprintf(
+      out, "weighted RMS residual %.3g (about 1 when the fit is right and sigma the noise)\n",
+      std::sqrt(2.0 * result.fit.final_cost / static_cast<double>(experiment->residualCount())));
   writeOut(fit, yaml, result.fit.values);
   std::fprintf(out, "wrote %s\n", fit.out.c_str());
   if (!options.plot.empty()) {
