@@ -1,6 +1,7 @@
 #include "deformable_sim/identify/experiment.h"
 
 #include <cmath>
+#include <variant>
 
 #include "deformable_sim/identify/observation_model.h"
 #include "deformable_sim/identify/scene_parameter.h"
@@ -27,11 +28,20 @@ double lastTime(const std::vector<MeasuredSeries>& measured) {
 
 }  // namespace
 
+long measuredEpisode(const core::Recording& recording) {
+  if (recording.log.empty() || recording.log.front().episode == 0) return 0;
+  for (const core::AppliedCommand& applied : recording.log) {
+    if (std::holds_alternative<core::ResetCommand>(applied.command)) return applied.episode;
+  }
+  return recording.log.front().episode;  // the Resimulation refuses such a log
+}
+
 Experiment::Experiment(RecordedExperiment recorded, std::vector<FitParameter> parameters)
     : recorded_(std::move(recorded)), parameters_(std::move(parameters)) {
   recorded_.sensor_frames.resize(recorded_.observations.size(), Eigen::Isometry3d::Identity());
   const core::Simulation probe(recorded_.scene, recorded_.meshes);
   models(recorded_, probe);  // throws for observations the scene cannot give
+  episode_ = measuredEpisode(recorded_.recording);
   last_step_ = static_cast<long>(std::ceil(lastTime(recorded_.measured) / recorded_.scene.dt)) + 1;
   for (std::size_t o = 0; o < recorded_.observations.size(); ++o) {
     const long size = recorded_.observations[o].kind == ObservationSpec::Kind::kFrame ? 3 : 6;
@@ -50,12 +60,18 @@ core::SceneSpec Experiment::trialScene(const std::vector<double>& values) const 
 std::vector<SimulatedSeries> Experiment::simulate(const std::vector<double>& values) const {
   core::Resimulation resimulation(trialScene(values), recorded_.meshes, recorded_.recording, {},
                                   recorded_.surfaces);
-  resimulation.extendTo(0, last_step_);
+  resimulation.extendTo(episode_, last_step_);
   std::vector<ObservationModel> observers = models(recorded_, resimulation.session().simulation());
   std::vector<SimulatedSeries> series(observers.size());
   for (SimulatedSeries& s : series) s.dt = recorded_.scene.dt;
+  // The observer first hears of the scene as built (step 0, as after the reset a log may start
+  // at), then of every step; it keeps the first episode it hears of.
+  long episode = -1;
   resimulation.setStepObserver([&](const core::Session& session) {
-    if (session.episode() != 0) return;  // the first episode is the one measured
+    if (session.episode() != episode) {
+      if (series.empty() || series.front().steps.size() > 1) return;  // a later episode
+      episode = session.episode();
+    }
     for (std::size_t o = 0; o < observers.size(); ++o)
       series[o].steps.push_back(observers[o].predict(session));
   });

@@ -45,15 +45,16 @@ LoadedScene loadScene(const identify::FitSpec& fit, const RecordedSession& sessi
   return scene;
 }
 
-// When the session's step 0 was: the node applies a command after `step` steps at about
-// stamp = start + step dt; the median over the first episode's commands.
+// When the measured episode's step 0 was: the node applies a command after `step` steps at
+// about stamp = start + step dt; the median over the episode's commands.
 ros::Time sessionStart(const RecordedSession& session, double dt) {
+  const long episode = identify::measuredEpisode(session.recording);
   std::vector<double> starts;
   for (const AppliedStamp& a : session.applied_stamps) {
-    if (a.episode == 0) starts.push_back(a.header.stamp.toSec() - static_cast<double>(a.step) * dt);
+    if (a.episode == episode)
+      starts.push_back(a.header.stamp.toSec() - static_cast<double>(a.step) * dt);
   }
-  if (starts.empty())
-    throw FitSpecError("bag: the recorded log has no command of the session's start");
+  if (starts.empty()) throw FitSpecError("bag: the recorded log has no command to time it by");
   std::nth_element(starts.begin(), starts.begin() + starts.size() / 2, starts.end());
   return ros::Time(starts[starts.size() / 2]);
 }

@@ -29,6 +29,11 @@ struct ObservationRms {
   double second = 0.0;  ///< torque; zero for a position
 };
 
+/// The episode a fit compares: the session's first (0) when the log starts there, else the one
+/// its first reset starts, as the Resimulation does. The measurements' times count from its
+/// step 0.
+long measuredEpisode(const core::Recording& recording);
+
 class Experiment {
  public:
   /// Builds the scene once to check the observations against it; throws FitSpecError naming the
@@ -49,6 +54,7 @@ class Experiment {
 
   RecordedExperiment recorded_;
   std::vector<FitParameter> parameters_;
+  long episode_ = 0;    ///< measuredEpisode
   long last_step_ = 0;  ///< the step after the last sample
   long residual_count_ = 0;
 };
