@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <ros/time.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -32,6 +33,18 @@ FitRun runFit(const std::filesystem::path& directory, const std::string& fit_tex
   run.printed.assign(text, size);
   std::free(text);
   return run;
+}
+
+void expectFitted(const FitRun& run, const std::vector<double>& truth,
+                  const std::vector<double>& relative) {
+  SCOPED_TRACE(run.printed + run.refusal);
+  EXPECT_EQ(run.result.exit_code, 0);
+  const identify::FitResult& fit = run.result.fit;
+  ASSERT_EQ(fit.values.size(), truth.size());
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    EXPECT_NEAR(fit.values[i], truth[i], relative[i] * truth[i]);
+    EXPECT_LE(std::abs(fit.values[i] - truth[i]), 3.0 * fit.standard_deviations[i]);
+  }
 }
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "deformable_sim/ros/identification.h"
 
@@ -18,6 +19,10 @@ struct FitRun {
 /// Writes `fit_text` to DIRECTORY/fit.yaml and fits on two threads.
 FitRun runFit(const std::filesystem::path& directory, const std::string& fit_text,
               int max_iterations = 30, const std::string& plot = "");
+
+/// The fit converged, and its i-th value is within `relative[i]` of `truth[i]` and within 3 sigma.
+void expectFitted(const FitRun& run, const std::vector<double>& truth,
+                  const std::vector<double>& relative);
 
 /// `text` with its first `from` replaced by `to` (a test failure when there is none).
 std::string replaced(std::string text, const std::string& from, const std::string& to);

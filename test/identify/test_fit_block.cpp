@@ -2,7 +2,6 @@
 // on its top (nu shows in its bulge), and friction from a block sliding down a slope.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -66,14 +65,7 @@ TEST(FitBlock, FindsPoissonsRatioAndStiffnessFromTheBulge) {
              "  - {tf: side_y, body: block, at: [0.05, 0.1, 0.05], sigma: 0.001}\n"
              "  - {wrench: /ft_sensor/wrench, reactions: block, sigma: [0.02, 0.002]}\n"
              "out: fitted.yaml\n");
-  SCOPED_TRACE(run.printed + run.refusal);
-  ASSERT_EQ(run.result.fit.values.size(), 2u);
-  EXPECT_EQ(run.result.exit_code, 0);
-  const double E = run.result.fit.values[0], nu = run.result.fit.values[1];
-  EXPECT_NEAR(E, 5.0e4, 0.03 * 5.0e4);
-  EXPECT_NEAR(nu, 0.35, 0.05 * 0.35);
-  EXPECT_LE(std::abs(E - 5.0e4), 3.0 * run.result.fit.standard_deviations[0]);
-  EXPECT_LE(std::abs(nu - 0.35), 3.0 * run.result.fit.standard_deviations[1]);
+  expectFitted(run, {5.0e4, 0.35}, {0.03, 0.05});
 }
 
 // A 10 cm block on a floor with gravity tilted by 30 degrees: a slope it slides down whenever
@@ -115,12 +107,7 @@ TEST(FitBlock, FindsFrictionFromASlide) {
                             "observations:\n"
                             "  - {tf: top, body: block, at: [0, 0, 0.1], sigma: 0.001}\n"
                             "out: fitted.yaml\n");
-  SCOPED_TRACE(run.printed + run.refusal);
-  ASSERT_EQ(run.result.fit.values.size(), 1u);
-  EXPECT_EQ(run.result.exit_code, 0);
-  const double mu = run.result.fit.values[0];
-  EXPECT_NEAR(mu, 0.3, 0.03 * 0.3);
-  EXPECT_LE(std::abs(mu - 0.3), 3.0 * run.result.fit.standard_deviations[0]);
+  expectFitted(run, {0.3}, {0.03});
 }
 
 }  // namespace
