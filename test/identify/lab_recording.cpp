@@ -38,7 +38,13 @@ void recordStep(const LabRecording& lab, const core::Session& session,
   std::vector<Eigen::Vector3d> positions;
   for (int node : nodes) positions.push_back(body.positions().segment<3>(3 * node));
   truth.markers.push_back(positions);
-  const core::Wrench w = session.commands().fixedReaction(b, Eigen::Vector3d::Zero());
+  const core::CommandProcessor& commands = session.commands();
+  core::Wrench w = commands.fixedReaction(b, Eigen::Vector3d::Zero());
+  if (!lab.sensor_grasp.empty()) {
+    const bool held = commands.grasps().count(lab.sensor_grasp) > 0;
+    w = core::seenFrom(held ? commands.graspReaction(lab.sensor_grasp) : core::Wrench{},
+                       Eigen::Isometry3d::Identity());
+  }
   Eigen::Matrix<double, 6, 1> value;
   value << w.force, w.torque;
   truth.wrench.push_back(value);

@@ -68,6 +68,42 @@ TEST(FitBlock, FindsPoissonsRatioAndStiffnessFromTheBulge) {
   expectFitted(run, {5.0e4, 0.35}, {0.03, 0.05});
 }
 
+// The same cube squeezed 9 mm by a gripper holding its top, the gripper's sensor and the two
+// side markers measuring: E and nu from the grasp's wrench.
+TEST(FitBlock, FindsStiffnessFromAGripsWrench) {
+  LabRecording lab;
+  lab.scene_yaml = squeezedScene(5.0e4, 0.35);
+  lab.body = "block";
+  lab.duration = 1.0;
+  lab.sensor_topic = "/gripper/wrench";
+  lab.sensor_grasp = "gripper";
+  core::GraspCommand grasp;
+  grasp.name = "gripper";
+  grasp.body = "block";
+  grasp.nodes.group = "top";
+  grasp.frame.translation() = Eigen::Vector3d(0.05, 0.05, 0.1);
+  lab.commands.emplace(10, grasp);
+  for (long k = 1; k <= 30; ++k) {
+    core::MoveGraspCommand move{"gripper", grasp.frame};
+    move.frame.translation().z() -= 0.0003 * static_cast<double>(k);
+    lab.commands.emplace(10 + k, move);
+  }
+  lab.markers = {{"side_x", {0.1, 0.05, 0.05}}, {"side_y", {0.05, 0.1, 0.05}}};
+  const fs::path directory = recorded("grasp", lab, squeezedScene(1.0e5, 0.15));
+  const FitRun run = runFit(directory,
+                            "bag: experiment.bag\n"
+                            "scene: guess.yaml\n"
+                            "fit:\n"
+                            "  - {body: block, parameter: youngs_modulus, min: 1.0e3, max: 1.0e7}\n"
+                            "  - {body: block, parameter: poisson_ratio, min: 0.0, max: 0.49}\n"
+                            "observations:\n"
+                            "  - {tf: side_x, body: block, at: [0.1, 0.05, 0.05], sigma: 0.001}\n"
+                            "  - {tf: side_y, body: block, at: [0.05, 0.1, 0.05], sigma: 0.001}\n"
+                            "  - {wrench: /gripper/wrench, grasp: gripper, sigma: [0.02, 0.002]}\n"
+                            "out: fitted.yaml\n");
+  expectFitted(run, {5.0e4, 0.35}, {0.03, 0.05});
+}
+
 // A 10 cm block on a floor with gravity tilted by 30 degrees: a slope it slides down whenever
 // friction is below tan 30 = 0.577, given a nudge at the start.
 std::string slopeScene(double friction) {
