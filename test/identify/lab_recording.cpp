@@ -7,6 +7,7 @@
 #include <limits>
 #include <random>
 
+#include "deformable_sim/core/contact_pairs.h"
 #include "deformable_sim/core/mesh_catalogue.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/ros/session_messages.h"
@@ -44,6 +45,12 @@ void recordStep(const LabRecording& lab, const core::Session& session,
     const bool held = commands.grasps().count(lab.sensor_grasp) > 0;
     w = core::seenFrom(held ? commands.graspReaction(lab.sensor_grasp) : core::Wrench{},
                        Eigen::Isometry3d::Identity());
+  }
+  if (!lab.sensor_link.empty()) {
+    std::vector<core::ContactPair> pairs;
+    core::touchingPairs(sim, pairs);
+    const core::ContactLoad load = core::loadOnObstacle(pairs, lab.sensor_link);
+    w = core::Wrench{load.force, load.torque, Eigen::Vector3d::Zero()};
   }
   Eigen::Matrix<double, 6, 1> value;
   value << w.force, w.torque;

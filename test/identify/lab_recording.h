@@ -27,10 +27,11 @@ struct LabRecording {
   std::multimap<long, core::SessionCommand> commands;
   std::vector<TrackedNode> markers;
   double marker_rate = 120.0, marker_noise = 0.001;  ///< Hz, m (1 sigma)
-  /// The body's fixed nodes' reaction (or `sensor_grasp`'s wrench), in the world frame, torque
-  /// about its origin, on this topic; empty: no sensor.
+  /// The body's fixed nodes' reaction (or `sensor_grasp`'s wrench, or the contact wrench on the
+  /// obstacle `sensor_link`), in the world frame, torque about its origin, on this topic; empty:
+  /// no sensor.
   std::string sensor_topic = "/ft_sensor/wrench";
-  std::string sensor_grasp;
+  std::string sensor_grasp, sensor_link;
   double sensor_rate = 1000.0, force_noise = 0.02, torque_noise = 0.002;  ///< Hz, N, N m
   unsigned seed = 7;
 };

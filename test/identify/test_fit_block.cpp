@@ -105,7 +105,8 @@ TEST(FitBlock, FindsStiffnessFromAGripsWrench) {
 }
 
 // A 10 cm block on a floor with gravity tilted by 30 degrees: a slope it slides down whenever
-// friction is below tan 30 = 0.577, given a nudge at the start.
+// friction is below tan 30 = 0.577, given a nudge at the start. A marker on it, and the floor's
+// contact wrench (`link:`) as a force plate under it would read it.
 std::string slopeScene(double friction) {
   return "dt: 0.01\n"
          "effects: {gravity: [0, -4.905, -8.49571], warping: true,\n"
@@ -126,7 +127,8 @@ TEST(FitBlock, FindsFrictionFromASlide) {
   lab.scene_yaml = slopeScene(0.3);
   lab.body = "block";
   lab.duration = 1.0;
-  lab.sensor_topic.clear();
+  lab.sensor_topic = "/floor/wrench";
+  lab.sensor_link = "floor";
   core::WrenchCommand nudge;
   nudge.source = "nudge";
   nudge.body = "block";
@@ -142,6 +144,7 @@ TEST(FitBlock, FindsFrictionFromASlide) {
                             "fit: [{body: block, parameter: friction, min: 0.01, max: 1.0}]\n"
                             "observations:\n"
                             "  - {tf: top, body: block, at: [0, 0, 0.1], sigma: 0.001}\n"
+                            "  - {wrench: /floor/wrench, link: floor, sigma: [0.02, 0.002]}\n"
                             "out: fitted.yaml\n");
   expectFitted(run, {0.3}, {0.03});
 }
