@@ -2,6 +2,7 @@
 
 #include <geometry_msgs/WrenchStamped.h>
 #include <rosbag/bag.h>
+#include <tf2_eigen/tf2_eigen.h>
 #include <tf2_msgs/TFMessage.h>
 
 #include <limits>
@@ -123,20 +124,34 @@ void writeMarkers(const LabRecording& lab, const Truth& truth, double dt, rosbag
   }
 }
 
+// The sensor's frame on /tf_static, as a robot's description would put it there.
+void writeSensorFrame(const LabRecording& lab, rosbag::Bag& bag) {
+  geometry_msgs::TransformStamped transform = tf2::eigenToTransform(lab.sensor_pose);
+  transform.header.stamp = kStart;
+  transform.header.frame_id = kWorld;
+  transform.child_frame_id = lab.sensor_frame;
+  tf2_msgs::TFMessage message;
+  message.transforms.push_back(transform);
+  bag.write("/tf_static", kStart, message);
+}
+
 void writeSensor(const LabRecording& lab, const Truth& truth, double dt, rosbag::Bag& bag,
                  std::mt19937& random) {
+  if (lab.sensor_frame != kWorld) writeSensorFrame(lab, bag);
   std::normal_distribution<double> force(0.0, lab.force_noise), torque(0.0, lab.torque_noise);
   for (double t = 0.0; t <= lab.duration; t += 1.0 / lab.sensor_rate) {
     const Eigen::Matrix<double, 6, 1> w = interpolate(truth.wrench, dt, t);
+    const core::Wrench seen = core::seenFrom(
+        core::Wrench{w.head<3>(), w.tail<3>(), Eigen::Vector3d::Zero()}, lab.sensor_pose);
     geometry_msgs::WrenchStamped message;
     message.header.stamp = kStart + ros::Duration(t);
-    message.header.frame_id = kWorld;
-    message.wrench.force.x = w[0] + force(random);
-    message.wrench.force.y = w[1] + force(random);
-    message.wrench.force.z = w[2] + force(random);
-    message.wrench.torque.x = w[3] + torque(random);
-    message.wrench.torque.y = w[4] + torque(random);
-    message.wrench.torque.z = w[5] + torque(random);
+    message.header.frame_id = lab.sensor_frame;
+    message.wrench.force.x = seen.force.x() + force(random);
+    message.wrench.force.y = seen.force.y() + force(random);
+    message.wrench.force.z = seen.force.z() + force(random);
+    message.wrench.torque.x = seen.torque.x() + torque(random);
+    message.wrench.torque.y = seen.torque.y() + torque(random);
+    message.wrench.torque.z = seen.torque.z() + torque(random);
     bag.write(lab.sensor_topic, message.header.stamp, message);
   }
 }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <functional>
 #include <map>
 #include <string>
@@ -32,6 +33,10 @@ struct LabRecording {
   /// no sensor.
   std::string sensor_topic = "/ft_sensor/wrench";
   std::string sensor_grasp, sensor_link;
+  /// The frame the sensor reads in (its pose in the world, on /tf_static when it is not the
+  /// world frame).
+  std::string sensor_frame = "world";
+  Eigen::Isometry3d sensor_pose = Eigen::Isometry3d::Identity();
   double sensor_rate = 1000.0, force_noise = 0.02, torque_noise = 0.002;  ///< Hz, N, N m
   unsigned seed = 7;
 };

@@ -77,6 +77,10 @@ LabRecording beamLab(double duration = 2.5, int cells = 10) {
   for (long start = 0; start * 0.01 + 2.0 < duration; start += 250)
     pushAndDrag(start, start % 500 != 0, lab);
   lab.markers = {{"marker_tip", {0.3, 0.02, 0.02}}, {"marker_mid", {0.15, 0.02, 0.04}}};
+  // The sensor under the clamp, its z along the beam.
+  lab.sensor_frame = "ft_sensor";
+  lab.sensor_pose =
+      Eigen::Translation3d(0, 0.02, 0.02) * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY());
   return lab;
 }
 
@@ -225,7 +229,7 @@ void studyRow(const std::string& label, double noise, const std::string& fit) {
   std::printf("| %s | %s |", label.c_str(), run.result.exit_code == 0 ? "yes" : "no");
   const std::vector<double>& v = run.result.fit.values;
   const std::vector<double>& s = run.result.fit.standard_deviations;
-  for (std::size_t i = 0; i < v.size(); ++i) std::printf(" %.4g ± %.2g |", v[i], s[i]);
+  for (std::size_t i = 0; i < v.size(); ++i) std::printf(" %.6g ± %.2g |", v[i], s[i]);
   // The RMS left, over the noise: about 1 at the optimum, more in a local minimum.
   const ResidualRatio ratio = residualOverNoise(run, noise);
   std::printf(" %.2f | %.2f |%s\n", ratio.markers, ratio.sensor, run.refusal.c_str());
