@@ -36,11 +36,28 @@ std::string squeezedScene(double youngs_modulus, double poisson_ratio) {
          "    groups: {top: {box: {min: [-1, -1, 0.099], max: [1, 1, 0.101]}}}\n";
 }
 
-TEST(FitBlock, FindsPoissonsRatioAndStiffnessFromTheBulge) {
+// A recording of the block in `scene` for `duration` s.
+LabRecording blockLab(const std::string& scene, double duration) {
   LabRecording lab;
-  lab.scene_yaml = squeezedScene(5.0e4, 0.35);
+  lab.scene_yaml = scene;
   lab.body = "block";
-  lab.duration = 1.2;
+  lab.duration = duration;
+  return lab;
+}
+
+// The fit of E and nu from 2x off and 0.15, with these observations.
+std::string squeezeFit(const std::string& observations) {
+  return "bag: experiment.bag\n"
+         "scene: guess.yaml\n"
+         "fit:\n"
+         "  - {body: block, parameter: youngs_modulus, min: 1.0e3, max: 1.0e7}\n"
+         "  - {body: block, parameter: poisson_ratio, min: 0.0, max: 0.49}\n"
+         "observations:\n" +
+         observations + "out: fitted.yaml\n";
+}
+
+TEST(FitBlock, FindsPoissonsRatioAndStiffnessFromTheBulge) {
+  LabRecording lab = blockLab(squeezedScene(5.0e4, 0.35), 1.2);
   for (int load = 1; load <= 4; ++load) {
     core::WrenchCommand press;
     press.source = "press";
@@ -52,29 +69,19 @@ TEST(FitBlock, FindsPoissonsRatioAndStiffnessFromTheBulge) {
   lab.markers = {
       {"top", {0.05, 0.05, 0.1}}, {"side_x", {0.1, 0.05, 0.05}}, {"side_y", {0.05, 0.1, 0.05}}};
   const fs::path directory = recorded("block", lab, squeezedScene(1.0e5, 0.15));
-  const FitRun run =
-      runFit(directory,
-             "bag: experiment.bag\n"
-             "scene: guess.yaml\n"
-             "fit:\n"
-             "  - {body: block, parameter: youngs_modulus, min: 1.0e3, max: 1.0e7}\n"
-             "  - {body: block, parameter: poisson_ratio, min: 0.0, max: 0.49}\n"
-             "observations:\n"
-             "  - {tf: top, body: block, at: [0.05, 0.05, 0.1], sigma: 0.001}\n"
-             "  - {tf: side_x, body: block, at: [0.1, 0.05, 0.05], sigma: 0.001}\n"
-             "  - {tf: side_y, body: block, at: [0.05, 0.1, 0.05], sigma: 0.001}\n"
-             "  - {wrench: /ft_sensor/wrench, reactions: block, sigma: [0.02, 0.002]}\n"
-             "out: fitted.yaml\n");
+  const FitRun run = runFit(
+      directory,
+      squeezeFit("  - {tf: top, body: block, at: [0.05, 0.05, 0.1], sigma: 0.001}\n"
+                 "  - {tf: side_x, body: block, at: [0.1, 0.05, 0.05], sigma: 0.001}\n"
+                 "  - {tf: side_y, body: block, at: [0.05, 0.1, 0.05], sigma: 0.001}\n"
+                 "  - {wrench: /ft_sensor/wrench, reactions: block, sigma: [0.02, 0.002]}\n"));
   expectFitted(run, {5.0e4, 0.35}, {0.03, 0.05});
 }
 
 // The same cube squeezed 9 mm by a gripper holding its top, the gripper's sensor and the two
 // side markers measuring: E and nu from the grasp's wrench.
 TEST(FitBlock, FindsStiffnessFromAGripsWrench) {
-  LabRecording lab;
-  lab.scene_yaml = squeezedScene(5.0e4, 0.35);
-  lab.body = "block";
-  lab.duration = 1.0;
+  LabRecording lab = blockLab(squeezedScene(5.0e4, 0.35), 1.0);
   lab.sensor_topic = "/gripper/wrench";
   lab.sensor_grasp = "gripper";
   core::GraspCommand grasp;
@@ -90,17 +97,11 @@ TEST(FitBlock, FindsStiffnessFromAGripsWrench) {
   }
   lab.markers = {{"side_x", {0.1, 0.05, 0.05}}, {"side_y", {0.05, 0.1, 0.05}}};
   const fs::path directory = recorded("grasp", lab, squeezedScene(1.0e5, 0.15));
-  const FitRun run = runFit(directory,
-                            "bag: experiment.bag\n"
-                            "scene: guess.yaml\n"
-                            "fit:\n"
-                            "  - {body: block, parameter: youngs_modulus, min: 1.0e3, max: 1.0e7}\n"
-                            "  - {body: block, parameter: poisson_ratio, min: 0.0, max: 0.49}\n"
-                            "observations:\n"
-                            "  - {tf: side_x, body: block, at: [0.1, 0.05, 0.05], sigma: 0.001}\n"
-                            "  - {tf: side_y, body: block, at: [0.05, 0.1, 0.05], sigma: 0.001}\n"
-                            "  - {wrench: /gripper/wrench, grasp: gripper, sigma: [0.02, 0.002]}\n"
-                            "out: fitted.yaml\n");
+  const FitRun run =
+      runFit(directory,
+             squeezeFit("  - {tf: side_x, body: block, at: [0.1, 0.05, 0.05], sigma: 0.001}\n"
+                        "  - {tf: side_y, body: block, at: [0.05, 0.1, 0.05], sigma: 0.001}\n"
+                        "  - {wrench: /gripper/wrench, grasp: gripper, sigma: [0.02, 0.002]}\n"));
   expectFitted(run, {5.0e4, 0.35}, {0.03, 0.05});
 }
 
@@ -123,10 +124,7 @@ std::string slopeScene(double friction) {
 }
 
 TEST(FitBlock, FindsFrictionFromASlide) {
-  LabRecording lab;
-  lab.scene_yaml = slopeScene(0.3);
-  lab.body = "block";
-  lab.duration = 1.0;
+  LabRecording lab = blockLab(slopeScene(0.3), 1.0);
   lab.sensor_topic = "/floor/wrench";
   lab.sensor_link = "floor";
   core::WrenchCommand nudge;
