@@ -29,6 +29,9 @@ struct LoadedScene {
 LoadedScene loadScene(const identify::FitSpec& fit, const RecordedSession& session) {
   LoadedScene scene;
   if (fit.scene.empty()) {
+    // `out` is the scene file with the fitted values: the built-in scene has no file.
+    if (session.scene.yaml.empty())
+      throw FitSpecError("scene: the bag's ~scene is the built-in scene: give its file as scene");
     scene.spec = recordedSceneSpec(session.scene);
     scene.meshes = meshesFromMessage(session.scene, &scene.surfaces);
     scene.yaml = session.scene.yaml;

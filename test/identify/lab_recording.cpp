@@ -158,8 +158,23 @@ void writeSensor(const LabRecording& lab, const Truth& truth, double dt, rosbag:
 
 }  // namespace
 
+// ~scene as the node latches it: its scene file's text and every body's mesh.
+void writeNodeScene(const LabRecording& lab, rosbag::Bag& bag) {
+  const core::SceneSpec spec = io::parseScene(lab.node_scene_yaml, "lab.yaml", ".");
+  std::vector<std::string> warnings, names;
+  for (const core::BodySpec& body : spec.bodies) names.push_back(body.name);
+  core::MeshCatalogue catalogue;
+  deformable_sim::Scene message = ros_layer::toSceneMessage(
+      "lab.yaml", lab.node_scene_yaml, spec.dt, 1, io::readMeshes(spec, &warnings), {}, names,
+      spec.obstacles, {}, catalogue);
+  message.header.stamp = kStart;
+  message.world_frame = kWorld;
+  bag.write("/deformable_sim/scene", kStart, message);
+}
+
 void recordLab(const LabRecording& lab, const std::string& path) {
   rosbag::Bag bag(path, rosbag::bagmode::Write);
+  if (!lab.node_scene_yaml.empty()) writeNodeScene(lab, bag);
   const Truth truth = run(lab, bag);
   const double dt = io::parseScene(lab.scene_yaml, "lab.yaml", ".").dt;
   std::mt19937 random(lab.seed);

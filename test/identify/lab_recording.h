@@ -1,7 +1,8 @@
 // A session recorded as a lab would: a scene with a material the test keeps secret is driven by
 // commands, the node's ~applied log is written to a bag, and what the lab measures goes beside
 // it — tracked frames on /tf (120 Hz, with noise) and a force/torque sensor on a WrenchStamped
-// topic (1 kHz, with noise). No ~scene and no ~state: the fit starts from a scene file.
+// topic (1 kHz, with noise). No ~state, and ~scene only when asked for (the node's nominal
+// scene): the fit starts from a scene file or from that.
 #pragma once
 
 #include <Eigen/Core>
@@ -23,7 +24,10 @@ struct TrackedNode {
 struct LabRecording {
   std::string scene_yaml;     ///< with the secret values
   std::string body = "beam";  ///< the markers' and the sensor's
-  double duration = 2.0;      ///< s
+  /// The scene the lab's node ran with, recorded on ~scene (its nominal material, not the
+  /// object's); empty: no ~scene in the bag.
+  std::string node_scene_yaml;
+  double duration = 2.0;  ///< s
   /// Commands by the step they are applied after.
   std::multimap<long, core::SessionCommand> commands;
   std::vector<TrackedNode> markers;

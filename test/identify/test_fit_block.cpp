@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "deformable_sim/io/scene_file.h"
 #include "fit_run.h"
 #include "lab_recording.h"
 
@@ -123,10 +124,8 @@ std::string slopeScene(double friction) {
          "    material: {youngs_modulus: 1.0e5, poisson_ratio: 0.3, density: 500.0}\n";
 }
 
-TEST(FitBlock, FindsFrictionFromASlide) {
-  LabRecording lab = blockLab(slopeScene(0.3), 1.0);
-  lab.sensor_topic = "/floor/wrench";
-  lab.sensor_link = "floor";
+// A 1 N push down the slope for the first 5 steps; a marker on the block's top.
+void nudgeDownTheSlope(LabRecording& lab) {
   core::WrenchCommand nudge;
   nudge.source = "nudge";
   nudge.body = "block";
@@ -135,6 +134,13 @@ TEST(FitBlock, FindsFrictionFromASlide) {
   lab.commands.emplace(0, nudge);
   lab.commands.emplace(5, core::ClearWrenchCommand{"nudge"});
   lab.markers = {{"top", {0.0, 0.0, 0.1}}};
+}
+
+TEST(FitBlock, FindsFrictionFromASlide) {
+  LabRecording lab = blockLab(slopeScene(0.3), 1.0);
+  lab.sensor_topic = "/floor/wrench";
+  lab.sensor_link = "floor";
+  nudgeDownTheSlope(lab);
   const fs::path directory = recorded("slope", lab, slopeScene(0.12));
   const FitRun run = runFit(directory,
                             "bag: experiment.bag\n"
@@ -145,6 +151,27 @@ TEST(FitBlock, FindsFrictionFromASlide) {
                             "  - {wrench: /floor/wrench, link: floor, sigma: [0.02, 0.002]}\n"
                             "out: fitted.yaml\n");
   expectFitted(run, {0.3}, {0.03});
+}
+
+// Without `scene:` the fit starts from the bag's ~scene: the scene the node ran with, its
+// friction the nominal 0.12, and writes `out` from that scene's text.
+TEST(FitBlock, StartsFromTheRecordedSceneWithoutASceneFile) {
+  LabRecording lab = blockLab(slopeScene(0.3), 1.0);
+  lab.node_scene_yaml = slopeScene(0.12);
+  lab.sensor_topic.clear();
+  nudgeDownTheSlope(lab);
+  const fs::path directory = recorded("recorded_scene", lab, "");
+  const FitRun run =
+      runFit(directory,
+             "bag: experiment.bag\n"
+             "fit: [{body: block, parameter: friction, min: 0.01, max: 1.0}]\n"
+             "observations: [{tf: top, body: block, at: [0, 0, 0.1], sigma: 0.001}]\n"
+             "out: fitted.yaml\n");
+  expectFitted(run, {0.3}, {0.03});
+  EXPECT_NE(run.printed.find("iteration 0: cost 7"), std::string::npos);  // from 0.12
+  const core::SceneSpec fitted = io::readSceneFile((directory / "fitted.yaml").string());
+  ASSERT_TRUE(fitted.contact);
+  EXPECT_DOUBLE_EQ(fitted.contact->friction, run.result.fit.values[0]);
 }
 
 }  // namespace
