@@ -35,6 +35,7 @@ packages=(
   python3-geometry-msgs python3-visualization-msgs python3-std-srvs python3-tf2-msgs
   python3-tf2-ros python3-diagnostic-msgs python3-sensor-msgs ros-robot-state-publisher
   librosbag-dev libtf2-msgs-dev libtf2-eigen-dev python3-rosbag
+  libceres-dev
 )
 # rviz for the demo when asked; rviz under Xvfb with imagemagick for the screenshot test; clang
 # with libFuzzer for the fuzz targets (scripts/fuzz.sh).

@@ -94,6 +94,11 @@ void Resimulation::planSteps() {
   for (const auto& [episode, end] : end_steps_) planned_steps_ += end;
 }
 
+void Resimulation::extendTo(long episode, long step) {
+  long& end = end_steps_[episode];
+  if (step > end) planned_steps_ += step - end, end = step;
+}
+
 long Resimulation::endStep(long episode) const {
   const auto found = end_steps_.find(episode);
   return found == end_steps_.end() ? 0 : found->second;
@@ -105,6 +110,7 @@ ResimulationReport Resimulation::run(const Observer& observer, ProgressBar* prog
   observer_ = &observer;
   progress_ = progress;
   if (from_start_) compare();
+  if (step_observer_) step_observer_(session_);
   for (std::size_t k = first_command_; k < recording_.log.size(); ++k) {
     const AppliedCommand& applied = recording_.log[k];
     // The reset the log starts at ends an episode that was not re-simulated.
@@ -160,6 +166,7 @@ void Resimulation::stepTo(long step) {
     ++report_.steps;
     report_.simulated_time += simulation.dt();
     compare();
+    if (step_observer_) step_observer_(session_);
     if (progress_) progress_->update(report_.steps);
   }
 }

@@ -16,11 +16,11 @@ namespace deformable_sim::ros_layer {
 
 namespace {
 
-// The nodes whose ~scene the bag holds: /a/b for a topic /a/b/scene.
-std::set<std::string> recordedNodes(const rosbag::Bag& bag) {
-  const std::string suffix = "/scene";
+// The nodes whose ~scene (or ~applied) the bag holds: /a/b for a topic /a/b/scene.
+std::set<std::string> recordedNodes(const rosbag::Bag& bag, const std::string& type = "Scene",
+                                    const std::string& suffix = "/scene") {
   std::set<std::string> nodes;
-  rosbag::View scenes(bag, rosbag::TypeQuery("deformable_sim/Scene"));
+  rosbag::View scenes(bag, rosbag::TypeQuery("deformable_sim/" + type));
   for (const rosbag::ConnectionInfo* connection : scenes.getConnections()) {
     nodes.insert(connection->topic.substr(0, connection->topic.size() - suffix.size()));
   }
@@ -28,8 +28,14 @@ std::set<std::string> recordedNodes(const rosbag::Bag& bag) {
 }
 
 std::string chooseNode(const rosbag::Bag& bag, const std::string& path,
-                       const std::string& requested) {
-  const std::set<std::string> nodes = recordedNodes(bag);
+                       const std::string& requested, bool scene_required) {
+  std::set<std::string> nodes = recordedNodes(bag);
+  if (nodes.empty() && !scene_required) nodes = recordedNodes(bag, "Applied", "/applied");
+  if (nodes.empty() && !scene_required) {
+    throw ReplayError(path +
+                      ": no ~applied (deformable_sim/Applied) message: record the node's "
+                      "~applied topic with the session");
+  }
   if (nodes.empty()) {
     throw ReplayError(path +
                       ": no deformable_sim/Scene message: record the node's ~scene topic "
@@ -94,6 +100,9 @@ void readMessages(const rosbag::Bag& bag, const std::string& path, RecordedSessi
       have_scene = true;
     } else if (m.getTopic() == node + "/applied") {
       applied.push_back(instantiate<Applied>(m, path));
+      const Applied& a = *applied.back();
+      session.applied_stamps.push_back(
+          {a.header, static_cast<long>(a.episode), static_cast<long>(a.step)});
     } else {
       addState(*instantiate<BodyState>(m, path), session);
     }
@@ -109,11 +118,12 @@ void readMessages(const rosbag::Bag& bag, const std::string& path, RecordedSessi
 
 }  // namespace
 
-RecordedSession readRecordedSession(const std::string& path, const std::string& node) {
+RecordedSession readRecordedSession(const std::string& path, const std::string& node,
+                                    bool scene_required) {
   RecordedSession session;
   try {
     rosbag::Bag bag(path, rosbag::bagmode::Read);
-    session.node = chooseNode(bag, path, node);
+    session.node = chooseNode(bag, path, node, scene_required);
     readMessages(bag, path, session);
   } catch (const rosbag::BagUnindexedException&) {
     throw ReplayError(path +

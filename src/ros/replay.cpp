@@ -30,8 +30,9 @@ io::ObstacleMeshLoader recordedMeshes(const Scene& scene) {
   };
 }
 
-// The scene as the node read it: its file's text, or the built-in scene, at the node's step.
-core::SceneSpec recordedScene(const Scene& scene) {
+}  // namespace
+
+core::SceneSpec recordedSceneSpec(const Scene& scene) {
   core::SceneSpec spec;
   try {
     spec = io::sceneFromFileText(scene.yaml, scene.path, recordedMeshes(scene));
@@ -41,6 +42,8 @@ core::SceneSpec recordedScene(const Scene& scene) {
   spec.dt = scene.dt;
   return spec;
 }
+
+namespace {
 
 core::SolverSettings::Method solverMethod(const std::string& name) {
   if (name == "cg") return core::SolverSettings::Method::kConjugateGradient;
@@ -76,7 +79,7 @@ Replay::Replay(ReplayOptions options)
 Replay::~Replay() = default;
 
 core::SceneSpec Replay::sceneSpec() const {
-  core::SceneSpec spec = recordedScene(recorded_->scene);
+  core::SceneSpec spec = recordedSceneSpec(recorded_->scene);
   if (options_.solver_method) spec.solver.method = solverMethod(*options_.solver_method);
   if (options_.threads) spec.solver.threads = *options_.threads;
   // The bodies are built with these too; the re-simulation keeps them through resets and tuning.

@@ -1,4 +1,5 @@
-// The core (and the readers) must build without ROS: no header or source there includes one.
+// The core (and the readers, and the fit) must build without ROS: no header or source there
+// includes one.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -12,8 +13,8 @@ TEST(RosFree, NoCoreOrIoFileIncludesARosHeader) {
   const std::regex ros_include(
       R"(#\s*include\s*[<"](ros/|roscpp|tf2_ros/|tf2/|rosbag/|[a-z_]+_msgs/|dynamic_reconfigure/|diagnostic_updater/))");
   int files = 0;
-  for (const char* folder :
-       {"include/deformable_sim/core", "src/core", "include/deformable_sim/io", "src/io"}) {
+  for (const char* folder : {"include/deformable_sim/core", "src/core", "include/deformable_sim/io",
+                             "src/io", "include/deformable_sim/identify", "src/identify"}) {
     const fs::path dir = fs::path(DEFORMABLE_SIM_SOURCE_DIR) / folder;
     ASSERT_TRUE(fs::is_directory(dir)) << dir;
     for (const auto& entry : fs::recursive_directory_iterator(dir)) {

@@ -79,6 +79,8 @@ struct ComparedState {
 class Resimulation {
  public:
   using Observer = std::function<void(const ComparedState&)>;
+  /// Hears of the session at the start and after every step, recorded state or not.
+  using StepObserver = std::function<void(const Session&)>;
 
   /// meshes[i] belongs to spec.bodies[i]. The log starts where the recording does: at the
   /// session's start (its first state is step 0 of episode 0) or at its first reset; commands
@@ -93,6 +95,9 @@ class Resimulation {
   long plannedSteps() const { return planned_steps_; }
   /// The session re-simulated (its simulation is replaced at every reset).
   const Session& session() const { return session_; }
+  /// Runs `episode` at least to `step`: what was measured after the last command.
+  void extendTo(long episode, long step);
+  void setStepObserver(StepObserver observer) { step_observer_ = std::move(observer); }
 
   /// Runs the whole log (once: a second call throws std::logic_error); `observer` hears of every
   /// compared state, `progress` (may be null) of every step. Throws ResimulationError for a log out
@@ -128,6 +133,7 @@ class Resimulation {
   ResimulationReport report_;
   const Observer* observer_ = nullptr;
   ProgressBar* progress_ = nullptr;
+  StepObserver step_observer_;
 };
 
 }  // namespace deformable_sim::core

@@ -1,0 +1,176 @@
+#include "deformable_sim/ros/identification.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "deformable_sim/identify/fit_plot.h"
+#include "deformable_sim/identify/fitted_scene.h"
+#include "deformable_sim/identify/scene_parameter.h"
+#include "deformable_sim/io/scene_file.h"
+#include "deformable_sim/ros/measured_bag.h"
+#include "deformable_sim/ros/recorded_session.h"
+#include "deformable_sim/ros/replay.h"
+#include "deformable_sim/ros/session_messages.h"
+
+namespace deformable_sim::ros_layer {
+
+namespace {
+
+using identify::FitSpecError;
+
+struct LoadedScene {
+  core::SceneSpec spec;
+  std::vector<core::Mesh> meshes;
+  std::vector<std::optional<core::EmbeddedSurface>> surfaces;
+  std::string yaml;  ///< the scene file's text, for `out`
+};
+
+LoadedScene loadScene(const identify::FitSpec& fit, const RecordedSession& session) {
+  LoadedScene scene;
+  if (fit.scene.empty()) {
+    // `out` is the scene file with the fitted values: the built-in scene has no file.
+    if (session.scene.yaml.empty())
+      throw FitSpecError("scene: the bag's ~scene is the built-in scene: give its file as scene");
+    scene.spec = recordedSceneSpec(session.scene);
+    scene.meshes = meshesFromMessage(session.scene, &scene.surfaces);
+    scene.yaml = session.scene.yaml;
+    return scene;
+  }
+  try {
+    scene.spec = io::readSceneFile(fit.scene);
+    std::vector<std::string> warnings;
+    scene.meshes = io::readMeshes(scene.spec, &warnings, &scene.surfaces);
+    scene.yaml = io::readSceneText(fit.scene);
+  } catch (const std::exception& e) {
+    throw FitSpecError(std::string("scene: ") + e.what());
+  }
+  return scene;
+}
+
+// When the measured episode's step 0 was: the node applies a command after `step` steps at
+// about stamp = start + step dt; the median over the episode's commands.
+ros::Time sessionStart(const RecordedSession& session, double dt) {
+  const long episode = identify::measuredEpisode(session.recording);
+  std::vector<double> starts;
+  for (const AppliedStamp& a : session.applied_stamps) {
+    if (a.episode == episode)
+      starts.push_back(a.header.stamp.toSec() - static_cast<double>(a.step) * dt);
+  }
+  if (starts.empty()) throw FitSpecError("bag: the recorded log has no command to time it by");
+  std::nth_element(starts.begin(), starts.begin() + starts.size() / 2, starts.end());
+  return ros::Time(starts[starts.size() / 2]);
+}
+
+identify::RecordedExperiment loadExperiment(const identify::FitSpec& fit, std::string& yaml) {
+  RecordedSession session;
+  try {
+    session = readRecordedSession(fit.bag, "", fit.scene.empty());
+  } catch (const ReplayError& e) {
+    throw FitSpecError(std::string("bag: ") + e.what());
+  }
+  if (session.applied_stamps.empty()) {
+    throw FitSpecError("bag: " + fit.bag + " has no ~applied message: record the node's ~applied");
+  }
+  LoadedScene scene = loadScene(fit, session);
+  yaml = scene.yaml;
+  const std::string& world = session.applied_stamps.front().header.frame_id;
+  const ros::Time start = sessionStart(session, scene.spec.dt);
+  Measurements measured = readMeasurements(fit.bag, fit.observations, world, start);
+  identify::RecordedExperiment experiment{
+      std::move(scene.spec),        std::move(scene.meshes), std::move(scene.surfaces),
+      std::move(session.recording), fit.observations,        std::move(measured.sensor_frames),
+      std::move(measured.series)};
+  experiment.recording.states.clear();  // the fit compares measurements, not recorded states
+  return experiment;
+}
+
+std::string valuesText(const std::vector<identify::FitParameter>& parameters,
+                       const std::vector<double>& values) {
+  std::string text;
+  char buffer[160];
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    std::snprintf(buffer, sizeof buffer, "  %s.%s %.6g", parameters[i].body.c_str(),
+                  parameters[i].parameter.c_str(), values[i]);
+    text += buffer;
+  }
+  return text;
+}
+
+void printRms(std::FILE* out, const identify::FitSpec& fit,
+              const std::vector<identify::ObservationRms>& before,
+              const std::vector<identify::ObservationRms>& after) {
+  for (std::size_t o = 0; o < fit.observations.size(); ++o) {
+    const identify::ObservationSpec& spec = fit.observations[o];
+    if (spec.kind == identify::ObservationSpec::Kind::kFrame) {
+      std::fprintf(out, "RMS residual %s (tf %s): %.4g m before, %.4g m after\n", spec.key.c_str(),
+                   spec.topic.c_str(), before[o].first, after[o].first);
+    } else {
+      std::fprintf(out,
+                   "RMS residual %s (wrench %s): %.4g N %.4g N m before, %.4g N %.4g N m after\n",
+                   spec.key.c_str(), spec.topic.c_str(), before[o].first, before[o].second,
+                   after[o].first, after[o].second);
+    }
+  }
+}
+
+void writeOut(const identify::FitSpec& fit, const std::string& yaml,
+              const std::vector<double>& values) {
+  std::ofstream file(fit.out);
+  file << identify::fittedSceneYaml(yaml, fit.fit, values);
+  if (!file) throw std::runtime_error("out: cannot write '" + fit.out + "'");
+}
+
+}  // namespace
+
+IdentifyResult identify(const IdentifyOptions& options, std::FILE* out) {
+  const identify::FitSpec fit = identify::readFitSpec(options.fit_file);
+  std::string yaml;
+  std::optional<identify::Experiment> experiment;
+  std::vector<double> guess;
+  try {
+    identify::RecordedExperiment recorded = loadExperiment(fit, yaml);
+    guess = identify::firstGuess(recorded.scene, fit.fit);
+    experiment.emplace(std::move(recorded), fit.fit);
+  } catch (const FitSpecError& e) {
+    throw FitSpecError(options.fit_file + ": " + e.what());
+  }
+  const auto residuals = [&experiment](const std::vector<double>& values) {
+    return experiment->residuals(experiment->simulate(values));
+  };
+  identify::FitOptions fit_options;
+  fit_options.threads = options.threads;
+  fit_options.max_iterations = options.max_iterations;
+  fit_options.progress = [&](int iteration, double cost, const std::vector<double>& values) {
+    std::fprintf(out, "iteration %d: cost %.6g%s\n", iteration, cost,
+                 valuesText(fit.fit, values).c_str());
+    std::fflush(out);
+  };
+  IdentifyResult result;
+  result.fit = identify::fitLeastSquares(fit.fit, guess, experiment->residualCount(), residuals,
+                                         fit_options);
+  result.before = experiment->rms(residuals(guess));
+  result.after = experiment->rms(residuals(result.fit.values));
+  for (std::size_t i = 0; i < fit.fit.size(); ++i) {
+    std::fprintf(out, "fitted %s %s %.6g ± %.3g\n", fit.fit[i].body.c_str(),
+                 fit.fit[i].parameter.c_str(), result.fit.values[i],
+                 result.fit.standard_deviations[i]);
+  }
+  printRms(out, fit, result.before, result.after);
+  // About 1 when the sigmas are the noise; well above it in a local minimum.
+  std::fprintf(
+      out, "weighted RMS residual %.3g (about 1 when the fit is right and sigma the noise)\n",
+      std::sqrt(2.0 * result.fit.final_cost / static_cast<double>(experiment->residualCount())));
+  writeOut(fit, yaml, result.fit.values);
+  std::fprintf(out, "wrote %s\n", fit.out.c_str());
+  if (!options.plot.empty()) {
+    identify::plotFit(*experiment, guess, result.fit.values, options.plot, options.plot_script);
+  }
+  if (!result.fit.converged) {
+    std::fprintf(out, "the fit did not converge: %s\n", result.fit.report.c_str());
+    result.exit_code = 3;
+  }
+  return result;
+}
+
+}  // namespace deformable_sim::ros_layer

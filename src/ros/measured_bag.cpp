@@ -1,0 +1,112 @@
+#include "deformable_sim/ros/measured_bag.h"
+
+#include <geometry_msgs/WrenchStamped.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <tf2/buffer_core.h>
+#include <tf2/exceptions.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include <set>
+
+namespace deformable_sim::ros_layer {
+
+namespace {
+
+using identify::FitSpecError;
+using identify::ObservationSpec;
+
+// Every transform of /tf and /tf_static, for the sensors' frames.
+void fillBuffer(const rosbag::Bag& bag, tf2::BufferCore& buffer) {
+  for (const rosbag::MessageInstance& m :
+       rosbag::View(bag, rosbag::TopicQuery(std::vector<std::string>{"/tf", "/tf_static"}))) {
+    const tf2_msgs::TFMessage::ConstPtr message = m.instantiate<tf2_msgs::TFMessage>();
+    if (!message) continue;
+    for (const geometry_msgs::TransformStamped& t : message->transforms)
+      buffer.setTransform(t, "bag", m.getTopic() == "/tf_static");
+  }
+}
+
+void readFrame(const rosbag::Bag& bag, const ObservationSpec& spec, const std::string& world,
+               const ros::Time& start, identify::MeasuredSeries& series) {
+  bool seen = false;
+  for (const rosbag::MessageInstance& m :
+       rosbag::View(bag, rosbag::TopicQuery(std::string("/tf")))) {
+    const tf2_msgs::TFMessage::ConstPtr message = m.instantiate<tf2_msgs::TFMessage>();
+    if (!message) continue;
+    for (const geometry_msgs::TransformStamped& t : message->transforms) {
+      if (t.child_frame_id != spec.topic) continue;
+      seen = true;
+      if (t.header.frame_id != world && t.header.frame_id != "/" + world) {
+        throw FitSpecError(spec.key + ".tf: frame '" + spec.topic + "' is a child of '" +
+                           t.header.frame_id + "', not of the world frame '" + world + "'");
+      }
+      if (t.header.stamp < start) continue;
+      series.times.push_back((t.header.stamp - start).toSec());
+      const geometry_msgs::Vector3& p = t.transform.translation;
+      series.values.push_back(Eigen::Vector3d(p.x, p.y, p.z));
+    }
+  }
+  if (!seen) throw FitSpecError(spec.key + ".tf: the bag's /tf has no frame '" + spec.topic + "'");
+}
+
+Eigen::Isometry3d sensorFrame(const tf2::BufferCore& buffer, const ObservationSpec& spec,
+                              const std::string& frame, const std::string& world,
+                              const ros::Time& stamp) {
+  if (frame.empty() || frame == world || frame == "/" + world) return Eigen::Isometry3d::Identity();
+  try {
+    return tf2::transformToEigen(buffer.lookupTransform(world, frame, stamp));
+  } catch (const tf2::TransformException& e) {
+    throw FitSpecError(spec.key + ".wrench: its frame '" + frame +
+                       "' is not in the bag's tf: " + e.what());
+  }
+}
+
+void readWrench(const rosbag::Bag& bag, const ObservationSpec& spec, const std::string& world,
+                const ros::Time& start, const tf2::BufferCore& buffer,
+                identify::MeasuredSeries& series, Eigen::Isometry3d& frame) {
+  rosbag::View view(bag, rosbag::TopicQuery(spec.topic));
+  if (view.size() == 0)
+    throw FitSpecError(spec.key + ".wrench: the bag has no topic '" + spec.topic + "'");
+  bool first = true;
+  for (const rosbag::MessageInstance& m : view) {
+    const geometry_msgs::WrenchStamped::ConstPtr w = m.instantiate<geometry_msgs::WrenchStamped>();
+    if (!w) {
+      throw FitSpecError(spec.key + ".wrench: '" + spec.topic + "' is a " + m.getDataType() +
+                         ", not a geometry_msgs/WrenchStamped");
+    }
+    if (first) frame = sensorFrame(buffer, spec, w->header.frame_id, world, w->header.stamp);
+    first = false;
+    if (w->header.stamp < start) continue;
+    series.times.push_back((w->header.stamp - start).toSec());
+    Eigen::VectorXd value(6);
+    value << w->wrench.force.x, w->wrench.force.y, w->wrench.force.z, w->wrench.torque.x,
+        w->wrench.torque.y, w->wrench.torque.z;
+    series.values.push_back(value);
+  }
+}
+
+}  // namespace
+
+Measurements readMeasurements(const std::string& path,
+                              const std::vector<ObservationSpec>& observations,
+                              const std::string& world_frame, const ros::Time& start) {
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  tf2::BufferCore buffer(ros::Duration(1.0e6));
+  fillBuffer(bag, buffer);
+  Measurements result;
+  result.series.resize(observations.size());
+  result.sensor_frames.assign(observations.size(), Eigen::Isometry3d::Identity());
+  for (std::size_t o = 0; o < observations.size(); ++o) {
+    const ObservationSpec& spec = observations[o];
+    if (spec.kind == ObservationSpec::Kind::kFrame) {
+      readFrame(bag, spec, world_frame, start, result.series[o]);
+    } else {
+      readWrench(bag, spec, world_frame, start, buffer, result.series[o], result.sensor_frames[o]);
+    }
+  }
+  return result;
+}
+
+}  // namespace deformable_sim::ros_layer

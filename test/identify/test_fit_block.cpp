@@ -1,0 +1,178 @@
+// Two more fits on sessions of their own: Poisson's ratio with E from a block squeezed by a load
+// on its top (nu shows in its bulge), and friction from a block sliding down a slope.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "deformable_sim/io/scene_file.h"
+#include "fit_run.h"
+#include "lab_recording.h"
+
+namespace deformable_sim::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path recorded(const std::string& name, const LabRecording& lab, const std::string& guess) {
+  const fs::path directory = fs::temp_directory_path() / ("deformable_sim_identify_" + name);
+  fs::create_directories(directory);
+  recordLab(lab, (directory / "experiment.bag").string());
+  std::ofstream(directory / "guess.yaml") << guess;
+  return directory;
+}
+
+// A 10 cm foam cube on its fixed base, loaded on its top in steps up to 40 N.
+std::string squeezedScene(double youngs_modulus, double poisson_ratio) {
+  return "dt: 0.01\n"
+         "effects: {warping: true, damping: {mass: 0.0, stiffness: 0.005}}\n"
+         "solver: {method: direct}\n"
+         "bodies:\n"
+         "  - name: block\n"
+         "    mesh: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1], cells: [4, 4, 4]}}\n"
+         "    material: {youngs_modulus: " +
+         std::to_string(youngs_modulus) + ", poisson_ratio: " + std::to_string(poisson_ratio) +
+         ", density: 200.0}\n"
+         "    fixed: [{box: {min: [-1, -1, -0.001], max: [1, 1, 0.001]}}]\n"
+         "    groups: {top: {box: {min: [-1, -1, 0.099], max: [1, 1, 0.101]}}}\n";
+}
+
+// A recording of the block in `scene` for `duration` s.
+LabRecording blockLab(const std::string& scene, double duration) {
+  LabRecording lab;
+  lab.scene_yaml = scene;
+  lab.body = "block";
+  lab.duration = duration;
+  return lab;
+}
+
+// The fit of E and nu from 2x off and 0.15, with these observations.
+std::string squeezeFit(const std::string& observations) {
+  return "bag: experiment.bag\n"
+         "scene: guess.yaml\n"
+         "fit:\n"
+         "  - {body: block, parameter: youngs_modulus, min: 1.0e3, max: 1.0e7}\n"
+         "  - {body: block, parameter: poisson_ratio, min: 0.0, max: 0.49}\n"
+         "observations:\n" +
+         observations + "out: fitted.yaml\n";
+}
+
+TEST(FitBlock, FindsPoissonsRatioAndStiffnessFromTheBulge) {
+  LabRecording lab = blockLab(squeezedScene(5.0e4, 0.35), 1.2);
+  for (int load = 1; load <= 4; ++load) {
+    core::WrenchCommand press;
+    press.source = "press";
+    press.body = "block";
+    press.nodes.group = "top";
+    press.force = Eigen::Vector3d(0, 0, -10.0 * load);
+    lab.commands.emplace(20 * load, press);
+  }
+  lab.markers = {
+      {"top", {0.05, 0.05, 0.1}}, {"side_x", {0.1, 0.05, 0.05}}, {"side_y", {0.05, 0.1, 0.05}}};
+  const fs::path directory = recorded("block", lab, squeezedScene(1.0e5, 0.15));
+  const FitRun run = runFit(
+      directory,
+      squeezeFit("  - {tf: top, body: block, at: [0.05, 0.05, 0.1], sigma: 0.001}\n"
+                 "  - {tf: side_x, body: block, at: [0.1, 0.05, 0.05], sigma: 0.001}\n"
+                 "  - {tf: side_y, body: block, at: [0.05, 0.1, 0.05], sigma: 0.001}\n"
+                 "  - {wrench: /ft_sensor/wrench, reactions: block, sigma: [0.02, 0.002]}\n"));
+  expectFitted(run, {5.0e4, 0.35}, {0.03, 0.05});
+}
+
+// The same cube squeezed 9 mm by a gripper holding its top, the gripper's sensor and the two
+// side markers measuring: E and nu from the grasp's wrench.
+TEST(FitBlock, FindsStiffnessFromAGripsWrench) {
+  LabRecording lab = blockLab(squeezedScene(5.0e4, 0.35), 1.0);
+  lab.sensor_topic = "/gripper/wrench";
+  lab.sensor_grasp = "gripper";
+  core::GraspCommand grasp;
+  grasp.name = "gripper";
+  grasp.body = "block";
+  grasp.nodes.group = "top";
+  grasp.frame.translation() = Eigen::Vector3d(0.05, 0.05, 0.1);
+  lab.commands.emplace(10, grasp);
+  for (long k = 1; k <= 30; ++k) {
+    core::MoveGraspCommand move{"gripper", grasp.frame};
+    move.frame.translation().z() -= 0.0003 * static_cast<double>(k);
+    lab.commands.emplace(10 + k, move);
+  }
+  lab.markers = {{"side_x", {0.1, 0.05, 0.05}}, {"side_y", {0.05, 0.1, 0.05}}};
+  const fs::path directory = recorded("grasp", lab, squeezedScene(1.0e5, 0.15));
+  const FitRun run =
+      runFit(directory,
+             squeezeFit("  - {tf: side_x, body: block, at: [0.1, 0.05, 0.05], sigma: 0.001}\n"
+                        "  - {tf: side_y, body: block, at: [0.05, 0.1, 0.05], sigma: 0.001}\n"
+                        "  - {wrench: /gripper/wrench, grasp: gripper, sigma: [0.02, 0.002]}\n"));
+  expectFitted(run, {5.0e4, 0.35}, {0.03, 0.05});
+}
+
+// A 10 cm block on a floor with gravity tilted by 30 degrees: a slope it slides down whenever
+// friction is below tan 30 = 0.577, given a nudge at the start. A marker on it, and the floor's
+// contact wrench (`link:`) as a force plate under it would read it.
+std::string slopeScene(double friction) {
+  return "dt: 0.01\n"
+         "effects: {gravity: [0, -4.905, -8.49571], warping: true,\n"
+         "          damping: {mass: 0.0, stiffness: 0.01}, contact: {friction: " +
+         std::to_string(friction) +
+         "}}\n"
+         "solver: {method: direct}\n"
+         "obstacles:\n"
+         "  - {name: floor, box: {size: [4, 4, 0.2]}, position: [0, 0, -0.1]}\n"
+         "bodies:\n"
+         "  - name: block\n"
+         "    mesh: {box: {min: [-0.05, -0.05, 0], max: [0.05, 0.05, 0.1], cells: [2, 2, 2]}}\n"
+         "    material: {youngs_modulus: 1.0e5, poisson_ratio: 0.3, density: 500.0}\n";
+}
+
+// A 1 N push down the slope for the first 5 steps; a marker on the block's top.
+void nudgeDownTheSlope(LabRecording& lab) {
+  core::WrenchCommand nudge;
+  nudge.source = "nudge";
+  nudge.body = "block";
+  nudge.nodes.whole_body = true;
+  nudge.force = Eigen::Vector3d(0, -1.0, 0);
+  lab.commands.emplace(0, nudge);
+  lab.commands.emplace(5, core::ClearWrenchCommand{"nudge"});
+  lab.markers = {{"top", {0.0, 0.0, 0.1}}};
+}
+
+TEST(FitBlock, FindsFrictionFromASlide) {
+  LabRecording lab = blockLab(slopeScene(0.3), 1.0);
+  lab.sensor_topic = "/floor/wrench";
+  lab.sensor_link = "floor";
+  nudgeDownTheSlope(lab);
+  const fs::path directory = recorded("slope", lab, slopeScene(0.12));
+  const FitRun run = runFit(directory,
+                            "bag: experiment.bag\n"
+                            "scene: guess.yaml\n"
+                            "fit: [{body: block, parameter: friction, min: 0.01, max: 1.0}]\n"
+                            "observations:\n"
+                            "  - {tf: top, body: block, at: [0, 0, 0.1], sigma: 0.001}\n"
+                            "  - {wrench: /floor/wrench, link: floor, sigma: [0.02, 0.002]}\n"
+                            "out: fitted.yaml\n");
+  expectFitted(run, {0.3}, {0.03});
+}
+
+// Without `scene:` the fit starts from the bag's ~scene: the scene the node ran with, its
+// friction the nominal 0.12, and writes `out` from that scene's text.
+TEST(FitBlock, StartsFromTheRecordedSceneWithoutASceneFile) {
+  LabRecording lab = blockLab(slopeScene(0.3), 1.0);
+  lab.node_scene_yaml = slopeScene(0.12);
+  lab.sensor_topic.clear();
+  nudgeDownTheSlope(lab);
+  const fs::path directory = recorded("recorded_scene", lab, "");
+  const FitRun run =
+      runFit(directory,
+             "bag: experiment.bag\n"
+             "fit: [{body: block, parameter: friction, min: 0.01, max: 1.0}]\n"
+             "observations: [{tf: top, body: block, at: [0, 0, 0.1], sigma: 0.001}]\n"
+             "out: fitted.yaml\n");
+  expectFitted(run, {0.3}, {0.03});
+  EXPECT_NE(run.printed.find("iteration 0: cost 7"), std::string::npos);  // from 0.12
+  const core::SceneSpec fitted = io::readSceneFile((directory / "fitted.yaml").string());
+  ASSERT_TRUE(fitted.contact);
+  EXPECT_DOUBLE_EQ(fitted.contact->friction, run.result.fit.values[0]);
+}
+
+}  // namespace
+}  // namespace deformable_sim::test
