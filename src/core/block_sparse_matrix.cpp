@@ -74,20 +74,8 @@ const bool kHasAvx2Fma = hasAvx2Fma();
 
 }  // namespace
 
-BlockSparseMatrix::BlockSparseMatrix(const Mesh& mesh) {
-  const int num_nodes = mesh.numNodes();
-  std::vector<std::vector<int>> neighbours(num_nodes);
-  for (int i = 0; i < num_nodes; ++i) neighbours[i].push_back(i);
-  for (const Tetrahedron& t : mesh.tetrahedra) {
-    for (int a : t) {
-      for (int b : t) neighbours[a].push_back(b);
-    }
-  }
-  for (const Cell& c : mesh.cells) {
-    for (int a = 0; a < c.size(); ++a) {
-      for (int b = 0; b < c.size(); ++b) neighbours[c.nodes[a]].push_back(c.nodes[b]);
-    }
-  }
+BlockSparseMatrix::BlockSparseMatrix(std::vector<std::vector<int>> neighbours) {
+  const int num_nodes = static_cast<int>(neighbours.size());
   row_start_.assign(1, 0);
   diagonal_.resize(num_nodes);
   for (int i = 0; i < num_nodes; ++i) {

@@ -26,7 +26,7 @@ CorotationalElasticity::CorotationalElasticity(const Mesh& mesh,
     : tetrahedra_(mesh.tetrahedra),
       rest_positions_(3 * mesh.numNodes()),
       rotations_(mesh.numElements(), Eigen::Matrix3d::Identity()),
-      stiffness_(mesh),
+      stiffness_(nodeNeighbours(mesh)),
       force_offset_(Eigen::VectorXd::Zero(3 * mesh.numNodes())) {
   validate(material);
   for (int i = 0; i < mesh.numNodes(); ++i) rest_positions_.segment<3>(3 * i) = mesh.positions[i];

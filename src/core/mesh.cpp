@@ -148,4 +148,21 @@ std::vector<int> nodeIndices(const Mesh& mesh, const std::vector<long>& node_num
   return indices;
 }
 
+std::vector<std::vector<int>> nodeNeighbours(const Mesh& mesh) {
+  const int num_nodes = mesh.numNodes();
+  std::vector<std::vector<int>> neighbours(num_nodes);
+  for (int i = 0; i < num_nodes; ++i) neighbours[i].push_back(i);
+  for (const Tetrahedron& t : mesh.tetrahedra) {
+    for (int a : t) {
+      for (int b : t) neighbours[a].push_back(b);
+    }
+  }
+  for (const Cell& c : mesh.cells) {
+    for (int a = 0; a < c.size(); ++a) {
+      for (int b = 0; b < c.size(); ++b) neighbours[c.nodes[a]].push_back(c.nodes[b]);
+    }
+  }
+  return neighbours;
+}
+
 }  // namespace deformable_sim::core

@@ -1,11 +1,10 @@
 // A square matrix of 3x3 blocks in compressed-row form, with a fixed pattern: built once from the
-// element connectivity, then filled in place every step through precomputed block indices.
+// element connectivity (core/mesh.h nodeNeighbours), then filled in place every step through
+// precomputed block indices.
 #pragma once
 
 #include <Eigen/Core>
 #include <vector>
-
-#include "deformable_sim/core/mesh.h"
 
 namespace deformable_sim::core {
 
@@ -13,9 +12,10 @@ class BlockSparseMatrix {
  public:
   BlockSparseMatrix() = default;
 
-  /// Pattern with a block (i, j) for every pair of nodes that share an element (i == j
-  /// included), both triangles stored. All blocks start at zero.
-  explicit BlockSparseMatrix(const Mesh& mesh);
+  /// Pattern with a block (i, j) for every j in neighbours[i] (in any order, repeats allowed;
+  /// i itself among them, and i in neighbours[j] too), both triangles stored. All blocks start
+  /// at zero.
+  explicit BlockSparseMatrix(std::vector<std::vector<int>> neighbours);
 
   int numBlockRows() const { return static_cast<int>(row_start_.size()) - 1; }
   int numBlocks() const { return static_cast<int>(blocks_.size()); }

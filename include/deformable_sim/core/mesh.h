@@ -103,4 +103,8 @@ std::vector<double> lumpedMasses(const Mesh& mesh, double density);
 /// number that is not a node of the mesh.
 std::vector<int> nodeIndices(const Mesh& mesh, const std::vector<long>& node_numbers);
 
+/// Per node, the nodes that share an element with it, itself first, unsorted and repeated: the
+/// pattern of a stiffness matrix (core/block_sparse_matrix.h).
+std::vector<std::vector<int>> nodeNeighbours(const Mesh& mesh);
+
 }  // namespace deformable_sim::core
