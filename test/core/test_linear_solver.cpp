@@ -13,12 +13,12 @@
 #include <utility>
 #include <vector>
 
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/corotational_elasticity.h"
-#include "deformable_sim/core/dense_cholesky.h"
-#include "deformable_sim/core/linear_solver.h"
-#include "deformable_sim/core/rigid_mode_coarse_space.h"
-#include "deformable_sim/core/spin_barrier.h"
+#include "deformable_sim/core/base/spin_barrier.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/elements/corotational_elasticity.h"
+#include "deformable_sim/core/solvers/dense_cholesky.h"
+#include "deformable_sim/core/solvers/linear_solver.h"
+#include "deformable_sim/core/solvers/rigid_mode_coarse_space.h"
 
 namespace dc = deformable_sim::core;
 

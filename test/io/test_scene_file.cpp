@@ -5,7 +5,7 @@
 #include <fstream>
 #include <string>
 
-#include "deformable_sim/core/default_scene.h"
+#include "deformable_sim/core/session/default_scene.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/scene_file.h"
 
