@@ -1,33 +1,30 @@
 #!/usr/bin/python3
-"""Records the reference session (session.bag beside this file) from a running
-deformable_sim_node on session.yaml: record.launch starts both. After a reset the bodies fall
-onto the slab and the table; a moving gripper frame grasps the cube, lifts it and lets it go; a
-wrench pushes the rigid brick against it (not hard enough to move both); the slab's edge is fixed
-and dragged over the table; a live tuning softens the bodies; all is let go. Only the node's
-~scene, ~applied and ~state are kept, compressed: what deformable_sim_replay needs.
+"""Records the reference session (test/data/reference/session.bag) from a running
+deformable_sim_node on test/data/reference/session.yaml; test/data/reference/record.launch starts
+both. After a reset the bodies fall onto the slab and the table; a moving gripper frame grasps
+the cube, lifts it and lets it go; a wrench pushes the rigid brick against it (not hard enough to
+move both); the slab's edge is fixed and dragged over the table; a live tuning softens the
+bodies; all is let go. Only the node's ~scene, ~applied and ~state are kept, compressed: what
+deformable_sim_replay needs.
 
   roslaunch test/data/reference/record.launch     # from the package's folder
 """
 import math
 import os
-import signal
-import subprocess
-import sys
 import time
-import xmlrpc.client
 
 import dynamic_reconfigure.client
-import rosgraph
 import rospy
 import tf2_ros
 from geometry_msgs.msg import Point, TransformStamped, WrenchStamped
-from std_srvs.srv import Trigger
 
 from deformable_sim.msg import FixedNodes, Grasp
+from sim_client import SimClient, connected, start_recording, stop_recording
 
 NODE = '/deformable_sim'
 TOPICS = [NODE + '/scene', NODE + '/applied', NODE + '/state']
-BAG = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'session.bag')
+BAG = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'data',
+                   'reference', 'session.bag')
 # (seconds after the reset, event); the node steps in real time at the scene's dt.
 EVENTS = [(0.5, 'grasp'), (1.4, 'release'), (1.6, 'push'), (2.0, 'fix'), (2.4, 'drag'),
           (2.8, 'tune'), (3.2, 'stop pushing'), (3.6, 'let go'), (4.2, 'end')]
@@ -48,23 +45,9 @@ def gripper_frame(t):
     return frame
 
 
-def wait_for_recorder(deadline_s=20.0):
-    """Until the node itself has a connection to the recorder on every topic."""
-    node = xmlrpc.client.ServerProxy(rosgraph.Master('/record_session').lookupNode(NODE))
-    deadline = time.time() + deadline_s
-    while time.time() < deadline:
-        connections = node.getBusInfo('/record_session')[2]
-        out = {c[4] for c in connections if c[2] == 'o' and 'record' in c[1]}
-        if all(t in out for t in TOPICS):
-            return
-        time.sleep(0.1)
-    sys.exit('the recorder did not connect to ' + ', '.join(TOPICS))
-
-
 def main():
     rospy.init_node('record_session')
-    rospy.wait_for_service(NODE + '/reset', timeout=30.0)
-    reset = rospy.ServiceProxy(NODE + '/reset', Trigger)
+    sim = SimClient()
     wrench = rospy.Publisher(NODE + '/wrench', WrenchStamped, queue_size=10)
     fixed = rospy.Publisher(NODE + '/fixed_nodes', FixedNodes, queue_size=10)
     grasp = rospy.Publisher(NODE + '/grasp', Grasp, queue_size=10)
@@ -75,12 +58,10 @@ def main():
                 lambda _: broadcaster.sendTransform(gripper_frame(time.time() - start[0])))
     if os.path.exists(BAG):
         os.remove(BAG)
-    recorder = subprocess.Popen(['rosbag', 'record', '--bz2', '-O', BAG] + TOPICS,
-                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                                start_new_session=True)
-    wait_for_recorder()
-    time.sleep(0.5)  # the publishers' connections and the gripper frame in the node's tf
-    reset()  # the session starts here: the bag holds all of it
+    recorder = start_recording(BAG, TOPICS, NODE, options=['--bz2'])
+    connected(wrench, fixed, grasp)
+    time.sleep(0.5)  # the gripper frame in the node's tf
+    sim.reset()  # the session starts here: the bag holds all of it
     start[0] = time.time()
     for at, event in EVENTS:
         while time.time() - start[0] < at:
@@ -108,8 +89,7 @@ def main():
             wrench.publish(WrenchStamped(header=rospy.Header(frame_id='brick')))
         elif event == 'let go':
             fixed.publish(FixedNodes(body='slab', action=FixedNodes.RELEASE, group='edge'))
-    os.killpg(recorder.pid, signal.SIGINT)  # rosbag and its recorder: the bag is closed
-    recorder.wait(timeout=30)
+    stop_recording(recorder, BAG)
     print('wrote %s (%d bytes)' % (BAG, os.path.getsize(BAG)))
 
 
