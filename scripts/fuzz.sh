@@ -41,7 +41,7 @@ command -v "$cxx" > /dev/null || { echo "$cxx not found (apt-get install clang-1
 # the visual meshes a scene's surface body may take).
 # Paths are relative to the repository (the glob too: expanded after the cd).
 cd "$repo"
-sources=(src/core/*.cpp src/io/mesh_reader.cpp src/io/gmsh_reader.cpp src/io/tetgen_reader.cpp
+sources=(src/core/*/*.cpp src/io/mesh_reader.cpp src/io/gmsh_reader.cpp src/io/tetgen_reader.cpp
   src/io/scene_file.cpp src/io/triangle_mesh_reader.cpp src/io/surface_body_reader.cpp
   src/io/urdf_visual_mesh.cpp)
 # No OpenMP: the solver's loops run on one thread (bit-identical results, documented). Eigen's
@@ -53,10 +53,11 @@ flags=(-std=c++17 -O1 -gline-tables-only -fno-omit-frame-pointer -Wno-unknown-pr
 
 # The numerical kernels keep edge coverage but not libFuzzer's tracing of comparisons (loop
 # counters there tell the fuzzer nothing about the input).
-numeric=(src/core/block_sparse_matrix.cpp src/core/corotational_elasticity.cpp
-  src/core/linear_solver.cpp src/core/rigid_mode_coarse_space.cpp src/core/rotation.cpp
-  src/core/tetrahedron.cpp src/core/body.cpp src/core/strain.cpp src/core/reduced_dynamics.cpp
-  src/core/winding_number.cpp src/core/box_occupancy.cpp)
+numeric=(src/core/solvers/block_sparse_matrix.cpp src/core/elements/corotational_elasticity.cpp
+  src/core/solvers/linear_solver.cpp src/core/solvers/rigid_mode_coarse_space.cpp
+  src/core/base/rotation.cpp src/core/elements/tetrahedron.cpp src/core/bodies/body.cpp
+  src/core/outputs/strain.cpp src/core/bodies/reduced_dynamics.cpp
+  src/core/geometry/winding_number.cpp src/core/surface_bodies/box_occupancy.cpp)
 
 # True when object $1 (with its .d file) is missing or older than one of its dependencies.
 stale() {

@@ -7,9 +7,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "deformable_sim/core/selection.h"
-#include "deformable_sim/core/triangle_mesh.h"
-#include "deformable_sim/core/voxelization.h"
+#include "deformable_sim/core/elements/selection.h"
+#include "deformable_sim/core/geometry/triangle_mesh.h"
+#include "deformable_sim/core/surface_bodies/voxelization.h"
 #include "deformable_sim/io/mesh_reader.h"
 
 namespace deformable_sim::bench {

@@ -2,7 +2,7 @@
 
 #include <Eigen/LU>
 
-#include "deformable_sim/core/cell.h"
+#include "deformable_sim/core/elements/cell.h"
 
 namespace deformable_sim::identify {
 

@@ -13,7 +13,7 @@
 #include <unordered_map>
 #include <utility>
 
-#include "deformable_sim/core/cell.h"
+#include "deformable_sim/core/elements/cell.h"
 #include "raw_mesh.h"
 
 namespace deformable_sim::io {

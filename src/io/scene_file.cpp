@@ -12,10 +12,10 @@
 #include <utility>
 #include <vector>
 
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/default_scene.h"
-#include "deformable_sim/core/parameter_limits.h"
-#include "deformable_sim/core/voxelization.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/elements/parameter_limits.h"
+#include "deformable_sim/core/session/default_scene.h"
+#include "deformable_sim/core/surface_bodies/voxelization.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/surface_body_reader.h"
 #include "deformable_sim/io/triangle_mesh_reader.h"

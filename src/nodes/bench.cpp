@@ -12,7 +12,7 @@
 #include "deformable_sim/bench/result_csv.h"
 #include "deformable_sim/bench/sweep_plan.h"
 #include "deformable_sim/bench/sweep_runner.h"
-#include "deformable_sim/core/progress_bar.h"
+#include "deformable_sim/core/base/progress_bar.h"
 
 namespace {
 

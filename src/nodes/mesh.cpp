@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/late_progress_bar.h"
-#include "deformable_sim/core/voxelization.h"
+#include "deformable_sim/core/base/late_progress_bar.h"
+#include "deformable_sim/core/surface_bodies/voxelization.h"
 #include "deformable_sim/io/gmsh_writer.h"
 #include "deformable_sim/io/surface_body_reader.h"
 

@@ -42,7 +42,7 @@
 // 69,732 triangles (core::voxelize, with voxelGridFor, on one thread): 26 cells along its longest
 // side make about 10k cells, 58 about 100k. closed 1: as it is, asked by ray crossings; 0: with one
 // triangle left out, so open: the rays count with a cap over the hole, less the cap's own winding
-// number (core/grid_inside.h). Counters: cells, triangles.
+// number (core/surface_bodies/grid_inside.h). Counters: cells, triangles.
 //
 // CheckScan: core::checkSurface on the same blob (copied each time, as a body's surface is):
 // zero-area, repeated and misoriented triangles, edges, shells and crossing pairs. Counters:
@@ -63,12 +63,12 @@
 #include <vector>
 
 #include "deformable_sim/bench/heap_usage.h"
-#include "deformable_sim/core/contact.h"
-#include "deformable_sim/core/loads.h"
-#include "deformable_sim/core/simulation.h"
-#include "deformable_sim/core/strain.h"
-#include "deformable_sim/core/surface_check.h"
-#include "deformable_sim/core/voxelization.h"
+#include "deformable_sim/core/contact/contact.h"
+#include "deformable_sim/core/elements/loads.h"
+#include "deformable_sim/core/outputs/strain.h"
+#include "deformable_sim/core/session/simulation.h"
+#include "deformable_sim/core/surface_bodies/surface_check.h"
+#include "deformable_sim/core/surface_bodies/voxelization.h"
 #include "deformable_sim/perf/blocks_on_floor.h"
 #include "deformable_sim/perf/bullet_peer.h"
 #include "deformable_sim/perf/cantilever.h"

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/body_activity.h"
-#include "deformable_sim/core/late_progress_bar.h"
+#include "deformable_sim/core/base/late_progress_bar.h"
+#include "deformable_sim/core/outputs/body_activity.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/scene_file.h"
 

@@ -4,7 +4,7 @@
 #include <utility>
 #include <vector>
 
-#include "deformable_sim/core/box_mesh.h"
+#include "deformable_sim/core/elements/box_mesh.h"
 
 namespace deformable_sim::perf {
 

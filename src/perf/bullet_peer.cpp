@@ -18,8 +18,8 @@
 
 #include <stdexcept>
 
-#include "deformable_sim/core/material.h"
-#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/elements/material.h"
+#include "deformable_sim/core/elements/mesh.h"
 
 #ifndef BT_USE_DOUBLE_PRECISION
 #error "the peer is built against Bullet's double-precision (-float64) libraries"

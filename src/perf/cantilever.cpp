@@ -1,6 +1,6 @@
 #include "deformable_sim/perf/cantilever.h"
 
-#include "deformable_sim/core/box_mesh.h"
+#include "deformable_sim/core/elements/box_mesh.h"
 
 namespace deformable_sim::perf {
 

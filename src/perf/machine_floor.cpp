@@ -1,6 +1,6 @@
 #include "deformable_sim/perf/machine_floor.h"
 
-#include "deformable_sim/core/cpu_features.h"
+#include "deformable_sim/core/base/cpu_features.h"
 
 #if defined(__x86_64__)
 #include <immintrin.h>

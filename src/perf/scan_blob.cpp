@@ -3,7 +3,7 @@
 #include <cmath>
 #include <random>
 
-#include "deformable_sim/core/uv_sphere.h"
+#include "deformable_sim/core/geometry/uv_sphere.h"
 
 namespace deformable_sim::perf {
 

@@ -1,6 +1,6 @@
 #include "deformable_sim/ros/body_frames.h"
 
-#include "deformable_sim/core/body_frame_lookup.h"
+#include "deformable_sim/core/driver/body_frame_lookup.h"
 #include "deformable_sim/ros/conversions.h"
 
 namespace deformable_sim::ros_layer {

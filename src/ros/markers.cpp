@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <utility>
 
-#include "deformable_sim/core/body_colours.h"
-#include "deformable_sim/core/drawn_interactions.h"
+#include "deformable_sim/core/outputs/body_colours.h"
+#include "deformable_sim/core/outputs/drawn_interactions.h"
 #include "deformable_sim/ros/conversions.h"
 
 namespace deformable_sim::ros_layer {

@@ -3,8 +3,8 @@
 #include <algorithm>
 
 #include "deformable_sim/Stats.h"
-#include "deformable_sim/core/body_activity.h"
-#include "deformable_sim/core/body_colours.h"
+#include "deformable_sim/core/outputs/body_activity.h"
+#include "deformable_sim/core/outputs/body_colours.h"
 #include "deformable_sim/ros/body_frames.h"
 #include "deformable_sim/ros/conversions.h"
 

@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-#include "deformable_sim/core/live_settings.h"
+#include "deformable_sim/core/session/live_settings.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/ros/frame_resolver.h"
 

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "deformable_sim/core/commands.h"
+#include "deformable_sim/core/session/commands.h"
 
 namespace deformable_sim::ros_layer {
 

@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include "deformable_sim/core/body_colours.h"
+#include "deformable_sim/core/outputs/body_colours.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/io/triangle_mesh_reader.h"
 #include "deformable_sim/ros/obstacle_mesh_messages.h"

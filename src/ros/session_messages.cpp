@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <variant>
 
-#include "deformable_sim/core/mesh_arrays.h"
+#include "deformable_sim/core/elements/mesh_arrays.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/ros/conversions.h"
 #include "deformable_sim/ros/obstacle_mesh_messages.h"

@@ -1,7 +1,7 @@
 #include "deformable_sim/ros/sim_node.h"
 
 #include "deformable_sim/Scene.h"
-#include "deformable_sim/core/body_activity.h"
+#include "deformable_sim/core/outputs/body_activity.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/ros/conversions.h"
 #include "deformable_sim/ros/session_messages.h"

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "deformable_sim/core/triangle_mesh.h"
+#include "deformable_sim/core/geometry/triangle_mesh.h"
 #include "surface_test_helpers.h"
 
 namespace deformable_sim::test {

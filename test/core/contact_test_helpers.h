@@ -9,8 +9,8 @@
 #include <limits>
 #include <vector>
 
-#include "deformable_sim/core/body.h"
-#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/elements/mesh.h"
 
 namespace deformable_sim::test {
 

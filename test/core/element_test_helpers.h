@@ -4,8 +4,8 @@
 
 #include <Eigen/Core>
 
-#include "deformable_sim/core/corotational_elasticity.h"
-#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/elements/corotational_elasticity.h"
+#include "deformable_sim/core/elements/mesh.h"
 
 namespace deformable_sim::test {
 

@@ -5,11 +5,11 @@
 #include <utility>
 #include <vector>
 
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/default_scene.h"
-#include "deformable_sim/core/scene.h"
-#include "deformable_sim/core/simulation.h"
-#include "deformable_sim/core/surface_body.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/session/default_scene.h"
+#include "deformable_sim/core/session/scene.h"
+#include "deformable_sim/core/session/simulation.h"
+#include "deformable_sim/core/surface_bodies/surface_body.h"
 
 namespace deformable_sim::test {
 

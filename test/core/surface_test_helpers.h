@@ -6,8 +6,8 @@
 #include <fstream>
 #include <string>
 
-#include "deformable_sim/core/triangle_mesh.h"
-#include "deformable_sim/core/uv_sphere.h"
+#include "deformable_sim/core/geometry/triangle_mesh.h"
+#include "deformable_sim/core/geometry/uv_sphere.h"
 
 namespace deformable_sim::test {
 

@@ -6,15 +6,15 @@
 #include <memory>
 #include <tuple>
 
-#include "deformable_sim/core/body.h"
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/commands.h"
-#include "deformable_sim/core/default_scene.h"
-#include "deformable_sim/core/selection.h"
-#include "deformable_sim/core/shape.h"
-#include "deformable_sim/core/simulation.h"
-#include "deformable_sim/core/surface_body.h"
-#include "deformable_sim/core/triangle_mesh_shape.h"
+#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/elements/selection.h"
+#include "deformable_sim/core/geometry/shape.h"
+#include "deformable_sim/core/geometry/triangle_mesh_shape.h"
+#include "deformable_sim/core/session/commands.h"
+#include "deformable_sim/core/session/default_scene.h"
+#include "deformable_sim/core/session/simulation.h"
+#include "deformable_sim/core/surface_bodies/surface_body.h"
 #include "simulation_test_helpers.h"
 #include "surface_test_helpers.h"
 

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "deformable_sim/core/body_colours.h"
+#include "deformable_sim/core/outputs/body_colours.h"
 
 namespace dc = deformable_sim::core;
 

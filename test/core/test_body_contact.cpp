@@ -6,13 +6,13 @@
 #include <random>
 
 #include "contact_test_helpers.h"
-#include "deformable_sim/core/aabb_tree.h"
-#include "deformable_sim/core/body_surface.h"
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/contact_participant.h"
-#include "deformable_sim/core/edge_edge.h"
-#include "deformable_sim/core/node_triangle.h"
-#include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/contact/aabb_tree.h"
+#include "deformable_sim/core/contact/body_surface.h"
+#include "deformable_sim/core/contact/contact_participant.h"
+#include "deformable_sim/core/contact/edge_edge.h"
+#include "deformable_sim/core/contact/node_triangle.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/session/simulation.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;

@@ -7,12 +7,12 @@
 #include <cmath>
 #include <vector>
 
-#include "deformable_sim/core/body.h"
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/commands.h"
-#include "deformable_sim/core/loads.h"
-#include "deformable_sim/core/mass_properties.h"
-#include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/mass_properties.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/elements/loads.h"
+#include "deformable_sim/core/session/commands.h"
+#include "deformable_sim/core/session/simulation.h"
 
 namespace dc = deformable_sim::core;
 

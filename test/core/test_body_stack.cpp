@@ -4,7 +4,7 @@
 // caught the stack's first fall (the cubes start exactly on it and on each other, and fall
 // g dt^2 in the first step before anything touches). With node-level corrections by lumped
 // masses the stack collapsed within 50 steps; it takes each body's answer within its implicit
-// step (core/implicit_response.h).
+// step (core/bodies/implicit_response.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "contact_test_helpers.h"
-#include "deformable_sim/core/contact_pairs.h"
-#include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/outputs/contact_pairs.h"
+#include "deformable_sim/core/session/simulation.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;

@@ -9,10 +9,10 @@
 #include <cmath>
 #include <string>
 
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/cell.h"
-#include "deformable_sim/core/corotational_elasticity.h"
-#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/elements/cell.h"
+#include "deformable_sim/core/elements/corotational_elasticity.h"
+#include "deformable_sim/core/elements/mesh.h"
 #include "element_test_helpers.h"
 
 namespace dc = deformable_sim::core;

@@ -5,14 +5,14 @@
 #include <Eigen/Geometry>
 #include <limits>
 
-#include "deformable_sim/core/body_activity.h"
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/commands.h"
-#include "deformable_sim/core/default_scene.h"
-#include "deformable_sim/core/rigid_frame.h"
-#include "deformable_sim/core/session.h"
-#include "deformable_sim/core/simulation.h"
-#include "deformable_sim/core/wrench.h"
+#include "deformable_sim/core/bodies/rigid_frame.h"
+#include "deformable_sim/core/bodies/wrench.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/outputs/body_activity.h"
+#include "deformable_sim/core/session/commands.h"
+#include "deformable_sim/core/session/default_scene.h"
+#include "deformable_sim/core/session/session.h"
+#include "deformable_sim/core/session/simulation.h"
 #include "deformable_sim/io/scene_file.h"
 #include "simulation_test_helpers.h"
 

@@ -4,11 +4,11 @@
 
 #include <Eigen/Geometry>
 
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/contact.h"
-#include "deformable_sim/core/contact_pairs.h"
-#include "deformable_sim/core/shape.h"
-#include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/contact/contact.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/geometry/shape.h"
+#include "deformable_sim/core/outputs/contact_pairs.h"
+#include "deformable_sim/core/session/simulation.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;

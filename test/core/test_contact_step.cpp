@@ -2,8 +2,8 @@
 // where it says a step's contact time went.
 #include <gtest/gtest.h>
 
-#include "deformable_sim/core/contact_step.h"
-#include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/contact/contact_step.h"
+#include "deformable_sim/core/session/simulation.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;

@@ -4,11 +4,11 @@
 // lists a mesh's triangles until they are recorded, then names it by id.
 #include <gtest/gtest.h>
 
-#include "deformable_sim/core/commands.h"
-#include "deformable_sim/core/drawn_interactions.h"
-#include "deformable_sim/core/drawn_surfaces.h"
-#include "deformable_sim/core/mesh_catalogue.h"
-#include "deformable_sim/core/surface_body.h"
+#include "deformable_sim/core/outputs/drawn_interactions.h"
+#include "deformable_sim/core/outputs/drawn_surfaces.h"
+#include "deformable_sim/core/outputs/mesh_catalogue.h"
+#include "deformable_sim/core/session/commands.h"
+#include "deformable_sim/core/surface_bodies/surface_body.h"
 #include "simulation_test_helpers.h"
 #include "surface_test_helpers.h"
 

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/body.h"
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/session/simulation.h"
 
 namespace dc = deformable_sim::core;
 

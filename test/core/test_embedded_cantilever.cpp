@@ -13,7 +13,7 @@
 
 #include "command_output.h"
 #include "deformable_sim/bench/reference_results.h"
-#include "deformable_sim/core/voxelization.h"
+#include "deformable_sim/core/surface_bodies/voxelization.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/scene_file.h"
 #include "surface_test_helpers.h"

@@ -4,9 +4,9 @@
 
 #include <Eigen/Geometry>
 
-#include "deformable_sim/core/body.h"
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/selection.h"
+#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/elements/selection.h"
 
 namespace dc = deformable_sim::core;
 

@@ -4,10 +4,10 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "deformable_sim/core/body.h"
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/selection.h"
-#include "deformable_sim/core/strain.h"
+#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/elements/selection.h"
+#include "deformable_sim/core/outputs/strain.h"
 
 namespace dc = deformable_sim::core;
 

@@ -10,10 +10,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "deformable_sim/core/contact.h"
-#include "deformable_sim/core/shape.h"
-#include "deformable_sim/core/simulation.h"
-#include "deformable_sim/core/surface_body.h"
+#include "deformable_sim/core/contact/contact.h"
+#include "deformable_sim/core/geometry/shape.h"
+#include "deformable_sim/core/session/simulation.h"
+#include "deformable_sim/core/surface_bodies/surface_body.h"
 #include "simulation_test_helpers.h"
 #include "surface_test_helpers.h"
 
@@ -212,8 +212,8 @@ TEST(FrictionGrasp, DISABLED_ReportAcrossSqueezesAndFrictions) {
   }
 }
 
-// A ball made from its surface is squeezed through its surface (core/contact.h): the fingers
-// start 2 mm off it and close by 4 mm, 2 mm into it, into the grid that stands 5 mm out. It
+// A ball made from its surface is squeezed through its surface (core/contact/contact.h): the
+// fingers start 2 mm off it and close by 4 mm, 2 mm into it, into the grid that stands 5 mm out. It
 // rises with the fingers, less the little it sags, is swung and hangs still, carried by them
 // alone.
 TEST(FrictionGrasp, ABallMadeFromItsSurfaceIsLiftedByFriction) {

@@ -11,10 +11,10 @@
 #include <cstdio>
 #include <memory>
 
-#include "deformable_sim/core/contact.h"
-#include "deformable_sim/core/shape.h"
-#include "deformable_sim/core/simulation.h"
-#include "deformable_sim/core/triangle_mesh_shape.h"
+#include "deformable_sim/core/contact/contact.h"
+#include "deformable_sim/core/geometry/shape.h"
+#include "deformable_sim/core/geometry/triangle_mesh_shape.h"
+#include "deformable_sim/core/session/simulation.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;

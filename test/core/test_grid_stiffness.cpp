@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "awkward_surfaces.h"
-#include "deformable_sim/core/body.h"
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/corotational_elasticity.h"
-#include "deformable_sim/core/voxelization.h"
+#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/elements/corotational_elasticity.h"
+#include "deformable_sim/core/surface_bodies/voxelization.h"
 #include "deformable_sim/perf/scan_blob.h"
 
 namespace dc = deformable_sim::core;

@@ -11,13 +11,13 @@
 #include <cstdio>
 #include <vector>
 
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/corotational_elasticity.h"
-#include "deformable_sim/core/rigid_frame.h"
-#include "deformable_sim/core/selection.h"
-#include "deformable_sim/core/simulation.h"
-#include "deformable_sim/core/strain.h"
-#include "deformable_sim/core/wrench.h"
+#include "deformable_sim/core/bodies/rigid_frame.h"
+#include "deformable_sim/core/bodies/wrench.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/elements/corotational_elasticity.h"
+#include "deformable_sim/core/elements/selection.h"
+#include "deformable_sim/core/outputs/strain.h"
+#include "deformable_sim/core/session/simulation.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
@@ -28,7 +28,8 @@ namespace {
 
 const Eigen::Vector3d kGravity(0.0, 0.0, -9.81);
 const dc::LinearElasticMaterial kRubber{1.0e6, 0.3, 1000.0};
-/// The built-in scene's damping (core/default_scene.h), for the cases that must come to rest.
+/// The built-in scene's damping (core/session/default_scene.h), for the cases that must come to
+/// rest.
 const dc::RayleighDamping kSceneDamping{1.0, 0.002};
 
 /// A scene as a user gets it (SceneSpec's dt, solver and no damping) with the corotational

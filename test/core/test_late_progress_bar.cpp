@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <string>
 
-#include "deformable_sim/core/late_progress_bar.h"
+#include "deformable_sim/core/base/late_progress_bar.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include <limits>
 #include <string>
 
-#include "deformable_sim/core/material.h"
+#include "deformable_sim/core/elements/material.h"
 
 namespace dc = deformable_sim::core;
 

@@ -4,11 +4,11 @@
 #include <map>
 #include <string>
 
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/loads.h"
-#include "deformable_sim/core/mesh.h"
-#include "deformable_sim/core/mesh_arrays.h"
-#include "deformable_sim/core/selection.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/elements/loads.h"
+#include "deformable_sim/core/elements/mesh.h"
+#include "deformable_sim/core/elements/mesh_arrays.h"
+#include "deformable_sim/core/elements/selection.h"
 
 namespace dc = deformable_sim::core;
 

@@ -9,8 +9,8 @@
 #include <memory>
 #include <random>
 
-#include "deformable_sim/core/shape.h"
-#include "deformable_sim/core/triangle_mesh_shape.h"
+#include "deformable_sim/core/geometry/shape.h"
+#include "deformable_sim/core/geometry/triangle_mesh_shape.h"
 
 namespace dc = deformable_sim::core;
 

@@ -5,19 +5,19 @@
 #include <cmath>
 #include <string>
 
-#include "deformable_sim/core/body_frame_lookup.h"
-#include "deformable_sim/core/default_scene.h"
-#include "deformable_sim/core/grasp_follower.h"
-#include "deformable_sim/core/linked_obstacles.h"
-#include "deformable_sim/core/live_settings.h"
-#include "deformable_sim/core/once_per_stamp.h"
-#include "deformable_sim/core/periodic_schedule.h"
-#include "deformable_sim/core/pose_interpolation.h"
-#include "deformable_sim/core/real_time_factor.h"
-#include "deformable_sim/core/refusal_log.h"
-#include "deformable_sim/core/slow_tick_watch.h"
-#include "deformable_sim/core/tick_status.h"
-#include "deformable_sim/core/wrench_timeouts.h"
+#include "deformable_sim/core/driver/body_frame_lookup.h"
+#include "deformable_sim/core/driver/grasp_follower.h"
+#include "deformable_sim/core/driver/linked_obstacles.h"
+#include "deformable_sim/core/driver/once_per_stamp.h"
+#include "deformable_sim/core/driver/periodic_schedule.h"
+#include "deformable_sim/core/driver/pose_interpolation.h"
+#include "deformable_sim/core/driver/real_time_factor.h"
+#include "deformable_sim/core/driver/refusal_log.h"
+#include "deformable_sim/core/driver/slow_tick_watch.h"
+#include "deformable_sim/core/driver/tick_status.h"
+#include "deformable_sim/core/driver/wrench_timeouts.h"
+#include "deformable_sim/core/session/default_scene.h"
+#include "deformable_sim/core/session/live_settings.h"
 #include "deformable_sim/io/scene_file.h"
 
 namespace deformable_sim::core {

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <limits>
 
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/default_scene.h"
-#include "deformable_sim/core/parameter_limits.h"
-#include "deformable_sim/core/session.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/elements/parameter_limits.h"
+#include "deformable_sim/core/session/default_scene.h"
+#include "deformable_sim/core/session/session.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "deformable_sim/core/body.h"
-#include "deformable_sim/core/box_mesh.h"
+#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/elements/box_mesh.h"
 
 namespace dc = deformable_sim::core;
 

@@ -6,10 +6,10 @@
 
 #include <cmath>
 
-#include "deformable_sim/core/body.h"
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/previous_solutions.h"
-#include "deformable_sim/core/selection.h"
+#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/elements/selection.h"
+#include "deformable_sim/core/solvers/previous_solutions.h"
 
 namespace dc = deformable_sim::core;
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/progress_bar.h"
+#include "deformable_sim/core/base/progress_bar.h"
 
 namespace {
 

@@ -6,9 +6,9 @@
 #include <utility>
 #include <variant>
 
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/resimulation.h"
-#include "deformable_sim/core/session.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/session/resimulation.h"
+#include "deformable_sim/core/session/session.h"
 
 namespace dc = deformable_sim::core;
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "deformable_sim/core/rotation.h"
+#include "deformable_sim/core/base/rotation.h"
 
 namespace dc = deformable_sim::core;
 

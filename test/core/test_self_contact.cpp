@@ -9,10 +9,10 @@
 #include <functional>
 
 #include "contact_test_helpers.h"
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/selection.h"
-#include "deformable_sim/core/simulation.h"
-#include "deformable_sim/core/surface_body.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/elements/selection.h"
+#include "deformable_sim/core/session/simulation.h"
+#include "deformable_sim/core/surface_bodies/surface_body.h"
 #include "simulation_test_helpers.h"
 #include "surface_test_helpers.h"
 

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "deformable_sim/core/self_crossings.h"
+#include "deformable_sim/core/geometry/self_crossings.h"
 #include "surface_test_helpers.h"
 
 namespace dc = deformable_sim::core;

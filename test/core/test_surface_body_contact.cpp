@@ -8,8 +8,8 @@
 #include <limits>
 
 #include "contact_test_helpers.h"
-#include "deformable_sim/core/simulation.h"
-#include "deformable_sim/core/surface_body.h"
+#include "deformable_sim/core/session/simulation.h"
+#include "deformable_sim/core/surface_bodies/surface_body.h"
 #include "simulation_test_helpers.h"
 #include "surface_test_helpers.h"
 

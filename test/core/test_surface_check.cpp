@@ -7,12 +7,12 @@
 #include <string>
 
 #include "awkward_surfaces.h"
-#include "deformable_sim/core/mass_properties.h"
-#include "deformable_sim/core/self_crossings.h"
-#include "deformable_sim/core/surface_body.h"
-#include "deformable_sim/core/surface_check.h"
-#include "deformable_sim/core/triangles_cross.h"
-#include "deformable_sim/core/voxelization.h"
+#include "deformable_sim/core/bodies/mass_properties.h"
+#include "deformable_sim/core/geometry/self_crossings.h"
+#include "deformable_sim/core/geometry/triangles_cross.h"
+#include "deformable_sim/core/surface_bodies/surface_body.h"
+#include "deformable_sim/core/surface_bodies/surface_check.h"
+#include "deformable_sim/core/surface_bodies/voxelization.h"
 #include "surface_test_helpers.h"
 
 namespace dc = deformable_sim::core;

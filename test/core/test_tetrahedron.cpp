@@ -5,9 +5,9 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/corotational_elasticity.h"
-#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/elements/corotational_elasticity.h"
+#include "deformable_sim/core/elements/mesh.h"
 #include "element_test_helpers.h"
 
 namespace dc = deformable_sim::core;

@@ -4,14 +4,14 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/corotational_elasticity.h"
-#include "deformable_sim/core/embedded_surface.h"
-#include "deformable_sim/core/incompatible_modes.h"
-#include "deformable_sim/core/mass_properties.h"
-#include "deformable_sim/core/simulation.h"
-#include "deformable_sim/core/voxelization.h"
-#include "deformable_sim/core/winding_number.h"
+#include "deformable_sim/core/bodies/mass_properties.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/elements/corotational_elasticity.h"
+#include "deformable_sim/core/elements/incompatible_modes.h"
+#include "deformable_sim/core/geometry/winding_number.h"
+#include "deformable_sim/core/session/simulation.h"
+#include "deformable_sim/core/surface_bodies/embedded_surface.h"
+#include "deformable_sim/core/surface_bodies/voxelization.h"
 #include "surface_test_helpers.h"
 
 namespace dc = deformable_sim::core;

@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/box_occupancy.h"
-#include "deformable_sim/core/grid_inside.h"
-#include "deformable_sim/core/hole_caps.h"
-#include "deformable_sim/core/ray_winding.h"
-#include "deformable_sim/core/voxelization.h"
-#include "deformable_sim/core/winding_number.h"
+#include "deformable_sim/core/geometry/hole_caps.h"
+#include "deformable_sim/core/geometry/winding_number.h"
+#include "deformable_sim/core/surface_bodies/box_occupancy.h"
+#include "deformable_sim/core/surface_bodies/grid_inside.h"
+#include "deformable_sim/core/surface_bodies/ray_winding.h"
+#include "deformable_sim/core/surface_bodies/voxelization.h"
 #include "surface_test_helpers.h"
 
 namespace dc = deformable_sim::core;

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/default_scene.h"
-#include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/session/default_scene.h"
+#include "deformable_sim/core/session/simulation.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;

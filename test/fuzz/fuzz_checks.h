@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/session/simulation.h"
 
 namespace deformable_sim::fuzz {
 

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/session.h"
+#include "deformable_sim/core/session/session.h"
 #include "deformable_sim/io/scene_file.h"
 #include "fuzz_checks.h"
 

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/body.h"
-#include "deformable_sim/core/cell.h"
-#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/elements/cell.h"
+#include "deformable_sim/core/elements/mesh.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "fuzz_checks.h"
 

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/box_mesh.h"
-#include "deformable_sim/core/session.h"
+#include "deformable_sim/core/elements/box_mesh.h"
+#include "deformable_sim/core/session/session.h"
 #include "deformable_sim/io/scene_file.h"
 #include "fuzz_checks.h"
 

@@ -1,6 +1,6 @@
 // Fuzz target: surface files into a grid. The bytes are read by the surface mesh reader (assimp,
-// from memory), checked and repaired (core/surface_check.h), voxelized on a small grid and
-// embedded, as a scene's `mesh: {surface: ..}` body is made.
+// from memory), checked and repaired (core/surface_bodies/surface_check.h), voxelized on a small
+// grid and embedded, as a scene's `mesh: {surface: ..}` body is made.
 //
 // Input: an OBJ when the first byte opens an OBJ statement or comment ('v', 'f', 'o', 'g', 'l',
 // 'm', 'u', '#'), else an STL, ascii or binary as assimp tells them apart ("solid" and text, or
@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/mesh.h"
-#include "deformable_sim/core/surface_body.h"
-#include "deformable_sim/core/surface_check.h"
+#include "deformable_sim/core/elements/mesh.h"
+#include "deformable_sim/core/surface_bodies/surface_body.h"
+#include "deformable_sim/core/surface_bodies/surface_check.h"
 #include "deformable_sim/io/triangle_mesh_reader.h"
 #include "fuzz_checks.h"
 

@@ -8,8 +8,8 @@
 #include <limits>
 #include <random>
 
-#include "deformable_sim/core/contact_pairs.h"
-#include "deformable_sim/core/mesh_catalogue.h"
+#include "deformable_sim/core/outputs/contact_pairs.h"
+#include "deformable_sim/core/outputs/mesh_catalogue.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/ros/session_messages.h"
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/session.h"
+#include "deformable_sim/core/session/session.h"
 
 namespace deformable_sim::test {
 

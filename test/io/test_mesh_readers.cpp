@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/elements/mesh.h"
 #include "deformable_sim/io/mesh_reader.h"
 
 namespace deformable_sim::io {

@@ -5,8 +5,8 @@
 #include <fstream>
 #include <string>
 
-#include "deformable_sim/core/default_scene.h"
-#include "deformable_sim/core/parameter_limits.h"
+#include "deformable_sim/core/elements/parameter_limits.h"
+#include "deformable_sim/core/session/default_scene.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/scene_file.h"
 

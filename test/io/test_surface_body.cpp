@@ -10,8 +10,8 @@
 #include <numeric>
 
 #include "../core/surface_test_helpers.h"
-#include "deformable_sim/core/commands.h"
-#include "deformable_sim/core/session.h"
+#include "deformable_sim/core/session/commands.h"
+#include "deformable_sim/core/session/session.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/io/surface_body_reader.h"

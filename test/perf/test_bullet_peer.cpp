@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/elements/mesh.h"
 #include "deformable_sim/perf/bullet_peer.h"
 #include "deformable_sim/perf/cantilever.h"
 

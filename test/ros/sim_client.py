@@ -125,10 +125,11 @@ def connected(*publishers, timeout=10.0):
     raise AssertionError('the node did not subscribe to %s' % [p.name for p in publishers])
 
 
-def start_recording(bag, topics, node='/deformable_sim', timeout=20.0):
-    """Starts rosbag record of topics into bag; returns once the node publishes every topic to
-    it (else the first messages are missing from the bag)."""
-    recorder = subprocess.Popen(['rosbag', 'record', '-O', bag] + list(topics),
+def start_recording(bag, topics, node='/deformable_sim', timeout=20.0, options=()):
+    """Starts rosbag record of topics into bag (with rosbag record's options, e.g. --bz2);
+    returns once the node publishes every topic to it (else the first messages are missing from
+    the bag)."""
+    recorder = subprocess.Popen(['rosbag', 'record'] + list(options) + ['-O', bag] + list(topics),
                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                 start_new_session=True)
     caller = rospy.get_name()

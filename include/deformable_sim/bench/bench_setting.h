@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "deformable_sim/core/linear_solver.h"
+#include "deformable_sim/core/solvers/linear_solver.h"
 
 namespace deformable_sim::bench {
 

@@ -3,17 +3,17 @@
 // face x = 0 (fix_nodes.txt), loaded on the face x = 1 by the consistent nodal shares of a uniform
 // traction (tip_load_unit.csv), measured by the area-weighted mean displacement of that face.
 // Or the same beam given as a surface, its body the grid of cubes it encloses
-// (core/voxelization.h): clamped at the grid's nodes on x = 0, loaded and measured equally at its
-// nodes on x = 1.
+// (core/surface_bodies/voxelization.h): clamped at the grid's nodes on x = 0, loaded and measured
+// equally at its nodes on x = 1.
 #pragma once
 
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/body.h"
-#include "deformable_sim/core/material.h"
-#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/elements/material.h"
+#include "deformable_sim/core/elements/mesh.h"
 
 namespace deformable_sim::bench {
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "deformable_sim/core/resimulation.h"
+#include "deformable_sim/core/session/resimulation.h"
 #include "deformable_sim/identify/fit_spec.h"
 #include "deformable_sim/identify/observed_series.h"
 

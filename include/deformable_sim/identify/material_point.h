@@ -6,7 +6,7 @@
 #include <optional>
 #include <vector>
 
-#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/elements/mesh.h"
 
 namespace deformable_sim::identify {
 

@@ -7,8 +7,8 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "deformable_sim/core/contact_pairs.h"
-#include "deformable_sim/core/session.h"
+#include "deformable_sim/core/outputs/contact_pairs.h"
+#include "deformable_sim/core/session/session.h"
 #include "deformable_sim/identify/fit_spec.h"
 #include "deformable_sim/identify/material_point.h"
 

@@ -1,7 +1,7 @@
 // A fitted parameter in a scene: read, changed for a trial, checked against its bounds.
 #pragma once
 
-#include "deformable_sim/core/scene.h"
+#include "deformable_sim/core/session/scene.h"
 #include "deformable_sim/identify/fit_spec.h"
 
 namespace deformable_sim::identify {

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/elements/mesh.h"
 
 namespace deformable_sim::io {
 

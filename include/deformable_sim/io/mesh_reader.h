@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/mesh.h"
+#include "deformable_sim/core/elements/mesh.h"
 
 namespace deformable_sim::io {
 

@@ -28,9 +28,9 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/scene.h"
-#include "deformable_sim/core/simulation.h"
-#include "deformable_sim/core/spec_error.h"
+#include "deformable_sim/core/base/spec_error.h"
+#include "deformable_sim/core/session/scene.h"
+#include "deformable_sim/core/session/simulation.h"
 #include "deformable_sim/io/triangle_mesh_reader.h"
 
 namespace deformable_sim::io {

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "deformable_sim/core/triangle_mesh.h"
+#include "deformable_sim/core/geometry/triangle_mesh.h"
 
 namespace deformable_sim::io {
 

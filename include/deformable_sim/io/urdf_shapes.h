@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/shape.h"
+#include "deformable_sim/core/geometry/shape.h"
 #include "deformable_sim/io/triangle_mesh_reader.h"
 
 namespace deformable_sim::io {

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "deformable_sim/core/triangle_mesh.h"
+#include "deformable_sim/core/geometry/triangle_mesh.h"
 #include "deformable_sim/io/triangle_mesh_reader.h"
 #include "deformable_sim/io/urdf_shapes.h"
 

@@ -4,7 +4,7 @@
 // `bodies` between neighbours, to find and to resolve. Without the floor the blocks hang apart.
 #pragma once
 
-#include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/session/simulation.h"
 
 namespace deformable_sim::perf {
 

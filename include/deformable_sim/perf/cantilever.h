@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "deformable_sim/core/body.h"
+#include "deformable_sim/core/bodies/body.h"
 
 namespace deformable_sim::perf {
 

@@ -3,7 +3,7 @@
 // same on every machine.
 #pragma once
 
-#include "deformable_sim/core/triangle_mesh.h"
+#include "deformable_sim/core/geometry/triangle_mesh.h"
 
 namespace deformable_sim::perf {
 

@@ -10,9 +10,9 @@
 #include <utility>
 #include <vector>
 
-#include "deformable_sim/core/contact_pairs.h"
-#include "deformable_sim/core/linked_obstacles.h"
-#include "deformable_sim/core/session.h"
+#include "deformable_sim/core/driver/linked_obstacles.h"
+#include "deformable_sim/core/outputs/contact_pairs.h"
+#include "deformable_sim/core/session/session.h"
 
 namespace deformable_sim::ros_layer {
 

@@ -13,9 +13,9 @@
 #include "deformable_sim/BodyState.h"
 #include "deformable_sim/FixedNodes.h"
 #include "deformable_sim/NodeWrench.h"
-#include "deformable_sim/core/body.h"
-#include "deformable_sim/core/commands.h"
-#include "deformable_sim/core/rigid_frame.h"
+#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/rigid_frame.h"
+#include "deformable_sim/core/session/commands.h"
 
 namespace deformable_sim::ros_layer {
 

@@ -8,8 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "deformable_sim/core/body_frame_lookup.h"
-#include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/driver/body_frame_lookup.h"
+#include "deformable_sim/core/session/simulation.h"
 
 namespace deformable_sim::ros_layer {
 

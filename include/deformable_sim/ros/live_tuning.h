@@ -10,7 +10,7 @@
 #include <string>
 
 #include "deformable_sim/SimConfig.h"
-#include "deformable_sim/core/live_settings.h"
+#include "deformable_sim/core/session/live_settings.h"
 
 namespace deformable_sim::ros_layer {
 

@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/body.h"
-#include "deformable_sim/core/commands.h"
-#include "deformable_sim/core/contact_pairs.h"
-#include "deformable_sim/core/drawn_surfaces.h"
-#include "deformable_sim/core/simulation.h"
+#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/outputs/contact_pairs.h"
+#include "deformable_sim/core/outputs/drawn_surfaces.h"
+#include "deformable_sim/core/session/commands.h"
+#include "deformable_sim/core/session/simulation.h"
 
 namespace deformable_sim::ros_layer {
 

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "deformable_sim/Grasp.h"
-#include "deformable_sim/core/grasp_follower.h"
-#include "deformable_sim/core/session.h"
+#include "deformable_sim/core/driver/grasp_follower.h"
+#include "deformable_sim/core/session/session.h"
 #include "deformable_sim/ros/frame_resolver.h"
 #include "deformable_sim/ros/robot_links.h"
 

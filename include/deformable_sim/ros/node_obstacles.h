@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/linked_obstacles.h"
-#include "deformable_sim/core/session.h"
+#include "deformable_sim/core/driver/linked_obstacles.h"
+#include "deformable_sim/core/session/session.h"
 #include "deformable_sim/ros/frame_resolver.h"
 #include "deformable_sim/ros/node_parameters.h"
 #include "deformable_sim/ros/robot_links.h"

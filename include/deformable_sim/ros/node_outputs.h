@@ -12,12 +12,12 @@
 #include <vector>
 
 #include "deformable_sim/BodyState.h"
-#include "deformable_sim/core/contact_pairs.h"
-#include "deformable_sim/core/once_per_stamp.h"
-#include "deformable_sim/core/periodic_schedule.h"
-#include "deformable_sim/core/refusal_log.h"
-#include "deformable_sim/core/session.h"
-#include "deformable_sim/core/tick_status.h"
+#include "deformable_sim/core/driver/once_per_stamp.h"
+#include "deformable_sim/core/driver/periodic_schedule.h"
+#include "deformable_sim/core/driver/refusal_log.h"
+#include "deformable_sim/core/driver/tick_status.h"
+#include "deformable_sim/core/outputs/contact_pairs.h"
+#include "deformable_sim/core/session/session.h"
 #include "deformable_sim/ros/markers.h"
 #include "deformable_sim/ros/node_parameters.h"
 

@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "deformable_sim/core/commands.h"
-#include "deformable_sim/core/scene.h"
+#include "deformable_sim/core/session/commands.h"
+#include "deformable_sim/core/session/scene.h"
 #include "deformable_sim/ros/markers.h"
 
 namespace deformable_sim::ros_layer {

@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "deformable_sim/core/shape.h"
+#include "deformable_sim/core/geometry/shape.h"
 
 namespace deformable_sim::ros_layer {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "deformable_sim/ObstacleMesh.h"
-#include "deformable_sim/core/mesh_catalogue.h"
+#include "deformable_sim/core/outputs/mesh_catalogue.h"
 
 namespace deformable_sim::ros_layer {
 

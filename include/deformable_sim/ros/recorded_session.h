@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "deformable_sim/Scene.h"
-#include "deformable_sim/core/resimulation.h"
+#include "deformable_sim/core/session/resimulation.h"
 
 namespace deformable_sim::ros_layer {
 

@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "deformable_sim/core/resimulation.h"
+#include "deformable_sim/core/session/resimulation.h"
 
 namespace deformable_sim::ros_layer {
 

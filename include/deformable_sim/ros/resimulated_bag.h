@@ -12,9 +12,9 @@
 
 #include "deformable_sim/BodyState.h"
 #include "deformable_sim/Scene.h"
-#include "deformable_sim/core/once_per_stamp.h"
-#include "deformable_sim/core/periodic_schedule.h"
-#include "deformable_sim/core/resimulation.h"
+#include "deformable_sim/core/driver/once_per_stamp.h"
+#include "deformable_sim/core/driver/periodic_schedule.h"
+#include "deformable_sim/core/session/resimulation.h"
 #include "deformable_sim/ros/markers.h"
 
 namespace deformable_sim::ros_layer {

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/commands.h"
-#include "deformable_sim/core/linked_obstacles.h"
-#include "deformable_sim/core/scene.h"
-#include "deformable_sim/core/shape.h"
+#include "deformable_sim/core/driver/linked_obstacles.h"
+#include "deformable_sim/core/geometry/shape.h"
+#include "deformable_sim/core/session/commands.h"
+#include "deformable_sim/core/session/scene.h"
 #include "deformable_sim/io/scene_file.h"
 
 namespace deformable_sim::ros_layer {

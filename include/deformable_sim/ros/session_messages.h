@@ -10,10 +10,10 @@
 
 #include "deformable_sim/Applied.h"
 #include "deformable_sim/Scene.h"
-#include "deformable_sim/core/mesh.h"
-#include "deformable_sim/core/mesh_catalogue.h"
-#include "deformable_sim/core/session.h"
-#include "deformable_sim/core/shape.h"
+#include "deformable_sim/core/elements/mesh.h"
+#include "deformable_sim/core/geometry/shape.h"
+#include "deformable_sim/core/outputs/mesh_catalogue.h"
+#include "deformable_sim/core/session/session.h"
 
 namespace deformable_sim::ros_layer {
 

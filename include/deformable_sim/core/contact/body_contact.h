@@ -1,0 +1,132 @@
+// Contact between bodies and of a body with itself (the `bodies` and `self` keys of the contact
+// effect), for every pair of models. After every body has taken its step (its nodes on obstacles
+// still held), each surface node that ended the step behind a surface triangle of another body
+// (or of its own body, away from its own elements), or in front of it by less than the
+// tolerance, is found through the triangles' bounding-volume trees (core/body_surface.h) and the
+// swept test of core/node_triangle.h; so is each surface edge that ended the step across an edge
+// of another body (or of its own, away from it), or nearer than the tolerance
+// (core/edge_edge.h): edges meet where neither surface has a node. Equal and opposite impulses on
+// the node and the triangle's point (barycentric among its corners), in Gauss-Seidel passes, then
+// let each pair approach no faster than closes the gap it had at the step's start, and friction
+// stop its slip within Coulomb's cone; each impulse moves the end positions with the velocities (x
+// = x0 + dt v). A finite-element body answers an impulse as its implicit step would have, through
+// its own matrix (core/implicit_response.h), so a body resting on a soft body is carried, and what
+// presses on a body goes through it to what holds it. Against a surface held all over the free side
+// answers node by node. A last round finds the contacts again and puts back, node by node, what
+// the impulses pressed in elsewhere. Momentum is kept (doc/physics.md). A body made from a surface
+// takes part with that surface (embed()): its points are on its cells' nodes.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/contact/body_surface.h"
+#include "deformable_sim/core/contact/contact.h"
+#include "deformable_sim/core/contact/contact_participant.h"
+
+namespace deformable_sim::core {
+
+class BodyContact {
+ public:
+  /// `with_bodies[b]`: body b touches the other bodies that do; `with_self[b]`: it touches
+  /// itself. Builds the surfaces of those bodies; allocates only here.
+  BodyContact(const std::vector<Body>& bodies, const ContactSettings& settings,
+              const std::vector<bool>& with_bodies, const std::vector<bool>& with_self);
+
+  /// Body b was made from `surface`: it touches with that surface, not its grid's boundary, which
+  /// stands up to a cell outside it. Allocates.
+  void embed(int b, const EmbeddedSurface& surface, const Body& body);
+
+  /// After every body's step of length dt: finds and resolves the contacts, and adds to
+  /// reports[b] the counts and the depth left. Allocates nothing.
+  void resolve(std::vector<Body>& bodies, double dt, std::vector<StepReport>& reports);
+
+  /// The depth a node may be left inside the other body after a step: 1 % of the smaller body's
+  /// size (the diagonal of its rest bounding box), m.
+  double tolerance(int a, int b) const;
+  /// Whether body b takes part (its surface is built).
+  bool takesPart(int b) const { return surfaces_[b].has_value(); }
+  /// What body a felt from body b in the last step (a == b: from itself, which nets to zero
+  /// force): the contact impulses over dt, the torque about the world origin, the points found
+  /// touching and the deepest of them inside before being put back. Zero when they did not touch.
+  const ContactLoad& load(int a, int b) const { return loads_[a * surfaces_.size() + b]; }
+  const BodySurface& surface(int b) const { return *surfaces_[b]; }
+
+  /// Fraction of a pair's tolerance to which the position passes bring every contact.
+  static constexpr double kTarget = 0.01;
+  /// Passes over the contacts to separate them (Gauss-Seidel) and to settle their velocities.
+  static constexpr int kPositionPasses = 64;
+  static constexpr int kVelocityPasses = 32;
+  /// Rounds of finding and resolving contacts a step.
+  static constexpr int kRounds = 2;
+  /// The most edges one edge meets in a step (two bars laid crosswise: each edge crosses two).
+  static constexpr int kEdgeHits = 4;
+  /// A point whose free nodes carry less of its weight than this counts as held: moving it by
+  /// its free nodes alone would take impulses and shifts of 1 / weight times what it needs (two
+  /// blocks side by side on a floor, where a node touches the other's bottom edge, exploded).
+  static constexpr double kMovable = 0.2;
+
+ private:
+  struct Contact {
+    int node_body = 0, triangle_body = 0;
+    SurfacePoint node, triangle;
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< out of the triangle's body
+    double pushed = 0.0;   ///< kg m: the normal shift of the position passes
+    double impulse = 0.0;  ///< N s: the normal impulse of the velocity passes
+    Eigen::Vector3d friction = Eigen::Vector3d::Zero();  ///< N s: their friction impulse
+    double start_gap = 0.0;  ///< m: along the normal, node minus triangle point, at the start
+    /// m/s per N s: how the points part per unit impulse on the pair (both bodies' answers).
+    Eigen::Matrix3d compliance = Eigen::Matrix3d::Zero();
+    bool local = false;  ///< answered node by node (see settleVelocities)
+    /// Whether each side takes impulses: a point that lies mostly on held nodes does not (see
+    /// kMovable); what holds them takes its share.
+    bool node_moves = true, triangle_moves = true;
+  };
+
+  bool touches(int a, int b) const;
+  /// Room for a contact per surface corner and kEdgeHits per edge.
+  void reserveContacts();
+  /// Sweeps the surfaces from the step's start to the bodies' positions now and finds every
+  /// contact; `new_step`: the bodies have just stepped (else a later round of the same step).
+  void findContacts(std::vector<Body>& bodies, bool new_step);
+  void countContacts(std::vector<StepReport>& reports) const;
+  /// Starts the step's loads: the contacts just found, where and how deep.
+  void startLoads();
+  /// Adds the velocity passes' impulses over dt to the loads.
+  void addContactForces(double dt);
+  /// The contact of surface node i of body a, if it ended the step behind some triangle.
+  void findContact(int a, int i);
+  /// The contacts of surface edge e of body a with the edges of bodies after a (and of a itself,
+  /// after e) that it ended the step across or near: up to kEdgeHits.
+  void findEdgeContacts(int a, int e);
+  /// Out of body b at its surface edge e, now: the sum of its two triangles' unit normals.
+  Eigen::Vector3d outwardAt(int b, const SurfaceEdge& edge) const;
+  /// Position passes until every contact is within kTarget of its tolerance; returns the
+  /// largest depth left, per body into `left`.
+  void separate(std::vector<StepReport>& reports);
+  /// Velocity passes (Gauss-Seidel): each pair's normal impulse, then its friction.
+  void settleVelocities(double dt);
+  double startGap(const Contact& c) const;
+  /// How fast the pair's points part along `direction` per unit impulse there.
+  double compliance(const Contact& c, const Eigen::Vector3d& direction) const;
+  /// Equal and opposite impulses on the pair, their end positions moved with them.
+  void apply(Contact& c, const Eigen::Vector3d& impulse);
+  void pushApart(Contact& c, double dt);
+  void holdByFriction(Contact& c);
+  double gap(const Contact& c) const;
+  /// Sets which sides of a contact just found take impulses, and adds it.
+  void add(Contact c);
+  void shift(Contact& c, const Eigen::Vector3d& amount);
+
+  ContactSettings settings_;
+  double dt_ = 0.0;  ///< of the step being resolved
+  std::vector<bool> with_bodies_, with_self_;
+  std::vector<std::optional<BodySurface>> surfaces_;
+  std::vector<std::optional<ContactParticipant>> participants_;
+  /// At most one per surface node and kEdgeHits per edge: reserved once.
+  std::vector<Contact> contacts_;
+  std::vector<ContactLoad> loads_;  ///< per pair of bodies (see load()), sized once
+};
+
+}  // namespace deformable_sim::core

@@ -1,0 +1,66 @@
+// The order of a step's contact, written once for whatever steps bodies (Simulation, the
+// benchmarks run through it): before the bodies step, each holds the points it has on the
+// obstacles; after, the bodies meet one another (detection, response with friction, separation)
+// while those points are still held, so that what presses on a body goes through it to the
+// obstacles under it; then each body lets go of what would pull, and the obstacles have the last
+// say: what is inside them is put back out (projection).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/contact/body_contact.h"
+#include "deformable_sim/core/contact/contact.h"
+#include "deformable_sim/core/geometry/shape.h"
+#include "deformable_sim/core/surface_bodies/embedded_surface.h"
+
+namespace deformable_sim::core {
+
+class ContactStep {
+ public:
+  /// For `bodies` as built: obstacle contact for each finite-element body (rigid and pseudo-rigid
+  /// ones pass through obstacles), contact between bodies and of a body with itself where the
+  /// settings and the bodies' own effects ask for it. Allocates only here and in embed().
+  ContactStep(const std::vector<Body>& bodies, const ContactSettings& settings);
+
+  /// Body b touches with `surface`, the one it was made from, not its grid's boundary.
+  void embed(int b, const EmbeddedSurface& surface, const Body& body);
+
+  /// Before the bodies step, with the obstacles where they will be at its end: when they are
+  /// others than in the last step (a scene's first step, a robot's links appearing in tf), they
+  /// start where they are and no point touches them yet.
+  void begin(const std::vector<PlacedShape>& obstacles);
+  /// Body b, its state remembered, about to step by dt: holds its points on the obstacles at
+  /// their place on them. Returns the wall time it took, s. Bodies may be held side by side.
+  double hold(int b, Body& body, const std::vector<PlacedShape>& obstacles, double dt);
+  /// After every body's step: between bodies, then the obstacles; reports[b] gains its contact
+  /// counts and times. Bodies are put back on `threads` threads.
+  void finish(std::vector<Body>& bodies, const std::vector<PlacedShape>& obstacles, double dt,
+              int threads, std::vector<StepReport>& reports);
+  /// Whether contact acts on body b at all.
+  bool actsOn(int b) const { return states_[b].has_value() || body_contact_.has_value(); }
+  /// Body b went back to where it started the step: what it touched is forgotten.
+  void forget(int b);
+
+  /// What body b felt from each obstacle in the last step (empty for a body it does not act on).
+  const std::vector<ContactLoad>& obstacleContacts(int b) const;
+  long obstacleSteps() const { return obstacle_steps_; }  ///< body steps with obstacle contact
+  long bodySteps() const { return body_steps_; }          ///< steps with contact between bodies
+  const BodyContact* bodyContact() const { return body_contact_ ? &*body_contact_ : nullptr; }
+
+ private:
+  /// Contact between bodies and with themselves, if the settings and some body ask for it.
+  void addBodyContact(const std::vector<Body>& bodies);
+  /// Contact between bodies after their steps; its time shared among those taking part.
+  void resolveBetweenBodies(std::vector<Body>& bodies, double dt, std::vector<StepReport>& reports);
+
+  ContactSettings settings_;
+  std::vector<std::optional<ContactState>> states_;  ///< per body: its obstacle contact
+  std::optional<BodyContact> body_contact_;          ///< only when some body touches others
+  std::vector<Eigen::Isometry3d> starts_;            ///< the obstacles' poses at the step's start
+  long obstacle_steps_ = 0;
+  long body_steps_ = 0;
+};
+
+}  // namespace deformable_sim::core

@@ -1,0 +1,382 @@
+#include "deformable_sim/core/contact/body_contact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "deformable_sim/core/contact/edge_edge.h"
+#include "deformable_sim/core/contact/node_triangle.h"
+
+namespace deformable_sim::core {
+
+namespace {
+
+/// A node counts as touching a triangle it sank behind by up to this fraction of the shortest
+/// edge of the triangle's body, however it got there; deeper, only if it came through the
+/// triangle within the step. A quarter edge is less than any part of the body is thick.
+constexpr double kShallowFraction = 0.25;
+
+Eigen::Vector3d startOf(const BodySurface& surface, const SurfacePoint& point) {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  for (int k = 0; k < point.count; ++k) {
+    p += point.weights[k] * surface.nodeStart().segment<3>(3 * point.nodes[k]);
+  }
+  return p;
+}
+
+}  // namespace
+
+BodyContact::BodyContact(const std::vector<Body>& bodies, const ContactSettings& settings,
+                         const std::vector<bool>& with_bodies, const std::vector<bool>& with_self)
+    : settings_(settings), with_bodies_(with_bodies), with_self_(with_self) {
+  for (size_t b = 0; b < bodies.size(); ++b) {
+    surfaces_.emplace_back();
+    participants_.emplace_back();
+    if (!with_bodies_[b] && !with_self_[b]) continue;
+    surfaces_.back().emplace(bodies[b].mesh(), bodies[b].positions(), with_self_[b]);
+    participants_.back().emplace(bodies[b]);
+  }
+  reserveContacts();
+  loads_.resize(bodies.size() * bodies.size());
+}
+
+void BodyContact::embed(int b, const EmbeddedSurface& surface, const Body& body) {
+  if (!surfaces_[b]) return;
+  surfaces_[b].emplace(surface, body.positions());
+  reserveContacts();
+}
+
+void BodyContact::reserveContacts() {
+  size_t points = 0;
+  for (const std::optional<BodySurface>& surface : surfaces_) {
+    if (surface) points += surface->nodes().size() + kEdgeHits * surface->edges().size();
+  }
+  contacts_.reserve(points);
+}
+
+double BodyContact::tolerance(int a, int b) const {
+  return 0.01 * std::min(surfaces_[a]->size(), surfaces_[b]->size());
+}
+
+bool BodyContact::touches(int a, int b) const {
+  return a == b ? bool(with_self_[a]) : with_bodies_[a] && with_bodies_[b];
+}
+
+void BodyContact::findContact(int a, int i) {
+  const BodySurface& mine = *surfaces_[a];
+  SweptNode node{mine.start().segment<3>(3 * i), participants_[a]->position(mine.corner(i))};
+  Contact best;
+  double best_depth = std::numeric_limits<double>::infinity();
+  int best_rank = 3;
+  for (int b = 0; b < static_cast<int>(surfaces_.size()); ++b) {
+    if (!surfaces_[b] || !touches(a, b)) continue;
+    const BodySurface& other = *surfaces_[b];
+    const double skin = tolerance(a, b);
+    Box3 box(node.start.cwiseMin(node.end), node.start.cwiseMax(node.end));
+    box = Box3(box.min().array() - skin, box.max().array() + skin);
+    const ContactParticipant& corners = *participants_[b];
+    other.tree().query(box, [&](int t) {
+      const Triangle& tri = other.triangles()[t];
+      if (a == b &&
+          (other.adjacent(i, tri[0]) || other.adjacent(i, tri[1]) || other.adjacent(i, tri[2]))) {
+        return;  // its own elements: their stiffness keeps them apart
+      }
+      SweptTriangle swept;
+      for (int k = 0; k < 3; ++k) {
+        swept.start[k] = other.start().segment<3>(3 * tri[k]);
+        swept.end[k] = corners.position(other.corner(tri[k]));
+      }
+      NodeTriangleHit hit;
+      const double shallow = kShallowFraction * other.shortestEdge();
+      if (!nodeHitsTriangle(node, swept, skin, shallow, &hit)) return;
+      // A triangle the node came through beats one it only ended behind, which beats one it is
+      // only about to touch; among equals, the nearest.
+      const int rank = hit.crossed ? 0 : hit.depth > 0.0 ? 1 : 2;
+      if (rank != best_rank ? rank > best_rank : !(std::abs(hit.depth) < best_depth)) return;
+      best_rank = rank;
+      best_depth = std::abs(hit.depth);
+      best.triangle_body = b;
+      best.triangle = other.trianglePoint(tri, {hit.weights[0], hit.weights[1], hit.weights[2]});
+      best.normal = hit.normal;
+    });
+  }
+  if (best_depth == std::numeric_limits<double>::infinity()) return;
+  best.node_body = a;
+  best.node = mine.corner(i);
+  add(best);
+}
+
+void BodyContact::add(Contact c) {
+  c.node_moves = participants_[c.node_body]->movable(c.node) >= kMovable;
+  c.triangle_moves = participants_[c.triangle_body]->movable(c.triangle) >= kMovable;
+  contacts_.push_back(c);
+}
+
+Eigen::Vector3d BodyContact::outwardAt(int b, const SurfaceEdge& edge) const {
+  Eigen::Vector3d outward = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 2; ++k) {
+    const Triangle& t = surfaces_[b]->triangles()[edge.triangles[k]];
+    const ContactParticipant& body = *participants_[b];
+    const BodySurface& surface = *surfaces_[b];
+    const Eigen::Vector3d corner = body.position(surface.corner(t[0]));
+    const Eigen::Vector3d normal = (body.position(surface.corner(t[1])) - corner)
+                                       .cross(body.position(surface.corner(t[2])) - corner);
+    if (normal.norm() > 0.0) outward += normal.normalized();
+  }
+  return outward;
+}
+
+void BodyContact::findEdgeContacts(int a, int e) {
+  const BodySurface& mine = *surfaces_[a];
+  const SurfaceEdge& edge = mine.edges()[e];
+  SweptEdge swept;
+  for (int k = 0; k < 2; ++k) {
+    swept.start[k] = mine.start().segment<3>(3 * edge.nodes[k]);
+    swept.end[k] = participants_[a]->position(mine.corner(edge.nodes[k]));
+  }
+  const Eigen::Vector3d outward = outwardAt(a, edge);
+  int hits = 0;
+  for (int b = a; b < static_cast<int>(surfaces_.size()); ++b) {
+    if (!surfaces_[b] || !touches(a, b)) continue;
+    const BodySurface& other = *surfaces_[b];
+    const double skin = tolerance(a, b);
+    Box3 box(swept.start[0].cwiseMin(swept.end[0]).cwiseMin(swept.start[1]).cwiseMin(swept.end[1]),
+             swept.start[0].cwiseMax(swept.end[0]).cwiseMax(swept.start[1]).cwiseMax(swept.end[1]));
+    box = Box3(box.min().array() - skin, box.max().array() + skin);
+    other.edgeTree().query(box, [&](int f) {
+      const SurfaceEdge& across = other.edges()[f];
+      if (hits == kEdgeHits) return;
+      if (a == b && (f <= e || mine.adjacent(edge.nodes[0], across.nodes[0]) ||
+                     mine.adjacent(edge.nodes[0], across.nodes[1]) ||
+                     mine.adjacent(edge.nodes[1], across.nodes[0]) ||
+                     mine.adjacent(edge.nodes[1], across.nodes[1]))) {
+        return;  // each pair once; and its own elements' stiffness keeps them apart
+      }
+      SweptEdge them;
+      for (int k = 0; k < 2; ++k) {
+        them.start[k] = other.start().segment<3>(3 * across.nodes[k]);
+        them.end[k] = participants_[b]->position(other.corner(across.nodes[k]));
+      }
+      EdgeEdgeHit hit;
+      const double shallow = kShallowFraction * std::min(mine.shortestEdge(), other.shortestEdge());
+      if (!edgesMeet(swept, them, outward, outwardAt(b, across), skin, shallow, &hit)) return;
+      Contact c;
+      c.node_body = a;
+      c.triangle_body = b;
+      c.node = mine.edgePoint(edge, hit.s);
+      c.triangle = other.edgePoint(across, hit.t);
+      c.normal = hit.normal;
+      add(c);
+      ++hits;
+    });
+  }
+}
+
+double BodyContact::gap(const Contact& c) const {
+  return c.normal.dot(participants_[c.node_body]->position(c.node) -
+                      participants_[c.triangle_body]->position(c.triangle));
+}
+
+void BodyContact::shift(Contact& c, const Eigen::Vector3d& amount) {
+  if (c.node_moves) participants_[c.node_body]->nudge(c.node, amount);
+  if (c.triangle_moves) participants_[c.triangle_body]->nudge(c.triangle, -amount);
+}
+
+void BodyContact::separate(std::vector<StepReport>& reports) {
+  for (int pass = 0; pass < kPositionPasses; ++pass) {
+    bool settled = true;
+    for (Contact& c : contacts_) {
+      const double depth = -gap(c);
+      if (!(depth > 0.0)) continue;
+      if (depth > kTarget * tolerance(c.node_body, c.triangle_body)) settled = false;
+      const double w =
+          (c.node_moves ? participants_[c.node_body]->nudgeCompliance(c.node, c.normal) : 0.0) +
+          (c.triangle_moves ? participants_[c.triangle_body]->nudgeCompliance(c.triangle, c.normal)
+                            : 0.0);
+      if (!(w > 0.0)) continue;  // both held: nothing can move
+      c.pushed += depth / w;
+      shift(c, depth / w * c.normal);
+    }
+    if (settled) break;
+  }
+  // What is left after this round; the last round's is what the step ends with.
+  const size_t n = surfaces_.size();
+  for (ContactLoad& load : loads_) load.depth = 0.0;
+  for (const Contact& c : contacts_) {
+    const double left = std::max(0.0, -gap(c));
+    for (int b : {c.node_body, c.triangle_body}) {
+      reports[b].body_penetration = std::max(reports[b].body_penetration, left);
+    }
+    for (size_t pair : {c.node_body * n + c.triangle_body, c.triangle_body * n + c.node_body}) {
+      loads_[pair].depth = std::max(loads_[pair].depth, left);
+    }
+  }
+}
+
+double BodyContact::startGap(const Contact& c) const {
+  return c.normal.dot(startOf(*surfaces_[c.node_body], c.node) -
+                      startOf(*surfaces_[c.triangle_body], c.triangle));
+}
+
+void BodyContact::apply(Contact& c, const Eigen::Vector3d& impulse) {
+  // An impulse changes the step's velocities, and so its end positions by dt times as much
+  // (ContactParticipant::push): the step stays an implicit Euler step, x = x0 + dt v.
+  ContactParticipant& node = *participants_[c.node_body];
+  ContactParticipant& triangle = *participants_[c.triangle_body];
+  if (c.node_moves) node.push(c.node, impulse, c.local);
+  if (c.triangle_moves) triangle.push(c.triangle, -impulse, c.local);
+}
+
+double BodyContact::compliance(const Contact& c, const Eigen::Vector3d& direction) const {
+  return direction.dot(c.compliance * direction);
+}
+
+void BodyContact::pushApart(Contact& c, double dt) {
+  const double w = compliance(c, c.normal);
+  if (!(w > 0.0)) return;  // both held: nothing can move
+  // Approaching no faster than closes the gap the pair had at the step's start, it ends the
+  // step touching; a pair that started inside only stops approaching (separate() does the rest).
+  const ContactParticipant& node = *participants_[c.node_body];
+  const ContactParticipant& triangle = *participants_[c.triangle_body];
+  const double target = -std::max(c.start_gap, 0.0) / dt;
+  const double separating = c.normal.dot(node.velocity(c.node) - triangle.velocity(c.triangle));
+  const double impulse = std::max(0.0, c.impulse + (target - separating) / w);
+  const double change = impulse - c.impulse;
+  c.impulse = impulse;
+  if (change != 0.0) apply(c, change * c.normal);
+}
+
+void BodyContact::holdByFriction(Contact& c) {
+  const ContactParticipant& node = *participants_[c.node_body];
+  const ContactParticipant& triangle = *participants_[c.triangle_body];
+  Eigen::Vector3d sliding = node.velocity(c.node) - triangle.velocity(c.triangle);
+  sliding -= sliding.dot(c.normal) * c.normal;
+  const double speed = sliding.norm();
+  if (!(speed > 0.0)) return;
+  const Eigen::Vector3d direction = sliding / speed;
+  const double w = compliance(c, direction);
+  if (!(w > 0.0)) return;
+  // The pair's friction impulse so far and the change that stops the slip, kept in the cone of
+  // its normal impulse.
+  const Eigen::Vector3d wanted = c.friction - speed / w * direction;
+  const double cone = settings_.friction * c.impulse;
+  const Eigen::Vector3d friction =
+      wanted.norm() <= cone ? wanted : Eigen::Vector3d(cone / wanted.norm() * wanted);
+  const Eigen::Vector3d change = friction - c.friction;
+  c.friction = friction;
+  apply(c, change);
+}
+
+void BodyContact::settleVelocities(double dt) {
+  for (Contact& c : contacts_) {
+    c.start_gap = startGap(c);
+    // On a body touching itself the node's and the triangle's answers to each other are left
+    // out: the passes then take smaller steps, which only slows them.
+    const ContactParticipant& node = *participants_[c.node_body];
+    const ContactParticipant& triangle = *participants_[c.triangle_body];
+    // Against a surface that cannot move there (held all over: a plate driven as a whole; or
+    // held about the point) the free side answers node by node: its whole-body answer, pinned
+    // between such surfaces, makes the passes converge too slowly to keep it out of them.
+    c.local = !c.node_moves || !c.triangle_moves;
+    c.compliance = Eigen::Matrix3d::Zero();
+    if (c.node_moves) c.compliance += node.compliance(c.node, c.local);
+    if (c.triangle_moves) c.compliance += triangle.compliance(c.triangle, c.local);
+  }
+  for (int pass = 0; pass < kVelocityPasses; ++pass) {
+    for (Contact& c : contacts_) {
+      pushApart(c, dt);
+      if (settings_.friction > 0.0) holdByFriction(c);
+    }
+  }
+}
+
+void BodyContact::resolve(std::vector<Body>& bodies, double dt, std::vector<StepReport>& reports) {
+  dt_ = dt;
+  // An impulse moves the whole body, so nodes that were clear when the contacts were found can
+  // be pressed into another surface by it (a cube's sides bulging as its top is pushed). A last
+  // round finds the contacts again and only puts back what is inside, node by node.
+  for (int round = 0; round < kRounds; ++round) {
+    const bool last = round == kRounds - 1;
+    findContacts(bodies, round == 0);
+    if (round == 0) {
+      countContacts(reports);
+      startLoads();
+    }
+    if (!last) settleVelocities(dt);
+    if (round == 0) addContactForces(dt);
+    separate(reports);
+    for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
+      if (surfaces_[b]) participants_[b]->end(bodies[b]);
+    }
+  }
+  for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
+    if (surfaces_[b]) surfaces_[b]->setStart(bodies[b].positions());
+  }
+}
+
+void BodyContact::findContacts(std::vector<Body>& bodies, bool new_step) {
+  const int n = static_cast<int>(bodies.size());
+  for (int b = 0; b < n; ++b) {
+    if (!surfaces_[b]) continue;
+    participants_[b]->begin(bodies[b], dt_, new_step);
+    double skin = std::numeric_limits<double>::infinity();
+    for (int o = 0; o < n; ++o) {
+      if (surfaces_[o] && touches(b, o)) skin = std::min(skin, tolerance(b, o));
+    }
+    surfaces_[b]->sweep(bodies[b].positions(),
+                        skin == std::numeric_limits<double>::infinity() ? 0.0 : skin);
+  }
+  contacts_.clear();
+  for (int a = 0; a < n; ++a) {
+    if (!surfaces_[a]) continue;
+    for (int i : surfaces_[a]->nodes()) findContact(a, i);
+    for (int e = 0; e < static_cast<int>(surfaces_[a]->edges().size()); ++e) findEdgeContacts(a, e);
+  }
+}
+
+void BodyContact::countContacts(std::vector<StepReport>& reports) const {
+  for (const Contact& c : contacts_) {
+    if (c.node_body == c.triangle_body) {
+      ++reports[c.node_body].self_contacts;
+    } else {
+      ++reports[c.node_body].body_contacts;
+      ++reports[c.triangle_body].body_contacts;
+    }
+  }
+}
+
+void BodyContact::startLoads() {
+  for (ContactLoad& load : loads_) load = ContactLoad{};
+  const size_t n = surfaces_.size();
+  const auto addPoint = [](ContactLoad& load, const Eigen::Vector3d& p, double depth) {
+    load.centre = (load.points * load.centre + p) / (load.points + 1);
+    ++load.points;
+    load.penetration = std::max(load.penetration, depth);
+  };
+  for (const Contact& c : contacts_) {
+    const double depth = std::max(0.0, -gap(c));
+    addPoint(loads_[c.node_body * n + c.triangle_body],
+             participants_[c.node_body]->position(c.node), depth);
+    // A body touching itself counts the node alone.
+    if (c.node_body == c.triangle_body) continue;
+    addPoint(loads_[c.triangle_body * n + c.node_body],
+             participants_[c.triangle_body]->position(c.triangle), depth);
+  }
+}
+
+void BodyContact::addContactForces(double dt) {
+  const size_t n = surfaces_.size();
+  for (const Contact& c : contacts_) {
+    const Eigen::Vector3d force = (c.impulse * c.normal + c.friction) / dt;  // on the node
+    const Eigen::Vector3d at_node = participants_[c.node_body]->position(c.node);
+    const Eigen::Vector3d at_triangle = participants_[c.triangle_body]->position(c.triangle);
+    ContactLoad& on_node = loads_[c.node_body * n + c.triangle_body];
+    on_node.force += force;
+    on_node.torque += at_node.cross(force);
+    ContactLoad& on_triangle = loads_[c.triangle_body * n + c.node_body];
+    on_triangle.force -= force;
+    on_triangle.torque -= at_triangle.cross(force);
+  }
+}
+
+}  // namespace deformable_sim::core

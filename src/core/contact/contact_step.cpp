@@ -1,0 +1,96 @@
+#include "deformable_sim/core/contact/contact_step.h"
+
+#include <algorithm>
+
+#include "deformable_sim/core/base/parallel_for.h"
+#include "deformable_sim/core/base/wall_clock.h"
+
+namespace deformable_sim::core {
+
+ContactStep::ContactStep(const std::vector<Body>& bodies, const ContactSettings& settings)
+    : settings_(settings) {
+  states_.reserve(bodies.size());
+  for (const Body& body : bodies) {
+    states_.emplace_back();
+    if (body.model() == BodyModel::kFiniteElement) states_.back().emplace(body.numNodes());
+  }
+  addBodyContact(bodies);
+}
+
+void ContactStep::addBodyContact(const std::vector<Body>& bodies) {
+  if (!settings_.bodies && !settings_.self) return;
+  std::vector<bool> with_bodies, with_self;
+  for (const Body& body : bodies) {
+    with_bodies.push_back(body.effects().contact_bodies.value_or(settings_.bodies) &&
+                          settings_.bodies);
+    // Only finite elements bend far enough to meet themselves.
+    with_self.push_back(body.effects().contact_self.value_or(settings_.self) && settings_.self &&
+                        body.model() == BodyModel::kFiniteElement);
+  }
+  const auto count = [](const std::vector<bool>& v) {
+    return std::count(v.begin(), v.end(), true);
+  };
+  if (count(with_bodies) < 2 && count(with_self) == 0) return;
+  if (count(with_bodies) < 2) with_bodies.assign(with_bodies.size(), false);
+  body_contact_.emplace(bodies, settings_, with_bodies, with_self);
+}
+
+void ContactStep::embed(int b, const EmbeddedSurface& surface, const Body& body) {
+  if (states_[b]) states_[b]->embed(surface);
+  if (body_contact_) body_contact_->embed(b, surface, body);
+}
+
+void ContactStep::begin(const std::vector<PlacedShape>& obstacles) {
+  if (starts_.size() == obstacles.size()) return;
+  starts_.resize(obstacles.size());  // allocates only when their number changes
+  for (size_t k = 0; k < obstacles.size(); ++k) starts_[k] = obstacles[k].pose;
+  for (std::optional<ContactState>& state : states_) {
+    if (state) state->forget();
+  }
+}
+
+double ContactStep::hold(int b, Body& body, const std::vector<PlacedShape>& obstacles, double dt) {
+  if (!states_[b]) return 0.0;
+  const WallClock::time_point start = WallClock::now();
+  states_[b]->hold(body, obstacles, dt);
+  return secondsSince(start);
+}
+
+void ContactStep::finish(std::vector<Body>& bodies, const std::vector<PlacedShape>& obstacles,
+                         double dt, int threads, std::vector<StepReport>& reports) {
+  if (body_contact_) resolveBetweenBodies(bodies, dt, reports);
+  parallelFor(threads, 0, static_cast<int>(bodies.size()), [&](int b) {
+    if (!states_[b]) return;
+    const WallClock::time_point start = WallClock::now();
+    states_[b]->release(bodies[b], obstacles, starts_, settings_, dt);
+    reports[b].contacts = states_[b]->project(bodies[b], obstacles, starts_, settings_, dt);
+    reports[b].times.obstacle_contact += secondsSince(start);
+  });
+  for (const std::optional<ContactState>& state : states_) obstacle_steps_ += state.has_value();
+  for (size_t k = 0; k < starts_.size(); ++k) starts_[k] = obstacles[k].pose;
+}
+
+void ContactStep::resolveBetweenBodies(std::vector<Body>& bodies, double dt,
+                                       std::vector<StepReport>& reports) {
+  const WallClock::time_point start = WallClock::now();
+  body_contact_->resolve(bodies, dt, reports);
+  ++body_steps_;
+  const double spent = secondsSince(start);
+  const int n = static_cast<int>(bodies.size());
+  int taking_part = 0;
+  for (int b = 0; b < n; ++b) taking_part += body_contact_->takesPart(b);
+  for (int b = 0; b < n; ++b) {
+    if (body_contact_->takesPart(b)) reports[b].times.body_contact = spent / taking_part;
+  }
+}
+
+void ContactStep::forget(int b) {
+  if (states_[b]) states_[b]->forget();
+}
+
+const std::vector<ContactLoad>& ContactStep::obstacleContacts(int b) const {
+  static const std::vector<ContactLoad> none;
+  return states_[b] ? states_[b]->obstacleContacts() : none;
+}
+
+}  // namespace deformable_sim::core

@@ -1,0 +1,66 @@
+#include "deformable_sim/core/outputs/strain.h"
+
+#include <algorithm>
+#include <array>
+
+#include "deformable_sim/core/base/rotation.h"
+#include "deformable_sim/core/elements/cell.h"
+#include "deformable_sim/core/elements/tetrahedron.h"
+
+namespace deformable_sim::core {
+
+namespace {
+
+// |sym(R^T F) - I|: the rotation-free (small-strain) measure of F with its rotation R.
+double strainMagnitude(const Eigen::Matrix3d& f, const Eigen::Matrix3d& r) {
+  const Eigen::Matrix3d unrotated = r.transpose() * f;
+  return (0.5 * (unrotated + unrotated.transpose()) - Eigen::Matrix3d::Identity()).norm();
+}
+
+double strainMagnitude(const Eigen::Matrix3d& f) { return strainMagnitude(f, extractRotation(f)); }
+
+}  // namespace
+
+void nodalStrain(const Body& body, std::vector<double>& strain) {
+  strain.assign(body.numNodes(), 0.0);
+  if (const ReducedDynamics* reduced = body.reduced()) {
+    // Homogeneous: the same everywhere (zero for a rigid body).
+    if (reduced->model() == BodyModel::kPseudoRigid) {
+      strain.assign(body.numNodes(), strainMagnitude(reduced->gradient()));
+    }
+    return;
+  }
+  const Eigen::VectorXd& x = body.positions();
+  const std::vector<TetrahedronRest>& rest = body.elasticity().restData();
+  const std::vector<Tetrahedron>& tetrahedra = body.mesh().tetrahedra;
+  // Tetrahedra a batch of rotations at a time.
+  const int num_tetrahedra = static_cast<int>(tetrahedra.size());
+  for (int first = 0; first < num_tetrahedra; first += kRotationBatch) {
+    const int count = std::min(kRotationBatch, num_tetrahedra - first);
+    std::array<Eigen::Matrix3d, kRotationBatch> f, r;
+    for (int k = 0; k < count; ++k) {
+      const Tetrahedron& t = tetrahedra[first + k];
+      f[k] = deformationGradient(rest[first + k], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
+                                 x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
+    }
+    extractRotations(f.data(), r.data(), count);
+    for (int k = 0; k < count; ++k) {
+      const double magnitude = strainMagnitude(f[k], r[k]);
+      for (int i : tetrahedra[first + k]) strain[i] = std::max(strain[i], magnitude);
+    }
+  }
+  // Cells: the strain at the centre, from the rest data the elasticity keeps.
+  const std::vector<Cell>& cells = body.mesh().cells;
+  for (size_t c = 0; c < cells.size(); ++c) {
+    const Cell& cell = cells[c];
+    const CellRest& rest = body.elasticity().cellRestData(static_cast<int>(c));
+    CellVectors corners;
+    for (int k = 0; k < cell.size(); ++k) corners[k] = x.segment<3>(3 * cell.nodes[k]);
+    const double magnitude = strainMagnitude(cellDeformationGradient(rest, cell.size(), corners));
+    for (int k = 0; k < cell.size(); ++k) {
+      strain[cell.nodes[k]] = std::max(strain[cell.nodes[k]], magnitude);
+    }
+  }
+}
+
+}  // namespace deformable_sim::core
