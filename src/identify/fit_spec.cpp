@@ -6,8 +6,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
+
+#include "deformable_sim/core/elements/parameter_limits.h"
 
 namespace deformable_sim::identify {
 
@@ -80,6 +83,17 @@ class Reader {
   std::string base_;
 };
 
+// A bound the parameter itself may not take is refused here, in the words the scene reader and
+// the bodies use, not at the first re-simulation. Friction is the contact's: finite and >= 0.
+void checkBound(const Reader& r, const YAML::Node& node, const std::string& key,
+                const std::string& parameter, double bound) {
+  const std::optional<core::Parameter> known = core::parameterNamed(parameter);
+  const std::string problem = known          ? core::parameterProblem(*known, bound)
+                              : bound >= 0.0 ? ""
+                                             : "must be finite and >= 0";
+  if (!problem.empty()) r.fail(node, key, problem + " (as " + parameter + ")");
+}
+
 FitParameter readParameter(const Reader& r, const YAML::Node& node, const std::string& key) {
   r.onlyKeys(node, key, {"body", "parameter", "min", "max"});
   FitParameter p;
@@ -94,9 +108,11 @@ FitParameter readParameter(const Reader& r, const YAML::Node& node, const std::s
     r.fail(name, key + ".parameter",
            "unknown parameter '" + p.parameter + "' (one of " + list + ")");
   }
-  p.min = r.number(r.required(node, key, "min"), key + ".min");
-  const YAML::Node max = r.required(node, key, "max");
+  const YAML::Node min = r.required(node, key, "min"), max = r.required(node, key, "max");
+  p.min = r.number(min, key + ".min");
   p.max = r.number(max, key + ".max");
+  checkBound(r, min, key + ".min", p.parameter, p.min);
+  checkBound(r, max, key + ".max", p.parameter, p.max);
   if (!(p.min < p.max)) r.fail(max, key + ".max", "must be greater than min");
   return p;
 }

@@ -84,6 +84,14 @@ TEST(FitSpec, RefusesNamingTheKey) {
             "fit.yaml:8: observations[1].sigma: expected [N, N m]");
   EXPECT_EQ(refusal(replaced(kFit, "reactions: beam", "reactions: beam, grasp: left")),
             "fit.yaml:8: observations[1]: give exactly one of reactions, grasp or link");
+  // Bounds the parameter itself may not take, in the words of the scene reader and the bodies.
+  EXPECT_EQ(refusal(replaced(kFit, "min: 1.0e4", "min: -1.0e4")),
+            "fit.yaml:4: fit[0].min: must be finite and > 0 Pa (as youngs_modulus)");
+  EXPECT_EQ(refusal(replaced(kFit, "min: 0.0, max: 0.05", "min: -0.01, max: 0.05")),
+            "fit.yaml:5: fit[1].min: must be finite and >= 0 s (as damping_stiffness)");
+  EXPECT_EQ(refusal(replaced(kFit, "parameter: damping_stiffness, min: 0.0, max: 0.05",
+                             "parameter: poisson_ratio, min: 0.0, max: 0.5")),
+            "fit.yaml:5: fit[1].max: must be in (-1, 0.5) (as poisson_ratio)");
   EXPECT_EQ(refusal(replaced(kFit, "min: 1.0e4", "min: lots")),
             "fit.yaml:4: fit[0].min: expected a finite number");
   EXPECT_EQ(refusal(replaced(kFit, "tf: marker_tip, ", "")),

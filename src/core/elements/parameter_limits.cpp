@@ -26,6 +26,13 @@ const char* parameterName(Parameter parameter) {
   return "?";
 }
 
+std::optional<Parameter> parameterNamed(const std::string& name) {
+  for (int p = 0; p <= static_cast<int>(Parameter::kSolverMaxIterations); ++p) {
+    if (name == parameterName(static_cast<Parameter>(p))) return static_cast<Parameter>(p);
+  }
+  return std::nullopt;
+}
+
 std::string parameterProblem(Parameter parameter, double value) {
   const bool finite = std::isfinite(value);
   switch (parameter) {

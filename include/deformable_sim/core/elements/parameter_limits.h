@@ -2,6 +2,7 @@
 // reader, live tuning and the bodies check against these and say the same thing.
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace deformable_sim::core {
@@ -19,6 +20,8 @@ enum class Parameter {
 /// Its name in scenes and live tuning: youngs_modulus, poisson_ratio, density, damping_mass,
 /// damping_stiffness, solver_tolerance, solver_max_iterations.
 const char* parameterName(Parameter parameter);
+/// The parameter of that name, or nullopt.
+std::optional<Parameter> parameterNamed(const std::string& name);
 
 /// Why `value` cannot be `parameter` ("must be finite and > 0 Pa"), or "" when it can. Written
 /// so that NaN fails every range.
