@@ -367,7 +367,8 @@ TEST(ContactParticipant, ComplianceIsOneSymmetricPositiveMatrixForEveryModel) {
     std::vector<dc::StepReport> reports;
     sim.step(reports);  // a finite-element body answers through its last step's matrix
     dc::Body& body = sim.bodies()[0];
-    dc::ContactParticipant participant(body);
+    const std::unique_ptr<dc::ContactParticipant> made = dc::makeParticipant(body);
+    dc::ContactParticipant& participant = *made;
     participant.begin(body, spec.dt);
     dc::SurfacePoint point;  // on a vertical edge at a corner, off its nodes
     point.nodes = {17, 26, 26};

@@ -34,7 +34,7 @@ BodyContact::BodyContact(const std::vector<Body>& bodies, const ContactSettings&
     participants_.emplace_back();
     if (!with_bodies_[b] && !with_self_[b]) continue;
     surfaces_.back().emplace(bodies[b].mesh(), bodies[b].positions(), with_self_[b]);
-    participants_.back().emplace(bodies[b]);
+    participants_.back() = makeParticipant(bodies[b]);
   }
   reserveContacts();
   loads_.resize(bodies.size() * bodies.size());

@@ -17,6 +17,7 @@
 // takes part with that surface (embed()): its points are on its cells' nodes.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -123,7 +124,7 @@ class BodyContact {
   double dt_ = 0.0;  ///< of the step being resolved
   std::vector<bool> with_bodies_, with_self_;
   std::vector<std::optional<BodySurface>> surfaces_;
-  std::vector<std::optional<ContactParticipant>> participants_;
+  std::vector<std::unique_ptr<ContactParticipant>> participants_;
   /// At most one per surface node and kEdgeHits per edge: reserved once.
   std::vector<Contact> contacts_;
   std::vector<ContactLoad> loads_;  ///< per pair of bodies (see load()), sized once

@@ -1,0 +1,48 @@
+// A finite-element body in contact between bodies: it answers an impulse as its implicit step
+// would have (core/bodies/implicit_response.h; constrained nodes not at all), the answers gathered
+// apart and added to its state once the contact is resolved.
+#pragma once
+
+#include "deformable_sim/core/bodies/implicit_response.h"
+#include "deformable_sim/core/contact/contact_participant.h"
+
+namespace deformable_sim::core {
+
+class ElasticParticipant : public ContactParticipant {
+ public:
+  explicit ElasticParticipant(const Body& body);
+
+  void begin(Body& body, double dt, bool new_step = true) override;
+  void end(Body& body) override;
+  Eigen::Vector3d position(const SurfacePoint& point) const override;
+  Eigen::Vector3d velocity(const SurfacePoint& point) const override;
+  double inverseMass(const SurfacePoint& point, const Eigen::Vector3d& normal) const override;
+  Eigen::Matrix3d compliance(const SurfacePoint& point, bool local = false) const override;
+  int solves() const override { return response_.solves(); }
+  void push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool local = false) override;
+  void nudge(const SurfacePoint& point, const Eigen::Vector3d& shift) override;
+  double nudgeCompliance(const SurfacePoint& point, const Eigen::Vector3d& normal) const override;
+  double movable(const SurfacePoint& point) const override;
+
+ private:
+  /// `amount` at the point, answered by its nodes alone (lumped masses; a point that shifts its
+  /// cells, by them as one mass), added to `state`.
+  void addLumped(const SurfacePoint& point, const Eigen::Vector3d& amount,
+                 Eigen::VectorXd& state) const;
+  /// The mass of the point's free nodes (a point that shifts its cells moves them as one).
+  double clusterMass(const SurfacePoint& point) const;
+  /// `amount` at the point, answered by the whole body, added to `state`.
+  void addAnswer(const SurfacePoint& point, const Eigen::Vector3d& amount,
+                 Eigen::VectorXd& state) const;
+
+  const Body* body_ = nullptr;
+  Eigen::VectorXd* x_ = nullptr;  ///< the body's own state, changed in place
+  Eigen::VectorXd* v_ = nullptr;
+  double dt_ = 0.0;  ///< of the step
+  /// Columns solved lazily, so `mutable`; and the velocity change the whole-body answers made so
+  /// far (not yet in the state).
+  mutable ImplicitResponse response_;
+  Eigen::VectorXd velocity_change_of_nodes_;
+};
+
+}  // namespace deformable_sim::core

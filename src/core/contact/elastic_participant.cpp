@@ -1,0 +1,128 @@
+#include "deformable_sim/core/contact/elastic_participant.h"
+
+namespace deformable_sim::core {
+
+ElasticParticipant::ElasticParticipant(const Body& body)
+    : body_(&body),
+      response_(body.numNodes()),
+      velocity_change_of_nodes_(Eigen::VectorXd::Zero(3 * body.numNodes())) {}
+
+void ElasticParticipant::begin(Body& body, double dt, bool new_step) {
+  body_ = &body;
+  dt_ = dt;
+  x_ = &body.mutablePositions();
+  v_ = &body.mutableVelocities();
+  if (new_step) response_.begin(body);
+  velocity_change_of_nodes_.setZero();
+}
+
+void ElasticParticipant::end(Body& body) {
+  *v_ += velocity_change_of_nodes_;
+  *x_ += dt_ * velocity_change_of_nodes_;
+  body.addConstraintForces(velocity_change_of_nodes_);
+}
+
+Eigen::Vector3d ElasticParticipant::position(const SurfacePoint& point) const {
+  // The whole-body answers so far moved the nodes by dt times their velocity change.
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  for (int k = 0; k < point.count; ++k) {
+    const int i = 3 * point.nodes[k];
+    p += point.weights[k] * (x_->segment<3>(i) + dt_ * velocity_change_of_nodes_.segment<3>(i));
+  }
+  return p;
+}
+
+Eigen::Vector3d ElasticParticipant::velocity(const SurfacePoint& point) const {
+  Eigen::Vector3d u = Eigen::Vector3d::Zero();
+  for (int k = 0; k < point.count; ++k) {
+    const int i = 3 * point.nodes[k];
+    u += point.weights[k] * (v_->segment<3>(i) + velocity_change_of_nodes_.segment<3>(i));
+  }
+  return u;
+}
+
+double ElasticParticipant::inverseMass(const SurfacePoint& point,
+                                       const Eigen::Vector3d& normal) const {
+  Eigen::Matrix3d w = Eigen::Matrix3d::Zero();
+  for (int a = 0; a < point.count; ++a) {
+    for (int b = 0; b < point.count; ++b) {
+      w += point.weights[a] * point.weights[b] * response_.block(point.nodes[a], point.nodes[b]);
+    }
+  }
+  return normal.dot(w * normal);
+}
+
+Eigen::Matrix3d ElasticParticipant::compliance(const SurfacePoint& point, bool local) const {
+  if (local) return nudgeCompliance(point, Eigen::Vector3d::UnitX()) * Eigen::Matrix3d::Identity();
+  return complianceFromInverseMass(point);
+}
+
+void ElasticParticipant::push(const SurfacePoint& point, const Eigen::Vector3d& impulse,
+                              bool local) {
+  if (local) {
+    addLumped(point, impulse, *v_);
+    addLumped(point, dt_ * impulse, *x_);
+    return;
+  }
+  // Kept apart until end(): one pass over the body per node, where adding the answer to the
+  // velocities, the positions and the constraint forces each took three.
+  addAnswer(point, impulse, velocity_change_of_nodes_);
+}
+
+void ElasticParticipant::nudge(const SurfacePoint& point, const Eigen::Vector3d& shift) {
+  addLumped(point, shift, *x_);
+}
+
+void ElasticParticipant::addLumped(const SurfacePoint& point, const Eigen::Vector3d& amount,
+                                   Eigen::VectorXd& state) const {
+  const double cluster = point.shifts_cells ? clusterMass(point) : 0.0;
+  for (int k = 0; k < point.count; ++k) {
+    const int i = point.nodes[k];
+    if (body_->isConstrained(i)) continue;
+    state.segment<3>(3 * i) +=
+        point.shifts_cells ? Eigen::Vector3d(amount / cluster)
+                           : Eigen::Vector3d(point.weights[k] / body_->nodalMasses()[i] * amount);
+  }
+}
+
+double ElasticParticipant::clusterMass(const SurfacePoint& point) const {
+  double mass = 0.0;
+  for (int k = 0; k < point.count; ++k) {
+    if (!body_->isConstrained(point.nodes[k])) mass += body_->nodalMasses()[point.nodes[k]];
+  }
+  return mass;
+}
+
+double ElasticParticipant::nudgeCompliance(const SurfacePoint& point,
+                                           const Eigen::Vector3d&) const {
+  // Node by node: w_i / m_i of the impulse moves node i, and so the point by sum w_i^2 / m_i of
+  // it; a point that shifts its cells moves them as one mass, and itself by its free weight.
+  if (point.shifts_cells) {
+    const double mass = clusterMass(point);
+    return mass > 0.0 ? movable(point) / mass : 0.0;
+  }
+  double w = 0.0;
+  for (int k = 0; k < point.count; ++k) {
+    const int i = point.nodes[k];
+    if (!body_->isConstrained(i))
+      w += point.weights[k] * point.weights[k] / body_->nodalMasses()[i];
+  }
+  return w;
+}
+
+double ElasticParticipant::movable(const SurfacePoint& point) const {
+  double free = 0.0;
+  for (int k = 0; k < point.count; ++k) {
+    if (!body_->isConstrained(point.nodes[k])) free += point.weights[k];
+  }
+  return free;
+}
+
+void ElasticParticipant::addAnswer(const SurfacePoint& point, const Eigen::Vector3d& amount,
+                                   Eigen::VectorXd& state) const {
+  for (int k = 0; k < point.count; ++k) {
+    response_.add(point.nodes[k], point.weights[k] * amount, state);
+  }
+}
+
+}  // namespace deformable_sim::core
