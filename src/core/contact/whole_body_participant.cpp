@@ -3,17 +3,9 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "deformable_sim/core/base/rotation.h"
+
 namespace deformable_sim::core {
-
-namespace {
-
-Eigen::Matrix3d cross(const Eigen::Vector3d& w) {
-  Eigen::Matrix3d m;
-  m << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
-  return m;
-}
-
-}  // namespace
 
 WholeBodyParticipant::WholeBodyParticipant(const Body& body)
     : body_(&body), base_x_(3 * body.numNodes()), base_v_(3 * body.numNodes()) {
@@ -95,7 +87,7 @@ Eigen::Matrix3d RigidParticipant::inverseMoment(const MassProperties& mass) cons
 Eigen::Matrix3d RigidParticipant::gradientChange(const Eigen::Vector3d& a,
                                                  const Eigen::Vector3d& amount) const {
   // A turn by I^-1 (r x amount) about the centre, to first order.
-  return cross(inverse_moment_ * (gradient_ * a).cross(amount)) * gradient_;
+  return crossMatrix(inverse_moment_ * (gradient_ * a).cross(amount)) * gradient_;
 }
 
 double PseudoRigidParticipant::inverseMass(const SurfacePoint& point,

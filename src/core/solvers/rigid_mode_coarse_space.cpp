@@ -4,20 +4,10 @@
 #include <algorithm>
 
 #include "deformable_sim/core/base/parallel_for.h"
+#include "deformable_sim/core/base/rotation.h"
 #include "deformable_sim/core/solvers/linear_solver.h"
 
 namespace deformable_sim::core {
-
-namespace {
-
-// [d]x, the matrix of d x (.).
-Eigen::Matrix3d crossMatrix(const Eigen::Vector3d& d) {
-  Eigen::Matrix3d c;
-  c << 0.0, -d.z(), d.y(), d.z(), 0.0, -d.x(), -d.y(), d.x(), 0.0;
-  return c;
-}
-
-}  // namespace
 
 RigidModeCoarseSpace::RigidModeCoarseSpace(const BlockSparseMatrix& k) {
   // The finest aggregates (one ring) take the most work off the iterations, but their coarse

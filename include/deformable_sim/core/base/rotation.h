@@ -30,4 +30,11 @@ void extractRotations(const Eigen::Matrix3d* deformation_gradients, Eigen::Matri
 /// The SVD route of extractRotation for every F (for tests and comparisons).
 Eigen::Matrix3d extractRotationBySvd(const Eigen::Matrix3d& deformation_gradient);
 
+/// [d]x, the matrix of d x (.): the rate of a rotation about d.
+inline Eigen::Matrix3d crossMatrix(const Eigen::Vector3d& d) {
+  Eigen::Matrix3d c;
+  c << 0.0, -d.z(), d.y(), d.z(), 0.0, -d.x(), -d.y(), d.x(), 0.0;
+  return c;
+}
+
 }  // namespace deformable_sim::core
