@@ -175,6 +175,7 @@ TEST(BodySurface, FeatureEdgesAreTheConvexRidgesOnly) {
 
 namespace {
 
+using deformable_sim::test::centreOfNodes;
 using deformable_sim::test::deepestInside;
 using deformable_sim::test::totalMomentum;
 
@@ -205,10 +206,6 @@ void setVelocity(dc::Body& body, const Eigen::Vector3d& velocity) {
   Eigen::VectorXd v = body.velocities();
   for (int i = 0; i < body.numNodes(); ++i) v.segment<3>(3 * i) = velocity;
   body.setState(body.positions(), v);
-}
-
-Eigen::Vector3d centreOf(const dc::Body& body) {
-  return body.positions().reshaped(3, body.numNodes()).rowwise().mean();
 }
 
 }  // namespace
@@ -246,7 +243,7 @@ TEST(BodyContact, BodiesThrownAtEachOtherStopEachOtherWithMomentumKeptForEveryMo
       EXPECT_GT(touching, 0) << pair;
       // They met and stopped each other, each on its own side: no pass-through. (They do not
       // bounce back: backward Euler at 0.01 s damps a blow these stiff cubes would ring with.)
-      EXPECT_LT(centreOf(sim.bodies()[0]).x(), centreOf(sim.bodies()[1]).x()) << pair;
+      EXPECT_LT(centreOfNodes(sim.bodies()[0]).x(), centreOfNodes(sim.bodies()[1]).x()) << pair;
       EXPECT_LT(deformable_sim::test::momentum(sim.bodies()[0]).x(), 0.1 * scale) << pair;
     }
   }

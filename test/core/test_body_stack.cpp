@@ -18,6 +18,7 @@
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
+using deformable_sim::test::centreOfNodes;
 
 namespace {
 
@@ -34,10 +35,6 @@ double totalEnergy(const dc::Simulation& sim) {
     }
   }
   return energy;
-}
-
-Eigen::Vector3d centreOf(const dc::Body& body) {
-  return body.positions().reshaped(3, body.numNodes()).rowwise().mean();
 }
 
 /// Gravity, warping, contact between bodies (mu = 0.5) and a floor whose top is z = 0.
@@ -102,7 +99,7 @@ TEST(BodyStack, FiveSoftCubesStandForAMinute) {
   for (const dc::Body& body : sim.bodies()) kinetic += body.kineticEnergy();
   EXPECT_LT(kinetic, 1e-5);           // at rest but for a jitter of a few mm/s
   for (int k = 0; k < kCubes; ++k) {  // still a stack: each cube on the one below
-    const Eigen::Vector3d c = centreOf(sim.bodies()[k]);
+    const Eigen::Vector3d c = centreOfNodes(sim.bodies()[k]);
     EXPECT_LT(c.head<2>().norm(), 0.01 * kSide) << "cube " << k;
     EXPECT_NEAR(c.z(), (k + 0.5) * kSide, 0.02 * kSide) << "cube " << k;  // each sags a little
   }
@@ -185,13 +182,14 @@ TEST(BodyStack, BlocksSideBySideOnAFloorStayWhereTheyAre) {
     for (int cells : {1, 2}) {
       dc::Simulation sim = rowOfBlocks(3, cells, method);
       std::vector<Eigen::Vector3d> start;
-      for (const dc::Body& body : sim.bodies()) start.push_back(centreOf(body));
+      for (const dc::Body& body : sim.bodies()) start.push_back(centreOfNodes(body));
       std::vector<dc::StepReport> reports;
       for (int s = 0; s < 100; ++s) sim.step(reports);
       for (size_t b = 0; b < start.size(); ++b) {
         const dc::Body& body = sim.bodies()[b];
         // Each sags under its weight (a fraction of a millimetre) and moves no more.
-        EXPECT_LT((centreOf(body) - start[b]).norm(), 1e-3) << "block " << b << " cells " << cells;
+        EXPECT_LT((centreOfNodes(body) - start[b]).norm(), 1e-3)
+            << "block " << b << " cells " << cells;
         EXPECT_LT(body.kineticEnergy(), 1e-8) << "block " << b << " cells " << cells;
       }
     }

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "body_meters.h"
 #include "deformable_sim/core/contact/contact.h"
 #include "deformable_sim/core/geometry/shape.h"
 #include "deformable_sim/core/session/simulation.h"
@@ -19,6 +20,7 @@
 
 namespace dc = deformable_sim::core;
 using deformable_sim::test::boxMeshSimulation;
+using deformable_sim::test::centreOfMass;
 
 namespace {
 
@@ -45,16 +47,6 @@ struct Grasp {
   int finger_points = 0;
   double lowest = 0.0;  ///< m, the lowest node at the end
 };
-
-Eigen::Vector3d centreOfMass(const dc::Body& body) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  double mass = 0.0;
-  for (int i = 0; i < body.numNodes(); ++i) {
-    sum += body.nodalMasses()[i] * body.positions().segment<3>(3 * i);
-    mass += body.nodalMasses()[i];
-  }
-  return sum / mass;
-}
 
 enum class Object { kBlock, kSurfaceBall };
 
