@@ -15,6 +15,7 @@
 #include "contact_test_helpers.h"
 #include "deformable_sim/core/outputs/contact_pairs.h"
 #include "deformable_sim/core/session/simulation.h"
+#include "scene_builder.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
@@ -39,19 +40,14 @@ double totalEnergy(const dc::Simulation& sim) {
 
 /// Gravity, warping, contact between bodies (mu = 0.5) and a floor whose top is z = 0.
 dc::SceneSpec floorScene(double stiffness_damping, dc::SolverSettings::Method method) {
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -kGravity);
-  spec.effects.warping = true;
-  spec.effects.damping = dc::RayleighDamping{1.0, stiffness_damping};
-  spec.contact = dc::ContactSettings{0.5, true, false};
-  spec.solver.method = method;
-  dc::PlacedShape floor;
-  floor.name = "floor";
-  floor.shape.size = {4.0, 4.0, 0.2};
-  floor.pose.translation() = Eigen::Vector3d(0, 0, -0.1);
-  spec.obstacles.push_back(floor);
-  return spec;
+  return deformable_sim::test::SceneBuilder()
+      .dt(0.01)
+      .gravity(kGravity)
+      .warped()
+      .damping(1.0, stiffness_damping)
+      .contact(0.5, true)
+      .solver(method)
+      .floor({4.0, 4.0, 0.2});
 }
 
 dc::Simulation stackOfCubes(const dc::LinearElasticMaterial& material, int cells,

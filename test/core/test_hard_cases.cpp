@@ -19,13 +19,16 @@
 #include "deformable_sim/core/elements/selection.h"
 #include "deformable_sim/core/outputs/strain.h"
 #include "deformable_sim/core/session/simulation.h"
+#include "scene_builder.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
+using deformable_sim::test::boxBody;
 using deformable_sim::test::boxMeshSimulation;
 using deformable_sim::test::boxSelection;
 using deformable_sim::test::centreOfMass;
 using deformable_sim::test::momentum;
+using deformable_sim::test::SceneBuilder;
 using deformable_sim::test::totalMass;
 
 namespace {
@@ -38,21 +41,7 @@ const dc::RayleighDamping kSceneDamping{1.0, 0.002};
 
 /// A scene as a user gets it (SceneSpec's dt, solver and no damping) with the corotational
 /// elasticity these cases are about.
-dc::SceneSpec warpedScene() {
-  dc::SceneSpec spec;
-  spec.effects.warping = true;
-  return spec;
-}
-
-dc::BodySpec boxBody(const std::string& name, const Eigen::Vector3d& min,
-                     const Eigen::Vector3d& max, const Eigen::Vector3i& cells,
-                     const dc::LinearElasticMaterial& material) {
-  dc::BodySpec body;
-  body.name = name;
-  body.box_mesh = dc::BoxMeshSpec{min, max, cells};
-  body.material = material;
-  return body;
-}
+dc::SceneSpec warpedScene() { return SceneBuilder().warped(); }
 
 /// The nodes whose rest x lies at `x` (a beam's end face).
 dc::NodeSelection faceAtX(double x) {
@@ -69,10 +58,7 @@ dc::BodySpec clampedBeam(const std::string& name, const Eigen::Vector3d& min,
 
 /// warpedScene() with gravity and the built-in scene's damping: bodies sag and come to rest.
 dc::SceneSpec settlingScene() {
-  dc::SceneSpec spec = warpedScene();
-  spec.effects.gravity = kGravity;
-  spec.effects.damping = kSceneDamping;
-  return spec;
+  return SceneBuilder().warped().gravity(kGravity).damping(kSceneDamping);
 }
 
 bool finite(const dc::Body& body) {
