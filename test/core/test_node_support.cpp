@@ -1,5 +1,6 @@
 // The ROS-free pieces the node is built from: body frames, the wrench bounds a body can take,
-// wrenches in far frames, output schedules, live tuning and lapsing wrenches.
+// wrenches in far frames, live tuning and lapsing wrenches (output schedules:
+// test_periodic_schedule.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +10,6 @@
 #include "deformable_sim/core/driver/grasp_follower.h"
 #include "deformable_sim/core/driver/linked_obstacles.h"
 #include "deformable_sim/core/driver/once_per_stamp.h"
-#include "deformable_sim/core/driver/periodic_schedule.h"
 #include "deformable_sim/core/driver/pose_interpolation.h"
 #include "deformable_sim/core/driver/real_time_factor.h"
 #include "deformable_sim/core/driver/refusal_log.h"
@@ -150,23 +150,6 @@ TEST(WrenchBounds, AThrowingPushIsRefusedAndOneTheBodyCanTakeIsApplied) {
     ASSERT_EQ(reports[0].inverted_elements, 0) << "at step " << step;
   }
   EXPECT_TRUE(session.simulation().bodies()[0].positions().allFinite());
-}
-
-TEST(PeriodicSchedule, KeepsTheAskedRateOnTicksOfAnotherRate) {
-  PeriodicSchedule schedule(1.0 / 30.0);
-  int due = 0;
-  for (int tick = 0; tick < 1000; ++tick) due += schedule.due(1000.0 + 0.01 * tick);
-  EXPECT_NEAR(due, 300, 1);  // 10 s of 100 Hz ticks: 30 Hz, not every fourth tick (25 Hz)
-}
-
-TEST(PeriodicSchedule, StartsAgainWhenTheClockGoesBackOrStalls) {
-  PeriodicSchedule schedule(0.1);
-  EXPECT_TRUE(schedule.due(50.0));
-  EXPECT_FALSE(schedule.due(50.05));
-  EXPECT_TRUE(schedule.due(10.0));  // a looped bag
-  EXPECT_FALSE(schedule.due(10.05));
-  EXPECT_TRUE(schedule.due(20.0));  // a long stall: one output, not a burst of a hundred
-  EXPECT_FALSE(schedule.due(20.01));
 }
 
 TEST(OncePerStamp, LetsEachStampThroughOnceAndANewTimelineStartAgain) {
