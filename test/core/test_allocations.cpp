@@ -15,6 +15,7 @@
 #include "deformable_sim/core/session/default_scene.h"
 #include "deformable_sim/core/session/simulation.h"
 #include "deformable_sim/core/surface_bodies/surface_body.h"
+#include "scene_builder.h"
 #include "simulation_test_helpers.h"
 #include "surface_test_helpers.h"
 
@@ -217,11 +218,8 @@ TEST(Allocations, NoneInContactWithAMeshObstacle) {
       grid.triangles.emplace_back(a, c, d);
     }
   }
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-  spec.effects.warping = true;
-  spec.contact = dc::ContactSettings{0.5};
+  dc::SceneSpec spec =
+      deformable_sim::test::SceneBuilder().dt(0.01).gravity(9.81).warped().contact(0.5);
   dc::PlacedShape table;
   table.shape.kind = dc::Shape::Kind::kMesh;
   table.shape.mesh = std::make_shared<const dc::TriangleMeshShape>(grid);
@@ -279,13 +277,10 @@ TEST(Allocations, NoneInContactOfSurfacesWithAnObstacleAndEachOther) {
 // Contact between bodies of every model and of a body with itself: once the bodies touch, their
 // steps allocate nothing either.
 TEST(Allocations, NoneInContactBetweenBodies) {
-  dc::SceneSpec spec;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-  spec.contact = dc::ContactSettings{0.5, true, true};
-  dc::PlacedShape floor;
-  floor.shape.size = Eigen::Vector3d(1, 1, 0.1);
-  floor.pose.translation() = Eigen::Vector3d(0, 0, -0.05);
-  spec.obstacles.push_back(floor);
+  dc::SceneSpec spec = deformable_sim::test::SceneBuilder()
+                           .gravity(9.81)
+                           .contact(0.5, true, true)
+                           .floor({1, 1, 0.1}, "");
   const dc::BodyModel models[] = {dc::BodyModel::kFiniteElement, dc::BodyModel::kRigid,
                                   dc::BodyModel::kPseudoRigid};
   for (int k = 0; k < 3; ++k) {

@@ -13,6 +13,7 @@
 #include "deformable_sim/core/contact/node_triangle.h"
 #include "deformable_sim/core/elements/box_mesh.h"
 #include "deformable_sim/core/session/simulation.h"
+#include "scene_builder.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
@@ -175,6 +176,7 @@ TEST(BodySurface, FeatureEdgesAreTheConvexRidgesOnly) {
 
 namespace {
 
+using deformable_sim::test::centreOfNodes;
 using deformable_sim::test::deepestInside;
 using deformable_sim::test::totalMomentum;
 
@@ -182,33 +184,20 @@ const dc::LinearElasticMaterial kSoft{1.0e5, 0.3, 100.0};
 
 dc::BodySpec cube(const std::string& name, const Eigen::Vector3d& min, double side,
                   dc::BodyModel model = dc::BodyModel::kFiniteElement, int cells = 2) {
-  dc::BodySpec body;
-  body.name = name;
-  body.model = model;
-  body.box_mesh =
-      dc::BoxMeshSpec{min, min + Eigen::Vector3d::Constant(side), Eigen::Vector3i::Constant(cells)};
-  body.material = kSoft;
-  return body;
+  return deformable_sim::test::boxBody(name, min, min + Eigen::Vector3d::Constant(side),
+                                       Eigen::Vector3i::Constant(cells), kSoft, model);
 }
 
 /// A scene with contact between bodies on, exact solves (momentum to round-off), no gravity.
 dc::SceneSpec bodyContactScene() {
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.warping = true;
-  spec.contact = dc::ContactSettings{0.5, true, false};
-  spec.solver.method = dc::SolverSettings::Method::kDirect;
-  return spec;
+  return deformable_sim::test::SceneBuilder().dt(0.01).warped().contact(0.5, true).solver(
+      dc::SolverSettings::Method::kDirect);
 }
 
 void setVelocity(dc::Body& body, const Eigen::Vector3d& velocity) {
   Eigen::VectorXd v = body.velocities();
   for (int i = 0; i < body.numNodes(); ++i) v.segment<3>(3 * i) = velocity;
   body.setState(body.positions(), v);
-}
-
-Eigen::Vector3d centreOf(const dc::Body& body) {
-  return body.positions().reshaped(3, body.numNodes()).rowwise().mean();
 }
 
 }  // namespace
@@ -246,7 +235,7 @@ TEST(BodyContact, BodiesThrownAtEachOtherStopEachOtherWithMomentumKeptForEveryMo
       EXPECT_GT(touching, 0) << pair;
       // They met and stopped each other, each on its own side: no pass-through. (They do not
       // bounce back: backward Euler at 0.01 s damps a blow these stiff cubes would ring with.)
-      EXPECT_LT(centreOf(sim.bodies()[0]).x(), centreOf(sim.bodies()[1]).x()) << pair;
+      EXPECT_LT(centreOfNodes(sim.bodies()[0]).x(), centreOfNodes(sim.bodies()[1]).x()) << pair;
       EXPECT_LT(deformable_sim::test::momentum(sim.bodies()[0]).x(), 0.1 * scale) << pair;
     }
   }

@@ -15,9 +15,11 @@
 #include "contact_test_helpers.h"
 #include "deformable_sim/core/outputs/contact_pairs.h"
 #include "deformable_sim/core/session/simulation.h"
+#include "scene_builder.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
+using deformable_sim::test::centreOfNodes;
 
 namespace {
 
@@ -36,25 +38,16 @@ double totalEnergy(const dc::Simulation& sim) {
   return energy;
 }
 
-Eigen::Vector3d centreOf(const dc::Body& body) {
-  return body.positions().reshaped(3, body.numNodes()).rowwise().mean();
-}
-
 /// Gravity, warping, contact between bodies (mu = 0.5) and a floor whose top is z = 0.
 dc::SceneSpec floorScene(double stiffness_damping, dc::SolverSettings::Method method) {
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -kGravity);
-  spec.effects.warping = true;
-  spec.effects.damping = dc::RayleighDamping{1.0, stiffness_damping};
-  spec.contact = dc::ContactSettings{0.5, true, false};
-  spec.solver.method = method;
-  dc::PlacedShape floor;
-  floor.name = "floor";
-  floor.shape.size = {4.0, 4.0, 0.2};
-  floor.pose.translation() = Eigen::Vector3d(0, 0, -0.1);
-  spec.obstacles.push_back(floor);
-  return spec;
+  return deformable_sim::test::SceneBuilder()
+      .dt(0.01)
+      .gravity(kGravity)
+      .warped()
+      .damping(1.0, stiffness_damping)
+      .contact(0.5, true)
+      .solver(method)
+      .floor({4.0, 4.0, 0.2});
 }
 
 dc::Simulation stackOfCubes(const dc::LinearElasticMaterial& material, int cells,
@@ -102,7 +95,7 @@ TEST(BodyStack, FiveSoftCubesStandForAMinute) {
   for (const dc::Body& body : sim.bodies()) kinetic += body.kineticEnergy();
   EXPECT_LT(kinetic, 1e-5);           // at rest but for a jitter of a few mm/s
   for (int k = 0; k < kCubes; ++k) {  // still a stack: each cube on the one below
-    const Eigen::Vector3d c = centreOf(sim.bodies()[k]);
+    const Eigen::Vector3d c = centreOfNodes(sim.bodies()[k]);
     EXPECT_LT(c.head<2>().norm(), 0.01 * kSide) << "cube " << k;
     EXPECT_NEAR(c.z(), (k + 0.5) * kSide, 0.02 * kSide) << "cube " << k;  // each sags a little
   }
@@ -185,13 +178,14 @@ TEST(BodyStack, BlocksSideBySideOnAFloorStayWhereTheyAre) {
     for (int cells : {1, 2}) {
       dc::Simulation sim = rowOfBlocks(3, cells, method);
       std::vector<Eigen::Vector3d> start;
-      for (const dc::Body& body : sim.bodies()) start.push_back(centreOf(body));
+      for (const dc::Body& body : sim.bodies()) start.push_back(centreOfNodes(body));
       std::vector<dc::StepReport> reports;
       for (int s = 0; s < 100; ++s) sim.step(reports);
       for (size_t b = 0; b < start.size(); ++b) {
         const dc::Body& body = sim.bodies()[b];
         // Each sags under its weight (a fraction of a millimetre) and moves no more.
-        EXPECT_LT((centreOf(body) - start[b]).norm(), 1e-3) << "block " << b << " cells " << cells;
+        EXPECT_LT((centreOfNodes(body) - start[b]).norm(), 1e-3)
+            << "block " << b << " cells " << cells;
         EXPECT_LT(body.kineticEnergy(), 1e-8) << "block " << b << " cells " << cells;
       }
     }

@@ -14,6 +14,7 @@
 #include "deformable_sim/core/session/session.h"
 #include "deformable_sim/core/session/simulation.h"
 #include "deformable_sim/io/scene_file.h"
+#include "scene_builder.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
@@ -250,10 +251,7 @@ dc::Simulation makeBlock(bool floor = false) {
   spec.bodies.push_back(block);
   if (floor) {
     spec.contact = dc::ContactSettings{0.5, false, false};
-    dc::PlacedShape slab;
-    slab.shape.size = Eigen::Vector3d(1, 1, 0.1);
-    slab.pose.translation() = Eigen::Vector3d(0, 0, -0.05);
-    spec.obstacles.push_back(slab);
+    spec.obstacles.push_back(deformable_sim::test::floorBox({1, 1, 0.1}, ""));
   }
   return boxMeshSimulation(spec);
 }

@@ -9,6 +9,7 @@
 #include "deformable_sim/core/geometry/shape.h"
 #include "deformable_sim/core/outputs/contact_pairs.h"
 #include "deformable_sim/core/session/simulation.h"
+#include "scene_builder.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
@@ -20,18 +21,13 @@ namespace {
 // z = 0 (obstacle "table"), under gravity, lightly damped, with contact and friction 0.5.
 dc::SceneSpec blockAboveATable(double thickness, const dc::BoxMeshSpec& block_mesh,
                                const dc::LinearElasticMaterial& material) {
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-  spec.effects.warping = true;
-  spec.effects.damping = dc::RayleighDamping{2.0, 0.002};
-  spec.contact = dc::ContactSettings{0.5};
-  dc::PlacedShape table;
-  table.name = "table";
-  table.shape.kind = dc::Shape::Kind::kBox;
-  table.shape.size = {1.0, 1.0, thickness};
-  table.pose.translation() = Eigen::Vector3d(0.0, 0.0, -0.5 * thickness);
-  spec.obstacles.push_back(table);
+  dc::SceneSpec spec = deformable_sim::test::SceneBuilder()
+                           .dt(0.01)
+                           .gravity(9.81)
+                           .warped()
+                           .damping(2.0, 0.002)
+                           .contact(0.5)
+                           .floor({1.0, 1.0, thickness}, "table");
   dc::BodySpec block;
   block.name = "block";
   block.box_mesh = block_mesh;

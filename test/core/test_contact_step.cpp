@@ -4,6 +4,7 @@
 
 #include "deformable_sim/core/contact/contact_step.h"
 #include "deformable_sim/core/session/simulation.h"
+#include "scene_builder.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
@@ -11,12 +12,8 @@ namespace dc = deformable_sim::core;
 namespace {
 
 dc::BodySpec cube(const std::string& name, const Eigen::Vector3d& min, dc::BodyModel model) {
-  dc::BodySpec body;
-  body.name = name;
-  body.model = model;
-  body.box_mesh = dc::BoxMeshSpec{min, min + Eigen::Vector3d::Constant(0.1), {2, 2, 2}};
-  body.material = {1.0e5, 0.3, 100.0};
-  return body;
+  return deformable_sim::test::boxBody(name, min, min + Eigen::Vector3d::Constant(0.1), {2, 2, 2},
+                                       {1.0e5, 0.3, 100.0}, model);
 }
 
 // On a floor: a soft cube with a rigid one resting on it, and a soft one beside them that keeps

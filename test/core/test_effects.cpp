@@ -8,6 +8,7 @@
 #include "deformable_sim/core/bodies/body.h"
 #include "deformable_sim/core/elements/box_mesh.h"
 #include "deformable_sim/core/session/simulation.h"
+#include "scene_builder.h"
 
 namespace dc = deformable_sim::core;
 
@@ -94,10 +95,7 @@ TEST(Effects, ContactRunsOnlyWithTheEffectAndOnFiniteElementBodies) {
   EXPECT_EQ(without.contactSteps(), 0);
 
   scene.contact = dc::ContactSettings{};
-  dc::PlacedShape floor;
-  floor.shape.size = Eigen::Vector3d(1, 1, 0.1);
-  floor.pose.translation() = Eigen::Vector3d(0, 0, -0.05);
-  scene.obstacles.push_back(floor);
+  scene.obstacles.push_back(deformable_sim::test::floorBox({1, 1, 0.1}, ""));
   dc::Simulation with(scene, meshes());
   for (int k = 0; k < kSteps; ++k) with.step(reports);
   EXPECT_EQ(with.contactSteps(), kSteps);  // the finite-element body only

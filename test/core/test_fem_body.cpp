@@ -4,12 +4,14 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "body_meters.h"
 #include "deformable_sim/core/bodies/body.h"
 #include "deformable_sim/core/elements/box_mesh.h"
 #include "deformable_sim/core/elements/selection.h"
 #include "deformable_sim/core/outputs/strain.h"
 
 namespace dc = deformable_sim::core;
+using deformable_sim::test::momentum;
 
 namespace {
 
@@ -33,13 +35,6 @@ std::vector<int> clampedEnd(const dc::Body& body) {
 
 Eigen::Vector3d total(const Eigen::VectorXd& stacked) {
   return stacked.reshaped(3, stacked.size() / 3).rowwise().sum();
-}
-
-Eigen::Vector3d momentum(const dc::Body& body) {
-  Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (int i = 0; i < body.numNodes(); ++i)
-    p += body.nodalMasses()[i] * body.velocities().segment<3>(3 * i);
-  return p;
 }
 
 }  // namespace

@@ -10,15 +10,18 @@
 #include <cmath>
 #include <cstdio>
 
+#include "body_meters.h"
 #include "deformable_sim/core/contact/contact.h"
 #include "deformable_sim/core/geometry/shape.h"
 #include "deformable_sim/core/session/simulation.h"
 #include "deformable_sim/core/surface_bodies/surface_body.h"
+#include "scene_builder.h"
 #include "simulation_test_helpers.h"
 #include "surface_test_helpers.h"
 
 namespace dc = deformable_sim::core;
 using deformable_sim::test::boxMeshSimulation;
+using deformable_sim::test::centreOfMass;
 
 namespace {
 
@@ -46,16 +49,6 @@ struct Grasp {
   double lowest = 0.0;  ///< m, the lowest node at the end
 };
 
-Eigen::Vector3d centreOfMass(const dc::Body& body) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  double mass = 0.0;
-  for (int i = 0; i < body.numNodes(); ++i) {
-    sum += body.nodalMasses()[i] * body.positions().segment<3>(3 * i);
-    mass += body.nodalMasses()[i];
-  }
-  return sum / mass;
-}
-
 enum class Object { kBlock, kSurfaceBall };
 
 // The simulation of `spec` with the object as its one body: the block, or a ball of the block's
@@ -81,13 +74,13 @@ dc::Simulation withObject(dc::SceneSpec spec, Object object) {
 // them, a ledge that rests on them and carries the block whatever the friction (as it would a
 // foam block).
 Grasp squeezeAndLift(double squeeze, double friction, Object object = Object::kBlock) {
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -kGravity);
-  spec.effects.warping = true;
-  spec.effects.damping = dc::RayleighDamping{2.0, 0.002};
-  spec.contact = dc::ContactSettings{friction};
-  spec.obstacles.push_back(box("table", {0.4, 0.4, 0.04}, {0, 0, -0.02}));
+  dc::SceneSpec spec = deformable_sim::test::SceneBuilder()
+                           .dt(0.01)
+                           .gravity(kGravity)
+                           .warped()
+                           .damping(2.0, 0.002)
+                           .contact(friction)
+                           .floor({0.4, 0.4, 0.04}, "table");
   const Eigen::Vector3d finger_size(0.03, 0.01, 0.07);
   const double open = kHalfWidth + 0.005 + 0.002;  // finger centres 2 mm off the block
   for (int side : {-1, 1}) {

@@ -15,6 +15,7 @@
 #include "deformable_sim/core/geometry/shape.h"
 #include "deformable_sim/core/geometry/triangle_mesh_shape.h"
 #include "deformable_sim/core/session/simulation.h"
+#include "scene_builder.h"
 #include "simulation_test_helpers.h"
 
 namespace dc = deformable_sim::core;
@@ -70,12 +71,12 @@ Slide slideOnSlope(Plane plane, double theta, double mu, double damping = kLight
   const Eigen::Matrix3d tilt =
       Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitX()).toRotationMatrix();
   const Eigen::Matrix3d geometry = plane == Plane::kSoftSlab ? Eigen::Matrix3d::Identity() : tilt;
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.gravity = geometry * tilt.transpose() * Eigen::Vector3d(0, 0, -kGravity);
-  spec.effects.warping = true;
-  spec.effects.damping = dc::RayleighDamping{0.0, damping};
-  spec.contact = dc::ContactSettings{mu, plane == Plane::kSoftSlab, false};
+  dc::SceneSpec spec = deformable_sim::test::SceneBuilder()
+                           .dt(0.01)
+                           .gravity(geometry * tilt.transpose() * Eigen::Vector3d(0, 0, -kGravity))
+                           .warped()
+                           .damping(0.0, damping)
+                           .contact(mu, plane == Plane::kSoftSlab);
   if (plane != Plane::kSoftSlab) {
     dc::PlacedShape ground;
     ground.name = "slope";
@@ -85,11 +86,8 @@ Slide slideOnSlope(Plane plane, double theta, double mu, double damping = kLight
       ground.pose.translation() = tilt * Eigen::Vector3d(0, 0, -0.1);
     spec.obstacles.push_back(ground);
   }
-  dc::BodySpec block;
-  block.name = "block";
-  block.box_mesh = dc::BoxMeshSpec{{-0.05, -0.05, 0.0}, {0.05, 0.05, 0.1}, {2, 2, 2}};
-  block.material = {1.0e5, 0.3, 500.0};
-  spec.bodies.push_back(block);
+  spec.bodies.push_back(deformable_sim::test::boxBody(
+      "block", {-0.05, -0.05, 0.0}, {0.05, 0.05, 0.1}, {2, 2, 2}, {1.0e5, 0.3, 500.0}));
   if (plane == Plane::kSoftSlab) spec.bodies.push_back(softSlab());
   dc::Simulation sim = boxMeshSimulation(spec);
   dc::Body& body = sim.bodies()[0];

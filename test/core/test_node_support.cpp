@@ -1,5 +1,6 @@
-// The ROS-free pieces the node is built from: body frames, the wrench bounds a body can take,
-// wrenches in far frames, output schedules, live tuning and lapsing wrenches.
+// The ROS-free pieces of the node that act on a session: body frames, the wrench bounds a body can
+// take, wrenches in far frames, live tuning and grasps following their frames. The pieces that
+// stand alone have a test named after their header (test_tick_status.cpp and the like).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,15 +8,6 @@
 
 #include "deformable_sim/core/driver/body_frame_lookup.h"
 #include "deformable_sim/core/driver/grasp_follower.h"
-#include "deformable_sim/core/driver/linked_obstacles.h"
-#include "deformable_sim/core/driver/once_per_stamp.h"
-#include "deformable_sim/core/driver/periodic_schedule.h"
-#include "deformable_sim/core/driver/pose_interpolation.h"
-#include "deformable_sim/core/driver/real_time_factor.h"
-#include "deformable_sim/core/driver/refusal_log.h"
-#include "deformable_sim/core/driver/slow_tick_watch.h"
-#include "deformable_sim/core/driver/tick_status.h"
-#include "deformable_sim/core/driver/wrench_timeouts.h"
 #include "deformable_sim/core/session/default_scene.h"
 #include "deformable_sim/core/session/live_settings.h"
 #include "deformable_sim/io/scene_file.h"
@@ -152,133 +144,6 @@ TEST(WrenchBounds, AThrowingPushIsRefusedAndOneTheBodyCanTakeIsApplied) {
   EXPECT_TRUE(session.simulation().bodies()[0].positions().allFinite());
 }
 
-TEST(PeriodicSchedule, KeepsTheAskedRateOnTicksOfAnotherRate) {
-  PeriodicSchedule schedule(1.0 / 30.0);
-  int due = 0;
-  for (int tick = 0; tick < 1000; ++tick) due += schedule.due(1000.0 + 0.01 * tick);
-  EXPECT_NEAR(due, 300, 1);  // 10 s of 100 Hz ticks: 30 Hz, not every fourth tick (25 Hz)
-}
-
-TEST(PeriodicSchedule, StartsAgainWhenTheClockGoesBackOrStalls) {
-  PeriodicSchedule schedule(0.1);
-  EXPECT_TRUE(schedule.due(50.0));
-  EXPECT_FALSE(schedule.due(50.05));
-  EXPECT_TRUE(schedule.due(10.0));  // a looped bag
-  EXPECT_FALSE(schedule.due(10.05));
-  EXPECT_TRUE(schedule.due(20.0));  // a long stall: one output, not a burst of a hundred
-  EXPECT_FALSE(schedule.due(20.01));
-}
-
-TEST(OncePerStamp, LetsEachStampThroughOnceAndANewTimelineStartAgain) {
-  OncePerStamp stamps;
-  EXPECT_TRUE(stamps.accept(5'000'000'000));
-  EXPECT_FALSE(stamps.accept(5'000'000'000));  // the timer fired twice at one time
-  EXPECT_FALSE(stamps.accept(4'990'000'000));
-  EXPECT_TRUE(stamps.accept(5'010'000'000));
-  EXPECT_TRUE(stamps.accept(1'000'000'000));  // a looped bag: seconds back
-  EXPECT_FALSE(stamps.accept(1'000'000'000));
-}
-
-TEST(RealTimeFactor, IsSimulatedTimeOverClockTimeOfTheLastSecond) {
-  RealTimeFactor factor;
-  EXPECT_EQ(factor.value(), 0.0);
-  for (int k = 0; k <= 300; ++k) factor.sample(0.01 * k, 0.005 * k);
-  EXPECT_NEAR(factor.value(), 0.5, 1e-9);
-  factor.sample(1.0, 2.0);  // the clock went back: start again
-  EXPECT_EQ(factor.value(), 0.0);
-}
-
-TEST(WrenchTimeouts, ASilentSourceLapsesAndAZeroWrenchIsForgotten) {
-  WrenchTimeouts timeouts(0.5);
-  timeouts.heard("a", 1.0, false);
-  timeouts.heard("b", 1.2, false);
-  timeouts.heard("b", 1.3, true);  // b cleared its own wrench
-  EXPECT_TRUE(timeouts.expire(1.4).empty());
-  EXPECT_EQ(timeouts.expire(1.6), std::vector<std::string>{"a"});
-  EXPECT_TRUE(timeouts.expire(9.0).empty());
-  WrenchTimeouts never;
-  never.heard("a", 0.0, false);
-  EXPECT_TRUE(never.expire(1e9).empty());
-}
-
-TEST(RefusalLog, CountsEveryRefusalAndWarnsOnceASecondPerTopic) {
-  RefusalLog log;
-  EXPECT_EQ(log.refuse("~wrench", "NaN", 10.0), "~wrench: NaN (message dropped)");
-  EXPECT_EQ(log.refuse("~wrench", "NaN", 10.2), "");
-  EXPECT_EQ(log.refuse("~wrench", "huge", 10.4), "");
-  EXPECT_NE(log.refuse("~grasp", "unknown frame", 10.5), "");  // another topic: not throttled
-  EXPECT_EQ(log.refuse("~wrench", "NaN", 11.1),
-            "~wrench: NaN (message dropped; 2 more dropped on ~wrench since the last warning)");
-  EXPECT_EQ(log.count(), 5u);
-  EXPECT_EQ(log.last(), "~wrench: NaN");
-}
-
-TEST(Health, WarnsOfRecoveriesMissedTolerancesAndLostRealTimeInThatOrder) {
-  TickStatus status;
-  status.reports.resize(1);
-  status.reports[0].solve.converged = true;
-  status.reports[0].inverted_elements = 3;
-  status.real_time_factor = 0.03;  // but not for long yet
-  status.steps = 1;
-  status.step_time_s = 0.29;
-  status.reports[0].times.body_contact = 0.28;
-  Health h = health(status);
-  EXPECT_TRUE(h.ok);
-  EXPECT_EQ(h.summary, "running");
-  EXPECT_EQ(h.inverted_elements, 3);
-  status.slow = true;
-  EXPECT_EQ(
-      health(status).summary,
-      "cannot keep real time (0.03 x real time): contact between bodies 280 of 290 ms a step");
-  status.paused = true;
-  EXPECT_EQ(health(status).summary, "paused");
-  status.reports[0].solve.converged = false;
-  EXPECT_EQ(health(status).summary, "a solve did not reach its tolerance");
-  status.recent_recovery = true;
-  h = health(status);
-  EXPECT_FALSE(h.ok);
-  EXPECT_EQ(h.summary, "the watchdog undid a step that left a non-finite value");
-}
-
-// The costliest part of the last step, summed over the bodies, against the tick's time a step.
-TEST(Health, NamesTheCostliestPartOfAStep) {
-  TickStatus status;
-  status.steps = 10;
-  status.step_time_s = 0.05;  // 5 ms a step
-  status.reports.resize(2);
-  status.reports[0].times.rotations = 0.0005;
-  status.reports[0].times.assembly = 0.0010;
-  status.reports[1].times.assembly = 0.0010;
-  status.reports[0].times.solve = 0.0020;
-  status.reports[1].times.obstacle_contact = 0.0001;
-  EXPECT_EQ(costliestPart(status), "elasticity 2.5 of 5 ms a step");
-  status.reports[1].times.solve = 0.0010;
-  EXPECT_EQ(costliestPart(status), "linear solves 3 of 5 ms a step");
-  status.reports[0].times.obstacle_contact = 0.0040;
-  EXPECT_EQ(costliestPart(status), "contact with obstacles 4.1 of 5 ms a step");
-}
-
-// Slow for 5 s of wall time in a row, not at one slow tick; a pause or a fast tick starts over.
-TEST(SlowTickWatch, IsSlowAfterFiveSecondsUnderNineTenthsOfRealTime) {
-  SlowTickWatch watch;
-  for (double t = 0.0; t < 4.95; t += 0.1) {
-    watch.sample(t, 0.5, true);
-    ASSERT_FALSE(watch.slow()) << t;
-  }
-  watch.sample(5.0, 0.5, true);
-  EXPECT_TRUE(watch.slow());
-  EXPECT_DOUBLE_EQ(watch.slowFor(5.0), 5.0);
-  watch.sample(5.1, 0.95, true);  // caught up
-  EXPECT_FALSE(watch.slow());
-  EXPECT_EQ(watch.slowFor(5.1), 0.0);
-  for (double t = 6.0; t < 12.5; t += 1.0) watch.sample(t, 0.5, t != 9.0);
-  EXPECT_FALSE(watch.slow());  // the pause at 9 s started the count again
-  watch.sample(15.0, 0.5, true);
-  EXPECT_TRUE(watch.slow());
-  watch.sample(14.0, 0.5, true);  // the clock went back
-  EXPECT_FALSE(watch.slow());
-}
-
 TEST(LiveSettings, ChangeOnlyWhatDiffers) {
   Session session = defaultSession();
   const LiveSettings before = liveSettings(session.simulation().bodies()[0], 100.0);
@@ -362,41 +227,6 @@ TEST(GraspFollower, MovesEachGraspEvenlyToItsFramesPoseAndHoldsALostOne) {
   EXPECT_EQ(follower.moves(4, 4)[0].frame.translation().z(), 0.4);
   follower.forget("other");
   EXPECT_EQ(follower.moves(4, 4).size(), 1u);
-}
-
-TEST(LinkedObstacles, PlaceShapesWithTheirFramesAndWaitForEveryFrame) {
-  PlacedShape floor;
-  floor.name = "floor";
-  PlacedShape finger;
-  finger.name = "finger";
-  finger.pose.translation() = Eigen::Vector3d(0.0, 0.0, 0.1);  // in the link's frame
-  LinkedObstacles obstacles({floor});
-  obstacles.attach("link", finger);
-  std::optional<Eigen::Isometry3d> link;
-  const auto pose = [&link](const std::string&) { return link; };
-  EXPECT_FALSE(obstacles.place(pose));  // never placed yet: no stepping
-  link = Eigen::Isometry3d::Identity();
-  link->translation() = Eigen::Vector3d(1.0, 0.0, 0.0);
-  std::optional<std::vector<PlacedShape>> placed = obstacles.place(pose);
-  ASSERT_TRUE(placed && placed->size() == 2u);
-  EXPECT_EQ((*placed)[0].name, "floor");
-  EXPECT_TRUE((*placed)[1].pose.translation().isApprox(Eigen::Vector3d(1.0, 0.0, 0.1)));
-  link.reset();  // tf lost the link: it stays where it was
-  placed = obstacles.place(pose);
-  ASSERT_TRUE(placed);
-  EXPECT_TRUE((*placed)[1].pose.translation().isApprox(Eigen::Vector3d(1.0, 0.0, 0.1)));
-}
-
-TEST(PoseInterpolation, RunsFromOnePoseToTheOther) {
-  Eigen::Isometry3d from = Eigen::Isometry3d::Identity();
-  Eigen::Isometry3d to = Eigen::Isometry3d::Identity();
-  to.translate(Eigen::Vector3d(1.0, 2.0, 3.0));
-  to.rotate(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
-  EXPECT_TRUE(interpolatePose(from, to, 0.0).isApprox(from, 1e-12));
-  EXPECT_TRUE(interpolatePose(from, to, 1.0).isApprox(to, 1e-12));
-  const Eigen::Isometry3d half = interpolatePose(from, to, 0.5);
-  EXPECT_TRUE(half.translation().isApprox(Eigen::Vector3d(0.5, 1.0, 1.5), 1e-12));
-  EXPECT_NEAR(Eigen::AngleAxisd(half.linear()).angle(), M_PI / 4, 1e-12);
 }
 
 }  // namespace

@@ -9,22 +9,15 @@
 #include "deformable_sim/core/elements/box_mesh.h"
 #include "deformable_sim/core/session/resimulation.h"
 #include "deformable_sim/core/session/session.h"
+#include "scene_builder.h"
 
 namespace dc = deformable_sim::core;
 
 namespace {
 
 dc::SceneSpec blockScene() {
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-  spec.effects.damping = dc::RayleighDamping{2.0, 0.0};
-  dc::BodySpec block;
-  block.name = "block";
-  block.box_mesh = dc::BoxMeshSpec{{0, 0, 0}, {0.1, 0.1, 0.1}, {2, 2, 2}};
-  block.material = {5.0e4, 0.3, 200.0};
-  spec.bodies.push_back(block);
-  return spec;
+  return deformable_sim::test::SceneBuilder().dt(0.01).gravity(9.81).damping(2.0, 0.0).box(
+      "block", {0, 0, 0}, {0.1, 0.1, 0.1}, {2, 2, 2}, {5.0e4, 0.3, 200.0});
 }
 
 std::vector<dc::Mesh> blockMeshes() {

@@ -13,6 +13,7 @@
 #include "deformable_sim/core/elements/selection.h"
 #include "deformable_sim/core/session/simulation.h"
 #include "deformable_sim/core/surface_bodies/surface_body.h"
+#include "scene_builder.h"
 #include "simulation_test_helpers.h"
 #include "surface_test_helpers.h"
 
@@ -95,11 +96,11 @@ dc::Mesh keptCells(const dc::Mesh& box, const std::function<bool(const Eigen::Ve
 }
 
 dc::SceneSpec selfContactScene(bool self) {
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.warping = true;
-  spec.effects.damping = dc::RayleighDamping{2.0, 0.005};
-  spec.contact = dc::ContactSettings{0.3, false, self};
+  dc::SceneSpec spec = deformable_sim::test::SceneBuilder()
+                           .dt(0.01)
+                           .warped()
+                           .damping(2.0, 0.005)
+                           .contact(0.3, false, self);
   dc::BodySpec body;
   body.name = "body";
   body.material = {1.0e5, 0.3, 100.0};
@@ -288,12 +289,7 @@ SelfContactRun foldAndPress(bool self, double press, double* lowest) {
   dc::SceneSpec spec = selfContactScene(self);
   spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
   spec.bodies[0].fixed.push_back(boxSelection({-1, -1, -1}, {1e-9, 1, 1}));
-  dc::PlacedShape floor;
-  floor.name = "floor";
-  floor.shape.kind = dc::Shape::Kind::kBox;
-  floor.shape.size = {2.0, 2.0, 0.2};
-  floor.pose.translation() = Eigen::Vector3d(0, 0, -0.1);
-  spec.obstacles = {floor};
+  spec.obstacles = {deformable_sim::test::floorBox({2.0, 2.0, 0.2})};
   dc::Mesh strip = dc::makeBoxMesh({0, 0, 0}, {kStripLength, kStripWidth, kStripThickness},
                                    {20, 2, 1}, dc::BoxElement::kHexahedron);
   strip.incompatible_modes = true;  // one cell through: plain hexahedra would lock in bending

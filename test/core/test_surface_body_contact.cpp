@@ -10,6 +10,7 @@
 #include "contact_test_helpers.h"
 #include "deformable_sim/core/session/simulation.h"
 #include "deformable_sim/core/surface_bodies/surface_body.h"
+#include "scene_builder.h"
 #include "simulation_test_helpers.h"
 #include "surface_test_helpers.h"
 
@@ -51,17 +52,13 @@ dc::SurfaceBody ball(double radius, const Eigen::Vector3d& centre, double cell) 
 }  // namespace
 
 TEST(SurfaceBodyContact, ABallRestsOnASoftSlabOnItsSurfaceNotOnItsGrid) {
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-  spec.effects.warping = true;
-  spec.effects.damping = dc::RayleighDamping{2.0, 0.002};
-  spec.contact = dc::ContactSettings{0.5, true, false};
-  dc::PlacedShape floor;
-  floor.name = "floor";
-  floor.shape.size = Eigen::Vector3d(0.4, 0.4, 0.04);
-  floor.pose.translation() = Eigen::Vector3d(0, 0, -0.02);
-  spec.obstacles.push_back(floor);
+  dc::SceneSpec spec = dt::SceneBuilder()
+                           .dt(0.01)
+                           .gravity(9.81)
+                           .warped()
+                           .damping(2.0, 0.002)
+                           .contact(0.5, true)
+                           .floor({0.4, 0.4, 0.04});
   dc::BodySpec ball_spec;
   ball_spec.name = "ball";
   ball_spec.material = {3.0e4, 0.3, 150.0};
@@ -97,11 +94,8 @@ TEST(SurfaceBodyContact, ABallRestsOnASoftSlabOnItsSurfaceNotOnItsGrid) {
 }
 
 TEST(SurfaceBodyContact, TwoBallsThrownAtEachOtherMeetSurfaceToSurfaceWithMomentumKept) {
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.warping = true;
-  spec.contact = dc::ContactSettings{0.5, true, false};
-  spec.solver.method = dc::SolverSettings::Method::kDirect;  // momentum to round-off
+  dc::SceneSpec spec = dt::SceneBuilder().dt(0.01).warped().contact(0.5, true).solver(
+      dc::SolverSettings::Method::kDirect);  // momentum to round-off
   for (const char* name : {"left", "right"}) {
     dc::BodySpec body;
     body.name = name;

@@ -8,6 +8,7 @@
 
 #include "deformable_sim/core/session/simulation.h"
 #include "deformable_sim/core/surface_bodies/surface_body.h"
+#include "scene_builder.h"
 #include "simulation_test_helpers.h"
 #include "surface_test_helpers.h"
 
@@ -30,19 +31,14 @@ struct Rest {
 // A ball of kRadius made from its surface, dropped from 5 mm above a floor whose top is at z = 0
 // (turned by `tilt` about x, friction μ = 1 so that it stays), after 3 s.
 Rest dropBall(double tilt) {
-  dc::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -kGravity);
-  spec.effects.warping = true;
-  spec.effects.damping = dc::RayleighDamping{2.0, 0.002};
-  spec.contact = dc::ContactSettings{1.0};
-  dc::PlacedShape floor;
-  floor.name = "floor";
-  floor.shape.kind = dc::Shape::Kind::kBox;
-  floor.shape.size = Eigen::Vector3d(0.4, 0.4, 0.04);
-  floor.pose.linear() = Eigen::AngleAxisd(tilt, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  floor.pose.translation() = floor.pose.linear() * Eigen::Vector3d(0, 0, -0.02);
-  spec.obstacles.push_back(floor);
+  const dc::PlacedShape floor = deformable_sim::test::floorBox({0.4, 0.4, 0.04}, "floor", tilt);
+  dc::SceneSpec spec = deformable_sim::test::SceneBuilder()
+                           .dt(0.01)
+                           .gravity(kGravity)
+                           .warped()
+                           .damping(2.0, 0.002)
+                           .contact(1.0)
+                           .obstacle(floor);
   dc::BodySpec body;
   body.name = "ball";
   body.material = {3.0e4, 0.3, 150.0};

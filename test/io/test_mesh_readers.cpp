@@ -14,6 +14,7 @@
 
 #include "deformable_sim/core/elements/mesh.h"
 #include "deformable_sim/io/mesh_reader.h"
+#include "thrown_message.h"
 
 namespace deformable_sim::io {
 namespace {
@@ -38,13 +39,7 @@ const std::string kTestMeshes = DEFORMABLE_SIM_SOURCE_DIR "/test/data/meshes/";
 // The MeshError message of `read`, or a test failure if it does not throw one.
 template <typename Read>
 std::string errorOf(Read read) {
-  try {
-    read();
-  } catch (const MeshError& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "expected a MeshError";
-  return "";
+  return test::thrownMessage<MeshError>(read, "expected a MeshError");
 }
 
 void expectSameMesh(const core::Mesh& a, const core::Mesh& b) {

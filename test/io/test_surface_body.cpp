@@ -9,13 +9,13 @@
 #include <limits>
 #include <numeric>
 
-#include "../core/surface_test_helpers.h"
 #include "deformable_sim/core/session/commands.h"
 #include "deformable_sim/core/session/session.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/scene_file.h"
 #include "deformable_sim/io/surface_body_reader.h"
 #include "deformable_sim/io/urdf_visual_mesh.h"
+#include "surface_test_helpers.h"
 
 namespace dc = deformable_sim::core;
 namespace dio = deformable_sim::io;

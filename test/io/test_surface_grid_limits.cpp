@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "../core/surface_test_helpers.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/scene_file.h"
+#include "surface_test_helpers.h"
 
 namespace dc = deformable_sim::core;
 namespace dio = deformable_sim::io;

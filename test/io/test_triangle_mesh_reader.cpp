@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "deformable_sim/io/triangle_mesh_reader.h"
+#include "thrown_message.h"
 
 namespace deformable_sim::io {
 namespace {
@@ -69,13 +70,8 @@ TEST(TriangleMeshReader, ReadsAnOpenMesh) {
 }
 
 std::string errorOf(const std::string& path) {
-  try {
-    readTriangleMesh(path);
-  } catch (const TriangleMeshError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << path << " was read";
-  return "";
+  return test::thrownMessage<TriangleMeshError>([&] { readTriangleMesh(path); },
+                                                path + " was read");
 }
 
 TEST(TriangleMeshReader, ErrorsNameTheFile) {

@@ -9,6 +9,7 @@
 #include <limits>
 #include <vector>
 
+#include "body_meters.h"
 #include "deformable_sim/core/bodies/body.h"
 #include "deformable_sim/core/elements/mesh.h"
 
@@ -74,22 +75,6 @@ inline double deepestInside(const core::Body& nodes, const core::Body& solid) {
     deepest = std::max(deepest, -signedDistanceTo(p, solid.positions(), triangles));
   }
   return deepest;
-}
-
-/// Linear momentum of a body, N s.
-inline Eigen::Vector3d momentum(const core::Body& body) {
-  Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (int i = 0; i < body.numNodes(); ++i) {
-    p += body.nodalMasses()[i] * body.velocities().segment<3>(3 * i);
-  }
-  return p;
-}
-
-/// Total linear momentum of the bodies, N s.
-inline Eigen::Vector3d totalMomentum(const std::vector<core::Body>& bodies) {
-  Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (const core::Body& body : bodies) p += momentum(body);
-  return p;
 }
 
 }  // namespace deformable_sim::test

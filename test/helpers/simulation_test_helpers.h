@@ -10,6 +10,7 @@
 #include "deformable_sim/core/session/scene.h"
 #include "deformable_sim/core/session/simulation.h"
 #include "deformable_sim/core/surface_bodies/surface_body.h"
+#include "scene_builder.h"
 
 namespace deformable_sim::test {
 
@@ -51,17 +52,7 @@ inline core::NodeSelection boxSelection(const Eigen::Vector3d& min, const Eigen:
 /// A scene with no body yet: gravity, warping, contact (friction 0.5; between bodies if
 /// `bodies`) and a 1 m x 1 m floor 10 cm thick whose top is at z = 0, 0.01 s steps.
 inline core::SceneSpec sceneOnAFloor(bool bodies) {
-  core::SceneSpec spec;
-  spec.dt = 0.01;
-  spec.effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-  spec.effects.warping = true;
-  spec.contact = core::ContactSettings{0.5, bodies, false};
-  core::PlacedShape floor;
-  floor.name = "floor";
-  floor.shape.size = Eigen::Vector3d(1, 1, 0.1);
-  floor.pose.translation() = Eigen::Vector3d(0, 0, -0.05);
-  spec.obstacles.push_back(floor);
-  return spec;
+  return SceneBuilder().dt(0.01).gravity(9.81).warped().contact(0.5, bodies).floor({1, 1, 0.1});
 }
 
 /// The built-in default scene, runnable.
