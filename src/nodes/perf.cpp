@@ -24,6 +24,8 @@
 // one effect (1 warping, 2 gravity, 3 damping, 4 plasticity, 5 reactions, 6 contact with a floor
 // 1 cm under the beam, 7 strain colouring: one nodalStrain of the mesh, as the node does per
 // marker update; 8 all of them). An effect changes the motion too, so compare the CG iterations.
+// Each variant is a one-body Simulation, stepped as the node steps it: the base includes what
+// every step pays (the watchdog's remembered state and its finiteness checks).
 //
 // ModelStep/<model>/<mesh>: a step of a free rigid (0) or pseudo-rigid (1) body of the cantilever's
 // mesh under gravity and the tip load, on 1.5k and 98k tetrahedra: the same cost for both.

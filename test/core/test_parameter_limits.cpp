@@ -95,9 +95,12 @@ TEST(ParameterLimits, SayWhatEachParameterMayBe) {
   EXPECT_EQ(dc::parameterProblem(Parameter::kDampingMass, -1e-9), "must be finite and >= 0 1/s");
   EXPECT_EQ(dc::parameterProblem(Parameter::kDampingStiffness, kInf), "must be finite and >= 0 s");
   EXPECT_EQ(dc::parameterProblem(Parameter::kSolverTolerance, 0.0), "must be finite and > 0");
-  EXPECT_EQ(dc::parameterProblem(Parameter::kSolverMaxIterations, 0.0), "must be >= 1");
+  EXPECT_EQ(dc::parameterProblem(Parameter::kSolverMaxIterations, 0.0),
+            "must be in 1 .. 2147483647");
+  EXPECT_EQ(dc::parameterProblem(Parameter::kSolverMaxIterations, 3e9),
+            "must be in 1 .. 2147483647");
   EXPECT_EQ(dc::parameterProblem(Parameter::kSolverMaxIterations, 1.0), "");
-  for (int p = 0; p <= static_cast<int>(Parameter::kSolverMaxIterations); ++p) {
+  for (int p = 0; p < dc::kParameterCount; ++p) {
     EXPECT_NE(dc::parameterProblem(static_cast<Parameter>(p), kNan), "") << p;
   }
   try {
@@ -125,7 +128,7 @@ TEST(ParameterLimits, BodiesAndLiveTuningSayTheSame) {
     EXPECT_NE(tuning.find(name + " is "), std::string::npos) << tuning;
     EXPECT_NE(tuning.find(problem), std::string::npos) << tuning;
   }
-  for (int p = 0; p <= static_cast<int>(Parameter::kSolverMaxIterations); ++p) {
+  for (int p = 0; p < dc::kParameterCount; ++p) {
     const Parameter parameter = static_cast<Parameter>(p);
     const double good = parameter == Parameter::kSolverMaxIterations ? 20.0 : 0.2;
     EXPECT_EQ(bodySays(parameter, good), "") << p;

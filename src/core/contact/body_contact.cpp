@@ -199,14 +199,27 @@ void BodyContact::separate(std::vector<StepReport>& reports) {
     }
     if (settled) break;
   }
-  // What is left after this round; the last round's is what the step ends with.
-  const size_t n = surfaces_.size();
-  for (ContactLoad& load : loads_) load.depth = 0.0;
   for (const Contact& c : contacts_) {
     const double left = std::max(0.0, -gap(c));
     for (int b : {c.node_body, c.triangle_body}) {
       reports[b].body_penetration = std::max(reports[b].body_penetration, left);
     }
+  }
+}
+
+void BodyContact::measureDepths(const std::vector<Body>& bodies) {
+  const auto at = [&](int b, const SurfacePoint& point) {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int k = 0; k < point.count; ++k) {
+      x += point.weights[k] * bodies[b].positions().segment<3>(3 * point.nodes[k]);
+    }
+    return x;
+  };
+  const size_t n = surfaces_.size();
+  for (ContactLoad& load : loads_) load.depth = 0.0;
+  for (const Contact& c : contacts_) {
+    const double left =
+        std::max(0.0, -c.normal.dot(at(c.node_body, c.node) - at(c.triangle_body, c.triangle)));
     for (size_t pair : {c.node_body * n + c.triangle_body, c.triangle_body * n + c.node_body}) {
       loads_[pair].depth = std::max(loads_[pair].depth, left);
     }

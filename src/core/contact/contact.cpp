@@ -87,6 +87,7 @@ void ContactState::resizeForObstacles(size_t count) {
   if (contacts_.size() != count) {  // allocates only when the scene's obstacles change
     contacts_.resize(count);
     patches_.resize(count);
+    to_shape_.resize(count);
   }
   std::fill(contacts_.begin(), contacts_.end(), ContactLoad{});
   std::fill(patches_.begin(), patches_.end(), Patch{});
@@ -521,6 +522,7 @@ void ContactState::putBack(Body& body, int p, const Eigen::Vector3d& x,
 }
 
 int ContactState::countTouching(const Body& body, const std::vector<PlacedShape>& obstacles) {
+  for (size_t k = 0; k < obstacles.size(); ++k) to_shape_[k] = obstacles[k].pose.inverse();
   int touching = 0;
   for (ContactLoad& c : contacts_) c.points = 0, c.centre.setZero(), c.depth = 0.0;
   for (size_t p = 0; p < points_.size(); ++p) {
@@ -531,7 +533,7 @@ int ContactState::countTouching(const Body& body, const std::vector<PlacedShape>
     ++load.points;
     load.centre += x;
     const PlacedShape& obstacle = obstacles[obstacle_[p]];
-    const double inside = -signedDistance(obstacle.shape, obstacle.pose.inverse() * x);
+    const double inside = -signedDistance(obstacle.shape, to_shape_[obstacle_[p]] * x);
     load.depth = std::max(load.depth, inside);
   }
   for (ContactLoad& c : contacts_) {

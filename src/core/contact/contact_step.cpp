@@ -66,6 +66,7 @@ void ContactStep::finish(std::vector<Body>& bodies, const std::vector<PlacedShap
     reports[b].contacts = states_[b]->project(bodies[b], obstacles, starts_, settings_, dt);
     reports[b].times.obstacle_contact += secondsSince(start);
   });
+  if (body_contact_) body_contact_->measureDepths(bodies);
   for (const std::optional<ContactState>& state : states_) obstacle_steps_ += state.has_value();
   for (size_t k = 0; k < starts_.size(); ++k) starts_[k] = obstacles[k].pose;
 }

@@ -27,7 +27,7 @@ const char* parameterName(Parameter parameter) {
 }
 
 std::optional<Parameter> parameterNamed(const std::string& name) {
-  for (int p = 0; p <= static_cast<int>(Parameter::kSolverMaxIterations); ++p) {
+  for (int p = 0; p < kParameterCount; ++p) {
     if (name == parameterName(static_cast<Parameter>(p))) return static_cast<Parameter>(p);
   }
   return std::nullopt;
@@ -49,7 +49,7 @@ std::string parameterProblem(Parameter parameter, double value) {
     case Parameter::kSolverTolerance:
       return finite && value > 0.0 ? "" : "must be finite and > 0";
     case Parameter::kSolverMaxIterations:
-      return value >= 1.0 && value <= 2147483647.0 ? "" : "must be >= 1";
+      return value >= 1.0 && value <= 2147483647.0 ? "" : "must be in 1 .. 2147483647";
   }
   return "unknown parameter";
 }

@@ -71,7 +71,7 @@ struct StepTimes {
   double solve = 0.0;           ///< the linear solve, preconditioner set-up included
   double preconditioner = 0.0;  ///< of `solve`: refreshing the preconditioner
   double total = 0.0;           ///< the whole step
-  /// Contact, set by Simulation: with the obstacles (holding before, putting back after the
+  /// Contact, set by ContactStep: with the obstacles (holding before, putting back after the
   /// step), and an equal share of the contact between bodies for each body that takes part.
   double obstacle_contact = 0.0;
   double body_contact = 0.0;

@@ -42,6 +42,9 @@ class BodyContact {
   /// After every body's step of length dt: finds and resolves the contacts, and adds to
   /// reports[b] the counts and the depth left. Allocates nothing.
   void resolve(std::vector<Body>& bodies, double dt, std::vector<StepReport>& reports);
+  /// At the step's very end (after the obstacles' correction too): each pair's depth, how far
+  /// its last contacts are left inside, from the bodies' positions. Allocates nothing.
+  void measureDepths(const std::vector<Body>& bodies);
 
   /// The depth a node may be left inside the other body after a step: 1 % of the smaller body's
   /// size (the diagonal of its rest bounding box), m.

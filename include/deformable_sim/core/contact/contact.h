@@ -45,7 +45,8 @@ struct ContactLoad {
   /// The deepest a point was found inside it before the step's correction put it back (by the
   /// face it came in through), m: how far the bodies moved into one another within the step.
   double penetration = 0.0;
-  /// The deepest a touching point is still inside it after the correction, m: what one sees.
+  /// The deepest a touching point is still inside it at the step's end, m: what one sees (to the
+  /// nearest face of the obstacle it touches; a point held by the user or a grasp is not put back).
   double depth = 0.0;
 };
 
@@ -210,6 +211,8 @@ class ContactState {
   std::vector<int> plane_nodes_;             ///< nodes held on planes in the present step
   std::vector<ContactLoad> contacts_;
   std::vector<Patch> patches_;
+  std::vector<Eigen::Isometry3d>
+      to_shape_;  ///< per obstacle: world to its frame, at the step's end
   Eigen::Vector3d kick_ = Eigen::Vector3d::Zero();  ///< velocity the whole body gains, m/s
   /// The body's centre, after the solve, when a patch of a body taken whole slides, m/s
   Eigen::Vector3d centre_velocity_ = Eigen::Vector3d::Zero();

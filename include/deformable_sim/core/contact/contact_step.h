@@ -21,7 +21,8 @@ class ContactStep {
  public:
   /// For `bodies` as built: obstacle contact for each finite-element body (rigid and pseudo-rigid
   /// ones pass through obstacles), contact between bodies and of a body with itself where the
-  /// settings and the bodies' own effects ask for it. Allocates only here and in embed().
+  /// settings and the bodies' own effects ask for it. Allocates here, in embed(), and in begin()
+  /// when the number of obstacles changes.
   ContactStep(const std::vector<Body>& bodies, const ContactSettings& settings);
 
   /// Body b touches with `surface`, the one it was made from, not its grid's boundary.
@@ -35,7 +36,8 @@ class ContactStep {
   /// their place on them. Returns the wall time it took, s. Bodies may be held side by side.
   double hold(int b, Body& body, const std::vector<PlacedShape>& obstacles, double dt);
   /// After every body's step: between bodies, then the obstacles; reports[b] gains its contact
-  /// counts and times. Bodies are put back on `threads` threads.
+  /// counts and times, each pair its depth left at the end. Bodies are put back on `threads`
+  /// threads.
   void finish(std::vector<Body>& bodies, const std::vector<PlacedShape>& obstacles, double dt,
               int threads, std::vector<StepReport>& reports);
   /// Whether contact acts on body b at all.

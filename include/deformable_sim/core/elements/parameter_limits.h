@@ -14,8 +14,9 @@ enum class Parameter {
   kDampingMass,
   kDampingStiffness,
   kSolverTolerance,
-  kSolverMaxIterations,
+  kSolverMaxIterations,  // keep last: kParameterCount counts up to it
 };
+constexpr int kParameterCount = static_cast<int>(Parameter::kSolverMaxIterations) + 1;
 
 /// Its name in scenes and live tuning: youngs_modulus, poisson_ratio, density, damping_mass,
 /// damping_stiffness, solver_tolerance, solver_max_iterations.
