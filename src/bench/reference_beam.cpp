@@ -128,9 +128,9 @@ ReferenceBeam::ReferenceBeam(const std::string& reference_dir, const std::string
   }
 }
 
-core::Body ReferenceBeam::makeBody(const core::BodyEffects& effects,
-                                   const core::SolverSettings& solver) const {
-  core::Body body(id_, mesh_, referenceMaterial(), effects, solver);
+core::FiniteElementBody ReferenceBeam::makeBody(const core::BodyEffects& effects,
+                                                const core::SolverSettings& solver) const {
+  core::FiniteElementBody body(id_, mesh_, referenceMaterial(), effects, solver);
   body.fixNodes(clamp_);
   return body;
 }

@@ -40,12 +40,13 @@ void solveTimed(core::Body& body, const core::StaticSettings& statics, CaseRun& 
 
 // The setting's beam solved statically under a tip load of `load` N: the solve timed, the
 // memory of the body measured.
-core::Body solveUnderTipLoad(const BenchSetting& setting, const ReferenceBeam& beam, double load,
-                             const core::StaticSettings& statics, CaseRun& run) {
+core::FiniteElementBody solveUnderTipLoad(const BenchSetting& setting, const ReferenceBeam& beam,
+                                          double load, const core::StaticSettings& statics,
+                                          CaseRun& run) {
   core::BodyEffects effects;
   effects.warping = setting.warping;
   const std::size_t heap_before = liveHeapBytes();
-  core::Body body = beam.makeBody(effects, setting.solver);
+  core::FiniteElementBody body = beam.makeBody(effects, setting.solver);
   beam.applyTipLoad(body, load);
   solveTimed(body, statics, run);
   run.memory_bytes = liveHeapBytes() - heap_before;
@@ -65,7 +66,8 @@ CaseRun runLinearStatic(const BenchSetting& setting, BenchContext& context) {
   const ReferenceResults& results = context.results();
   CaseRun run;
   // One load step, change below 1e-8.
-  const core::Body body = solveUnderTipLoad(setting, beam, kCaseALoad, core::StaticSettings{}, run);
+  const core::FiniteElementBody body =
+      solveUnderTipLoad(setting, beam, kCaseALoad, core::StaticSettings{}, run);
 
   Comparison tip;
   tip.case_name = "A_static";
@@ -91,8 +93,8 @@ CaseRun runLargeDeflection(const BenchSetting& setting, BenchContext& context) {
   const ReferenceBeam& beam = context.beam(setting.mesh);
   const ReferenceResults& results = context.results();
   CaseRun run;
-  const core::Body body = solveUnderTipLoad(setting, beam, largeDeflectionLoad(setting.alpha),
-                                            core::StaticSettings{4, 500, 1e-9}, run);
+  const core::FiniteElementBody body = solveUnderTipLoad(
+      setting, beam, largeDeflectionLoad(setting.alpha), core::StaticSettings{4, 500, 1e-9}, run);
 
   const std::string param = alphaParam(setting.alpha);
   auto tipOf = [&](const std::string& element, const std::string& mesh) {

@@ -65,6 +65,7 @@
 #include <vector>
 
 #include "deformable_sim/bench/heap_usage.h"
+#include "deformable_sim/core/bodies/reduced_body.h"
 #include "deformable_sim/core/contact/contact.h"
 #include "deformable_sim/core/elements/loads.h"
 #include "deformable_sim/core/outputs/strain.h"
@@ -103,7 +104,7 @@ constexpr int kWarmUpSteps = 40;
 constexpr int kTimedSteps = 200;
 
 struct Swinging {
-  std::unique_ptr<core::Body> body;
+  std::unique_ptr<core::FiniteElementBody> body;
   double bytes_per_tetrahedron = 0.0;
 };
 
@@ -117,7 +118,7 @@ Swinging& swinging(int mesh, core::SolverSettings::Preconditioner preconditioner
     cantilever.solver.preconditioner = preconditioner;
     cantilever.solver.threads = threads;
     const std::size_t before = deformable_sim::bench::liveHeapBytes();
-    s.body = std::make_unique<core::Body>(perf::makeBody(cantilever));
+    s.body = std::make_unique<core::FiniteElementBody>(perf::makeBody(cantilever));
     s.body->step(cantilever.dt);  // buffers and the coarse space are made in the first step
     s.bytes_per_tetrahedron = static_cast<double>(deformable_sim::bench::liveHeapBytes() - before) /
                               cantilever.mesh.numTetrahedra();
@@ -284,7 +285,7 @@ void EffectCost(benchmark::State& state) {
   double iterations = 0.0;
   const auto step = [&] {
     sim.step(reports);
-    if (body.effects().stress_colouring) core::nodalStrain(body, strain);
+    if (body.settings().effects.stress_colouring) core::nodalStrain(body, strain);
     return reports[0];
   };
   for (int k = 0; k < kWarmUpSteps; ++k) step();
@@ -297,11 +298,11 @@ void ModelStep(benchmark::State& state) {
   const auto model = state.range(0) == 0 ? core::BodyModel::kRigid : core::BodyModel::kPseudoRigid;
   const int mesh = static_cast<int>(state.range(1));
   perf::Cantilever c = perf::makeCantilever(kCells[mesh]);
-  core::Body body("cantilever", c.mesh, c.material, c.effects, c.solver, model);
+  core::ReducedBody body("cantilever", c.mesh, c.material, c.effects, c.solver, model);
   addTipLoad(body);
   for (auto _ : state) body.step(c.dt);
   state.counters["tets"] = body.mesh().numTetrahedra();
-  benchmark::DoNotOptimize(body.reduced()->centre().data());
+  benchmark::DoNotOptimize(body.reduced().centre().data());
 }
 
 void ContactCost(benchmark::State& state) {

@@ -17,9 +17,9 @@ Cantilever makeCantilever(const Eigen::Vector3i& cells) {
   return c;
 }
 
-core::Body makeBody(const Cantilever& cantilever) {
-  core::Body body("cantilever", cantilever.mesh, cantilever.material, cantilever.effects,
-                  cantilever.solver);
+core::FiniteElementBody makeBody(const Cantilever& cantilever) {
+  core::FiniteElementBody body("cantilever", cantilever.mesh, cantilever.material,
+                               cantilever.effects, cantilever.solver);
   body.fixNodes(cantilever.clamped);
   return body;
 }

@@ -5,7 +5,7 @@
 
 namespace deformable_sim::ros_layer {
 
-std::vector<geometry_msgs::TransformStamped> bodyFrames(const std::vector<core::Body>& bodies,
+std::vector<geometry_msgs::TransformStamped> bodyFrames(const core::BodyList& bodies,
                                                         const std::string& world_frame,
                                                         const std::string& prefix,
                                                         const ros::Time& stamp) {

@@ -82,7 +82,7 @@ visualization_msgs::Marker deleteAllMarker(const std_msgs::Header& header) {
   return marker;
 }
 
-visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::Body>& bodies,
+visualization_msgs::MarkerArray interactionMarkers(const core::BodyList& bodies,
                                                    const core::CommandProcessor& commands,
                                                    const std_msgs::Header& header) {
   using visualization_msgs::Marker;

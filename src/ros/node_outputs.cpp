@@ -92,7 +92,7 @@ void NodeOutputs::clearMarkers() {
 }
 
 void NodeOutputs::publishMarkers(const core::Session& session, const std_msgs::Header& header) {
-  const std::vector<core::Body>& bodies = session.simulation().bodies();
+  const core::BodyList& bodies = session.simulation().bodies();
   if (mesh_pub_.getNumSubscribers() > 0) {
     for (size_t b = 0; b < bodies.size(); ++b) {
       mesh_pub_.publish(surfaces_.marker(bodies[b], static_cast<int>(b), header));
@@ -127,7 +127,7 @@ void NodeOutputs::publishStats(const core::Session& session, const TickStatus& s
     const int index = static_cast<int>(b);
     BodyStats s;
     s.body = body.name();
-    s.model = core::modelName(body.model());
+    s.model = core::modelName(body.settings().model);
     s.effects = core::activeEffects(sim, index);
     s.elasticity_time = report.times.rotations + report.times.assembly;
     s.solve_time = report.times.solve;
@@ -140,7 +140,7 @@ void NodeOutputs::publishStats(const core::Session& session, const TickStatus& s
     s.kinetic_energy = body.kineticEnergy();
     s.elastic_energy = body.elasticEnergy();
     s.inverted_elements = static_cast<uint32_t>(report.inverted_elements);
-    s.fixed_nodes = static_cast<uint32_t>(body.numConstrained());
+    s.fixed_nodes = static_cast<uint32_t>(numConstrained(body));
     s.contacts = static_cast<uint32_t>(report.contacts);
     s.body_contacts = static_cast<uint32_t>(report.body_contacts);
     s.self_contacts = static_cast<uint32_t>(report.self_contacts);

@@ -6,7 +6,7 @@
 #include <memory>
 #include <tuple>
 
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/finite_element_body.h"
 #include "deformable_sim/core/elements/box_mesh.h"
 #include "deformable_sim/core/elements/selection.h"
 #include "deformable_sim/core/geometry/shape.h"
@@ -49,11 +49,12 @@ namespace dc = deformable_sim::core;
 namespace {
 
 // A 0.1 m x 0.1 m beam along x (10 x 2 x 2 boxes unless told) clamped at x = 0.
-dc::Body clampedBeam(double length, double young, const dc::BodyEffects& effects,
-                     const dc::SolverSettings& solver,
-                     const Eigen::Vector3i& cells = Eigen::Vector3i(10, 2, 2)) {
-  dc::Body body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {length, 0.05, 0.05}, cells),
-                {young, 0.3, 1000}, effects, solver);
+dc::FiniteElementBody clampedBeam(double length, double young, const dc::BodyEffects& effects,
+                                  const dc::SolverSettings& solver,
+                                  const Eigen::Vector3i& cells = Eigen::Vector3i(10, 2, 2)) {
+  dc::FiniteElementBody body("beam",
+                             dc::makeBoxMesh({0, -0.05, -0.05}, {length, 0.05, 0.05}, cells),
+                             {young, 0.3, 1000}, effects, solver);
   dc::NodeSelection clamp;
   clamp.kind = dc::NodeSelection::Kind::kBox;
   clamp.box = {{-1e-9, -1, -1}, {1e-9, 1, 1}};
@@ -82,7 +83,7 @@ TEST(Allocations, NoneInAStepAfterTheFirst) {
     effects.warping = warping;
     effects.gravity = Eigen::Vector3d(0, 0, -9.81);
     effects.damping = dc::RayleighDamping{0.1, 0.01};
-    dc::Body body = clampedBeam(1.0, 1e5, effects, solver, cells);
+    dc::FiniteElementBody body = clampedBeam(1.0, 1e5, effects, solver, cells);
     body.step(0.01);
     const long before = g_allocations.load();
     int iterations = 0;
@@ -104,7 +105,8 @@ TEST(Allocations, NoneInStepsOfABodyFromASurfaceNorInItsEmbeddedSurface) {
   dc::BodyEffects effects;
   effects.warping = true;
   effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-  dc::Body body("ball", made.voxels.mesh, {1e5, 0.3, 1000}, effects, dc::SolverSettings{});
+  dc::FiniteElementBody body("ball", made.voxels.mesh, {1e5, 0.3, 1000}, effects,
+                             dc::SolverSettings{});
   dc::NodeSelection bottom;
   bottom.kind = dc::NodeSelection::Kind::kBox;
   bottom.box = {{-1, -1, -1}, {1, 1, -0.04}};
@@ -135,7 +137,7 @@ TEST(Allocations, NoneInRefactorizations) {
     solver.coarse_refresh_interval = 3;
     dc::BodyEffects effects;
     effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-    dc::Body body = clampedBeam(1.0, 1e5, effects, solver);
+    dc::FiniteElementBody body = clampedBeam(1.0, 1e5, effects, solver);
     body.step(0.01);
     const long before = g_allocations.load();
     for (int s = 0; s < 10; ++s) EXPECT_TRUE(body.step(0.01).solve.converged);
@@ -152,7 +154,7 @@ TEST(Allocations, NoneInStepsSolvedAgainOrSplit) {
     solver.threads = threads;
     dc::BodyEffects effects;
     effects.warping = true;
-    dc::Body body = clampedBeam(0.5, 1e6, effects, solver);
+    dc::FiniteElementBody body = clampedBeam(0.5, 1e6, effects, solver);
     body.step(0.01);
     // A kick of 1e4 times the beam's weight on its free end throws it metres within one step.
     dc::NodeSelection tip;

@@ -6,9 +6,9 @@
 #include <random>
 
 #include "contact_test_helpers.h"
+#include "deformable_sim/core/bodies/contact_participant.h"
 #include "deformable_sim/core/contact/aabb_tree.h"
 #include "deformable_sim/core/contact/body_surface.h"
-#include "deformable_sim/core/contact/contact_participant.h"
 #include "deformable_sim/core/contact/edge_edge.h"
 #include "deformable_sim/core/contact/node_triangle.h"
 #include "deformable_sim/core/elements/box_mesh.h"
@@ -356,9 +356,9 @@ TEST(ContactParticipant, ComplianceIsOneSymmetricPositiveMatrixForEveryModel) {
     std::vector<dc::StepReport> reports;
     sim.step(reports);  // a finite-element body answers through its last step's matrix
     dc::Body& body = sim.bodies()[0];
-    const std::unique_ptr<dc::ContactParticipant> made = dc::makeParticipant(body);
+    const std::unique_ptr<dc::ContactParticipant> made = body.contactParticipant();
     dc::ContactParticipant& participant = *made;
-    participant.begin(body, spec.dt);
+    participant.begin(spec.dt);
     dc::SurfacePoint point;  // on a vertical edge at a corner, off its nodes
     point.nodes = {17, 26, 26};
     point.weights = {0.3, 0.7, 0.0};

@@ -1,13 +1,16 @@
 // The core's folders and the one direction of their dependencies (doc/layout.md): every core file
 // sits in a known folder, no folder grows past kMaxFiles headers or sources, and a file includes
-// only core headers of its own folder or of folders below it in kOrder.
+// only core headers of its own folder or of folders below it in kOrder. A class per body model:
+// each declares at most kMaxPublicMethods public methods, and only the bodies look at a model.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -20,6 +23,7 @@ const std::vector<std::string> kOrder = {"base",           "solvers", "geometry"
                                          "surface_bodies", "bodies",  "contact",  "session",
                                          "outputs",        "driver"};
 constexpr int kMaxFiles = 15;
+constexpr int kMaxPublicMethods = 25;
 
 /// kOrder's index of a folder, or -1 if it is not a folder of the core.
 int rankOf(const std::string& folder) {
@@ -66,6 +70,50 @@ std::vector<CoreFile> coreFiles() {
     }
   }
   return files;
+}
+
+std::string contents(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// Names of the public member functions that `class name` declares in `source` (overloads once;
+/// constructors, destructor and operators left out). Reads declarations at the class's own brace
+/// depth, so inline bodies and nested types do not count.
+std::vector<std::string> publicMethods(const std::string& source, const std::string& name) {
+  static const std::regex method(R"(^\s*(?:[\w:<>,*&~]+\s+)*?~?(\w+)\s*\()");
+  const size_t start = source.find("class " + name + " ");
+  if (start == std::string::npos) return {};
+  std::istringstream lines(source.substr(start));
+  std::vector<std::string> names;
+  std::string line;
+  int depth = 0;
+  bool in_public = false;
+  while (std::getline(lines, line)) {
+    const std::string trimmed = line.substr(std::min(line.find_first_not_of(' '), line.size()));
+    if (depth == 1 && trimmed.rfind("public:", 0) == 0) in_public = true;
+    if (depth == 1 && (trimmed.rfind("protected:", 0) == 0 || trimmed.rfind("private:", 0) == 0))
+      in_public = false;
+    std::smatch match;
+    if (depth == 1 && in_public && trimmed.rfind("//", 0) != 0 &&
+        std::regex_search(line, match, method)) {
+      const std::string found = match[1];
+      if (found != name && found.rfind("operator", 0) != 0 &&
+          std::find(names.begin(), names.end(), found) == names.end()) {
+        names.push_back(found);
+      }
+    }
+    for (char c : line) depth += (c == '{') - (c == '}');
+    if (depth == 0 && line.find('}') != std::string::npos) break;
+  }
+  return names;
+}
+
+/// Whether a line of code chooses by a body's model: compares with or switches on a BodyModel.
+bool choosesByModel(const std::string& line) {
+  static const std::regex choice(
+      R"((case\s+BodyModel::)|([!=]=\s*(core::)?BodyModel::)|(BodyModel::\w+\s*[!=]=))");
+  return std::regex_search(line, choice);
 }
 
 }  // namespace
@@ -122,4 +170,63 @@ TEST(CoreLayout, IncludesPointDownTheOrderOfFolders) {
     }
   }
   EXPECT_GT(includes, 200);
+}
+
+TEST(CoreLayout, TheMethodCountReadsOnlyTheClassesOwnPublicDeclarations) {
+  const std::string source = R"(
+class Other {
+ public:
+  void elsewhere();
+};
+class Shape : public Base {
+ public:
+  Shape(int sides);
+  virtual ~Shape();
+  Shape& operator=(const Shape&) = delete;
+  /// area() in a comment
+  double area() const { return helper(1) * 2.0; }
+  const std::vector<int>& sides() const;
+  void move(double x);
+  void move(double x, double y);
+  struct Corner {
+    void inside();
+  };
+ protected:
+  void hidden();
+};
+)";
+  EXPECT_EQ(publicMethods(source, "Shape"), (std::vector<std::string>{"area", "sides", "move"}));
+  EXPECT_TRUE(choosesByModel("  if (model == BodyModel::kRigid) {"));
+  EXPECT_TRUE(choosesByModel("    case BodyModel::kPseudoRigid:"));
+  EXPECT_TRUE(choosesByModel("  return BodyModel::kRigid != m;"));
+  EXPECT_FALSE(choosesByModel("  BodyModel model = BodyModel::kFiniteElement;"));
+  EXPECT_FALSE(choosesByModel("  s.model = core::modelName(body.settings().model);"));
+}
+
+TEST(CoreLayout, ABodyClassDeclaresAtMostTwentyFivePublicMethods) {
+  const fs::path bodies =
+      fs::path(DEFORMABLE_SIM_SOURCE_DIR) / "include/deformable_sim/core/bodies";
+  const std::map<std::string, std::string> classes = {
+      {"body.h", "Body"},
+      {"finite_element_body.h", "FiniteElementBody"},
+      {"reduced_body.h", "ReducedBody"}};
+  for (const auto& [header, name] : classes) {
+    const std::vector<std::string> methods = publicMethods(contents(bodies / header), name);
+    EXPECT_GT(methods.size(), 5u) << name << ": the count found no methods";
+    EXPECT_LE(methods.size(), static_cast<size_t>(kMaxPublicMethods))
+        << name << " declares " << methods.size() << " public methods";
+  }
+}
+
+TEST(CoreLayout, OnlyTheBodiesChooseByABodysModel) {
+  for (const CoreFile& file : coreFiles()) {
+    if (file.folder == "bodies") continue;
+    std::ifstream in(file.path);
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+      EXPECT_FALSE(choosesByModel(line))
+          << file.path.string() << ":" << number << ": " << line
+          << " (a model's behaviour belongs to its body class, made by makeBody())";
+    }
+  }
 }

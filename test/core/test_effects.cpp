@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/reduced_body.h"
 #include "deformable_sim/core/elements/box_mesh.h"
 #include "deformable_sim/core/session/simulation.h"
 #include "scene_builder.h"
@@ -25,14 +26,15 @@ std::vector<long> countsOf(const dc::EffectCounters& c) {
 
 // A clamped bar stepped kSteps times with `effects`.
 dc::EffectCounters stepped(const dc::BodyEffects& effects, dc::BodyModel model) {
-  dc::Body body("bar", bar(), kFoam, effects, dc::SolverSettings{}, model);
+  const std::unique_ptr<dc::Body> body =
+      dc::makeBody("bar", bar(), dc::BodySettings{model, kFoam, effects, dc::SolverSettings{}});
   std::vector<int> clamp;
-  for (int i = 0; i < body.numNodes(); ++i) {
-    if (body.mesh().positions[i].x() < 1e-9) clamp.push_back(i);
+  for (int i = 0; i < body->numNodes(); ++i) {
+    if (body->mesh().positions[i].x() < 1e-9) clamp.push_back(i);
   }
-  body.fixNodes(clamp);
-  for (int k = 0; k < kSteps; ++k) body.step(0.01);
-  return body.effectCounters();
+  body->fixNodes(clamp);
+  for (int k = 0; k < kSteps; ++k) body->step(0.01);
+  return body->effectCounters();
 }
 
 dc::BodyEffects nothing() {
@@ -129,7 +131,7 @@ TEST(Effects, BodiesOfOneSceneHaveTheirOwnModelsAndEffects) {
   for (int k = 0; k < kSteps; ++k) simulation.step(reports);
   const auto& bodies = simulation.bodies();
   ASSERT_EQ(bodies.size(), 3u);
-  for (int b = 0; b < 3; ++b) EXPECT_EQ(bodies[b].model(), models[b]);
+  for (int b = 0; b < 3; ++b) EXPECT_EQ(bodies[b].settings().model, models[b]);
   EXPECT_EQ(bodies[0].effectCounters().gravity, kSteps);
   EXPECT_EQ(bodies[1].effectCounters().gravity, 0);
   EXPECT_EQ(bodies[2].effectCounters().damping, kSteps);
@@ -137,7 +139,8 @@ TEST(Effects, BodiesOfOneSceneHaveTheirOwnModelsAndEffects) {
   // Falling: the free finite-element and rigid blocks; at rest: the one without gravity.
   EXPECT_LT(bodies[0].velocities()[2], -0.4);
   EXPECT_EQ(bodies[1].velocities().norm(), 0.0);
-  EXPECT_NEAR(bodies[2].reduced()->massProperties().mass, 50.0 * 1e-3, 1e-15);
+  EXPECT_NEAR(dynamic_cast<const dc::ReducedBody&>(bodies[2]).reduced().massProperties().mass,
+              50.0 * 1e-3, 1e-15);
   // Implicit Euler with mass damping alpha: v_k = -g h sum_j (1 + h alpha)^-j, j = 1..k.
   double expected = 0.0;
   for (int j = 1; j <= kSteps; ++j) expected -= 9.81 * 0.01 * std::pow(1.0 + 0.01 * 2.0, -j);

@@ -4,7 +4,7 @@
 
 #include <Eigen/Geometry>
 
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/finite_element_body.h"
 #include "deformable_sim/core/elements/box_mesh.h"
 #include "deformable_sim/core/elements/selection.h"
 
@@ -19,9 +19,10 @@ dc::BodyEffects warped() {
 }
 
 /// A 2 cm steel cube spinning about z at `spin` rad/s, free, no gravity.
-dc::Body spinningSteelCube(double spin, const dc::SolverSettings& solver) {
-  dc::Body body("cube", dc::makeBoxMesh({-0.01, -0.01, -0.01}, {0.01, 0.01, 0.01}, {2, 2, 2}),
-                {2.0e11, 0.3, 7850.0}, warped(), solver);
+dc::FiniteElementBody spinningSteelCube(double spin, const dc::SolverSettings& solver) {
+  dc::FiniteElementBody body("cube",
+                             dc::makeBoxMesh({-0.01, -0.01, -0.01}, {0.01, 0.01, 0.01}, {2, 2, 2}),
+                             {2.0e11, 0.3, 7850.0}, warped(), solver);
   Eigen::VectorXd v(body.restPositions().size());
   for (int i = 0; i < body.numNodes(); ++i) {
     v.segment<3>(3 * i) =
@@ -40,8 +41,9 @@ double totalEnergy(const dc::Body& body) { return body.kineticEnergy() + body.el
 TEST(EndRotations, ASwingingCantileverIsSolvedOnceAStep) {
   dc::BodyEffects effects = warped();
   effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-  dc::Body body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {1, 0.05, 0.05}, {10, 2, 2}),
-                {1e5, 0.3, 1000}, effects, dc::SolverSettings{});
+  dc::FiniteElementBody body("beam",
+                             dc::makeBoxMesh({0, -0.05, -0.05}, {1, 0.05, 0.05}, {10, 2, 2}),
+                             {1e5, 0.3, 1000}, effects, dc::SolverSettings{});
   dc::NodeSelection clamp;
   clamp.kind = dc::NodeSelection::Kind::kBox;
   clamp.box = {{-1e-9, -1, -1}, {1e-9, 1, 1}};
@@ -64,7 +66,7 @@ TEST(EndRotations, SpinningSteelGainsEnergyOnlyWithoutThem) {
   for (const int updates : {0, dc::SolverSettings{}.max_rotation_updates}) {
     dc::SolverSettings solver;
     solver.max_rotation_updates = updates;
-    dc::Body body = spinningSteelCube(5.0, solver);
+    dc::FiniteElementBody body = spinningSteelCube(5.0, solver);
     const double e0 = totalEnergy(body);
     double largest = e0;
     int solves = 0;
@@ -87,10 +89,10 @@ TEST(EndRotations, SpinningSteelGainsEnergyOnlyWithoutThem) {
 // The body's elastic energy after a step is that of its end rotations, the same as a fresh
 // computation from its positions.
 TEST(EndRotations, ElasticEnergyIsThatOfThePositions) {
-  dc::Body body = spinningSteelCube(5.0, dc::SolverSettings{});
+  dc::FiniteElementBody body = spinningSteelCube(5.0, dc::SolverSettings{});
   body.mutableVelocities() *= 2.0;
   for (int s = 0; s < 5; ++s) body.step(1.0 / 30.0);
-  dc::CorotationalElasticity fresh(body.mesh(), body.material());
+  dc::CorotationalElasticity fresh(body.mesh(), body.settings().material);
   fresh.updateRotations(body.positions());
   EXPECT_NEAR(body.elasticEnergy(), fresh.elasticEnergy(body.positions()),
               1e-12 * totalEnergy(body));
@@ -103,7 +105,7 @@ TEST(EndRotations, SameBitsOnAnyThreadCount) {
   for (int threads : {1, 2}) {
     dc::SolverSettings solver;
     solver.threads = threads;
-    dc::Body body = spinningSteelCube(5.0, solver);
+    dc::FiniteElementBody body = spinningSteelCube(5.0, solver);
     int solves = 0;
     for (int s = 0; s < 10; ++s) solves += body.step(1.0 / 30.0).solves;
     EXPECT_GT(solves, 10);

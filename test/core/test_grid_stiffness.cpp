@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "awkward_surfaces.h"
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/finite_element_body.h"
 #include "deformable_sim/core/elements/box_mesh.h"
 #include "deformable_sim/core/elements/corotational_elasticity.h"
 #include "deformable_sim/core/surface_bodies/voxelization.h"
@@ -128,7 +128,7 @@ double iterationsPerStep(dc::Body& body) {
 double iterationsFree(const dc::Mesh& mesh) {
   dc::BodyEffects effects;
   effects.warping = true;
-  dc::Body body("free", mesh, material(), effects, dc::SolverSettings{});
+  dc::FiniteElementBody body("free", mesh, material(), effects, dc::SolverSettings{});
   Eigen::VectorXd v(3 * body.numNodes());
   for (int i = 0; i < body.numNodes(); ++i) {
     const Eigen::Vector3d& p = mesh.positions[i];
@@ -144,7 +144,7 @@ double iterationsHeld(const dc::Mesh& mesh) {
   dc::BodyEffects effects;
   effects.warping = true;
   effects.gravity = Eigen::Vector3d(5.66, 5.66, -5.66);
-  dc::Body body("held", mesh, material(), effects, dc::SolverSettings{});
+  dc::FiniteElementBody body("held", mesh, material(), effects, dc::SolverSettings{});
   double bottom = mesh.positions.front().z(), top = bottom;
   for (const Eigen::Vector3d& p : mesh.positions) {
     bottom = std::min(bottom, p.z());
@@ -183,7 +183,7 @@ TEST(GridStiffness, StaticSolveUnderGravityConvergesWithReactionsEqualToTheWeigh
     dc::BodyEffects effects;
     effects.warping = true;
     effects.gravity = gravity;
-    dc::Body body(grid.name, grid.mesh, material(), effects, dc::SolverSettings{});
+    dc::FiniteElementBody body(grid.name, grid.mesh, material(), effects, dc::SolverSettings{});
     body.fixNodes(nodesNearTheBottom(grid.mesh, 0.5 * kCell));
     const dc::StaticReport report = body.solveStatic(dc::StaticSettings{});
     EXPECT_TRUE(report.converged) << report.iterations << " iterations";
@@ -247,7 +247,7 @@ void reportRow(const std::string& name, const dc::TriangleMesh& surface,
   dc::BodyEffects effects;
   effects.warping = true;
   effects.gravity = Eigen::Vector3d(0, 0, -9.81);
-  dc::Body body(name, mesh, material(), effects, dc::SolverSettings{});
+  dc::FiniteElementBody body(name, mesh, material(), effects, dc::SolverSettings{});
   body.fixNodes(nodesNearTheBottom(mesh, 0.5 * kCell));
   const dc::StaticReport statics = body.solveStatic(dc::StaticSettings{});
   std::printf("| %s | %zu | %.0f ms | %+.3f %% | %.0f %% | %.1f | %.1f | %.1f | %s, %d |\n",

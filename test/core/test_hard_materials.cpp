@@ -103,7 +103,7 @@ namespace {
 /// The largest stable step of an explicit (central-difference) integrator for the body at rest:
 /// 2 / omega_max, omega_max^2 the largest eigenvalue of K v = omega^2 M v, s.
 double explicitStableStep(const dc::Body& body) {
-  dc::CorotationalElasticity elasticity(body.mesh(), body.material());
+  dc::CorotationalElasticity elasticity(body.mesh(), body.settings().material);
   elasticity.update(body.restPositions(), false);
   const int n = static_cast<int>(body.restPositions().size());
   Eigen::MatrixXd k(n, n);

@@ -41,7 +41,7 @@ WrenchCommand tipPush(double force_z, double torque_x = 0.0) {
 
 TEST(BodyFrames, NameBodiesAndGroupsAndNothingElse) {
   Session session = defaultSession();
-  const std::vector<Body>& bodies = session.simulation().bodies();
+  const BodyList& bodies = session.simulation().bodies();
   const BodyFrame beam = findBodyFrame(bodies, "sim/", "sim/beam");
   EXPECT_EQ(beam.body, 0);
   EXPECT_TRUE(beam.group.empty());
@@ -63,7 +63,7 @@ TEST(BodyFrames, NameBodiesAndGroupsAndNothingElse) {
 // What tf gets is what a message may name: every frame broadcast resolves to itself.
 TEST(BodyFrames, EveryFrameBroadcastResolvesToTheSamePose) {
   Session session = defaultSession();
-  const std::vector<Body>& bodies = session.simulation().bodies();
+  const BodyList& bodies = session.simulation().bodies();
   const auto frames = allBodyFrames(bodies, "sim/");
   ASSERT_EQ(frames.size(), 2u);  // the beam and its group "tip"
   EXPECT_EQ(frames[0].first, "sim/beam");
@@ -191,9 +191,9 @@ TEST(LiveSettings, ImpossibleValuesAreRefusedNamingTheParameterNotClamped) {
   bad.body = "sponge";
   EXPECT_NE(refusedWith(bad).find("no body named 'sponge'"), std::string::npos);
   const Body& beam = session.simulation().bodies()[0];
-  EXPECT_EQ(beam.material().youngs_modulus, 1.0e5);  // nothing changed
-  EXPECT_EQ(beam.material().poisson_ratio, 0.3);
-  EXPECT_EQ(beam.solverSettings().tolerance, 1.0e-5);
+  EXPECT_EQ(beam.settings().material.youngs_modulus, 1.0e5);  // nothing changed
+  EXPECT_EQ(beam.settings().material.poisson_ratio, 0.3);
+  EXPECT_EQ(beam.settings().solver.tolerance, 1.0e-5);
   EXPECT_EQ(session.simulation().dt(), 0.01);
 }
 

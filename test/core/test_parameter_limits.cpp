@@ -19,38 +19,42 @@ namespace {
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// What the body's setters say to `value` for `parameter` ("" when they take it).
+// What the body's tune() says to `value` for `parameter` ("" when they take it).
 std::string bodySays(Parameter parameter, double value) {
   dc::Simulation sim = deformable_sim::test::defaultSimulation();
   dc::Body& body = sim.bodies()[0];
-  dc::LinearElasticMaterial material = body.material();
-  dc::RayleighDamping damping;
+  dc::BodyTuning tuning;
+  tuning.material = body.settings().material;
+  dc::LinearElasticMaterial& material = *tuning.material;
+  switch (parameter) {
+    case Parameter::kYoungsModulus:
+      material.youngs_modulus = value;
+      break;
+    case Parameter::kPoissonRatio:
+      material.poisson_ratio = value;
+      break;
+    case Parameter::kDensity:
+      material.density = value;
+      break;
+    case Parameter::kDampingMass:
+      tuning.damping = dc::RayleighDamping{value, 0.0};
+      break;
+    case Parameter::kDampingStiffness:
+      tuning.damping = dc::RayleighDamping{0.0, value};
+      break;
+    case Parameter::kSolverTolerance:
+      tuning.solver_tolerance = value;
+      break;
+    case Parameter::kSolverMaxIterations:
+      tuning.solver_max_iterations = static_cast<int>(value);
+      break;
+  }
   try {
-    switch (parameter) {
-      case Parameter::kYoungsModulus:
-        material.youngs_modulus = value;
-        return body.setMaterial(material), "";
-      case Parameter::kPoissonRatio:
-        material.poisson_ratio = value;
-        return body.setMaterial(material), "";
-      case Parameter::kDensity:
-        material.density = value;
-        return body.setMaterial(material), "";
-      case Parameter::kDampingMass:
-        damping.mass = value;
-        return body.setDamping(damping), "";
-      case Parameter::kDampingStiffness:
-        damping.stiffness = value;
-        return body.setDamping(damping), "";
-      case Parameter::kSolverTolerance:
-        return body.setSolverLimits(value, 10), "";
-      case Parameter::kSolverMaxIterations:
-        return body.setSolverLimits(1e-6, static_cast<int>(value)), "";
-    }
+    body.tune(tuning);
+    return "";
   } catch (const std::invalid_argument& e) {
     return e.what();
   }
-  return "";
 }
 
 // What a live tuning command says to it ("" when it is taken).
@@ -59,7 +63,7 @@ std::string tuningSays(Parameter parameter, double value) {
   const dc::BoxMeshSpec& box = *scene.bodies[0].box_mesh;
   dc::Session session(scene, {dc::makeBoxMesh(box.min, box.max, box.cells, box.element)});
   dc::TuneCommand tune;
-  dc::LinearElasticMaterial material = session.simulation().bodies()[0].material();
+  dc::LinearElasticMaterial material = session.simulation().bodies()[0].settings().material;
   dc::RayleighDamping damping;
   if (parameter == Parameter::kYoungsModulus) material.youngs_modulus = value;
   if (parameter == Parameter::kPoissonRatio) material.poisson_ratio = value;

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/finite_element_body.h"
 #include "deformable_sim/core/elements/box_mesh.h"
 
 namespace dc = deformable_sim::core;
@@ -26,8 +26,9 @@ PullResult pull(dc::BoxElement element, double force, bool plastic) {
   effects.warping = true;
   effects.damping = dc::RayleighDamping{30.0, 0.0};
   if (plastic) effects.plasticity = dc::PlasticitySettings{0.01, 10.0, 0.1};
-  dc::Body body("bar", dc::makeBoxMesh({0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, element),
-                kFoam, effects, dc::SolverSettings{});
+  dc::FiniteElementBody body(
+      "bar", dc::makeBoxMesh({0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {10, 2, 2}, element), kFoam,
+      effects, dc::SolverSettings{});
   std::vector<int> clamp, tip;
   for (int i = 0; i < body.numNodes(); ++i) {
     const double x = body.mesh().positions[i].x();
@@ -88,12 +89,14 @@ INSTANTIATE_TEST_SUITE_P(Elements, Plasticity,
                                            dc::BoxElement::kHexahedron));
 
 TEST(PlasticityEffect, OffItDoesNotExistAndBadSettingsAreNamed) {
-  dc::Body body("bar", dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1}), kFoam, {}, {});
+  dc::FiniteElementBody body("bar", dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1}), kFoam, {},
+                             {});
   EXPECT_EQ(body.plasticity(), nullptr);
   dc::BodyEffects effects;
   effects.plasticity = dc::PlasticitySettings{0.01, -1.0, 0.5};
   try {
-    dc::Body bad("bar", dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1}), kFoam, effects, {});
+    dc::FiniteElementBody bad("bar", dc::makeBoxMesh({0, 0, 0}, {1, 1, 1}, {1, 1, 1}), kFoam,
+                              effects, {});
     FAIL() << "a negative creep rate was accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("body 'bar': plasticity: creep"), std::string::npos)

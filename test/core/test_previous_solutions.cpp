@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/finite_element_body.h"
 #include "deformable_sim/core/elements/box_mesh.h"
 #include "deformable_sim/core/elements/selection.h"
 #include "deformable_sim/core/solvers/previous_solutions.h"
@@ -128,8 +128,9 @@ TEST(PreviousSolutions, APushedBeamTakesFewerIterationsToTheSameMotion) {
     effects.warping = true;
     effects.gravity = Eigen::Vector3d(0, 0, -9.81);
     effects.damping = dc::RayleighDamping{1.0, 0.002};
-    dc::Body body("beam", dc::makeBoxMesh({0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {16, 4, 4}),
-                  {1e5, 0.3, 100.0}, effects, solver);
+    dc::FiniteElementBody body("beam",
+                               dc::makeBoxMesh({0, -0.05, -0.05}, {0.5, 0.05, 0.05}, {16, 4, 4}),
+                               {1e5, 0.3, 100.0}, effects, solver);
     dc::NodeSelection clamp;
     clamp.kind = dc::NodeSelection::Kind::kBox;
     clamp.box = {{-1e-6, -1, -1}, {1e-6, 1, 1}};

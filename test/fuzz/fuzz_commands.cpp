@@ -266,9 +266,10 @@ struct Snapshot {
       forces.push_back(body.externalForces());
       constrained.emplace_back();
       for (int i = 0; i < body.numNodes(); ++i) constrained.back().push_back(body.isConstrained(i));
-      settings.push_back({body.material().youngs_modulus, body.material().poisson_ratio,
-                          body.material().density, body.solverSettings().tolerance,
-                          static_cast<double>(body.solverSettings().max_iterations)});
+      settings.push_back({body.settings().material.youngs_modulus,
+                          body.settings().material.poisson_ratio, body.settings().material.density,
+                          body.settings().solver.tolerance,
+                          static_cast<double>(body.settings().solver.max_iterations)});
     }
     for (const auto& [source, wrench] : session.commands().activeWrenches()) {
       wrenches.push_back(source);

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/body_list.h"
 
 namespace deformable_sim::test {
 
@@ -40,7 +40,7 @@ inline Eigen::Vector3d momentum(const core::Body& body) {
 }
 
 /// Total linear momentum of the bodies, N s.
-inline Eigen::Vector3d totalMomentum(const std::vector<core::Body>& bodies) {
+inline Eigen::Vector3d totalMomentum(const core::BodyList& bodies) {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   for (const core::Body& body : bodies) p += momentum(body);
   return p;

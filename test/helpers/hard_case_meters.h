@@ -134,7 +134,8 @@ inline Eigen::Vector3d angularMomentum(const core::Body& body) {
 class EnergyMeter {
  public:
   explicit EnergyMeter(const core::Body& body)
-      : elasticity_(body.mesh(), body.material()), gravity_(body.effects().gravity) {}
+      : elasticity_(body.mesh(), body.settings().material),
+        gravity_(body.settings().effects.gravity) {}
 
   double elastic(const core::Body& body) {
     elasticity_.updateRotations(body.positions());

@@ -97,7 +97,7 @@ TEST(SceneFile, BuildsTheSimulationWithLoadsAndConstraints) {
   dc::Simulation sim = dio::buildSimulation(dio::parseScene(kScene, "test.yaml", "."), nullptr);
   ASSERT_EQ(sim.bodies().size(), 1u);
   const dc::Body& beam = sim.body("beam");
-  EXPECT_EQ(beam.numConstrained(), 9 + 1);  // the 3x3 clamped face and node 13
+  EXPECT_EQ(numConstrained(beam), 9 + 1);  // the 3x3 clamped face and node 13
   const Eigen::Vector3d load = beam.externalForces().reshaped(3, beam.numNodes()).rowwise().sum();
   EXPECT_NEAR((load - Eigen::Vector3d(0, 0, -0.035)).norm(), 0.0, 1e-15);
   EXPECT_NEAR(beam.externalForces()[3 * 6 + 2], -0.01, 1e-15);  // node 7 is index 6
@@ -253,8 +253,8 @@ TEST(SceneFile, GroupsAndWrenchLoads) {
   ASSERT_EQ(spec.bodies[0].loads[0].kind, dc::LoadSpec::Kind::kWrench);
   dc::Simulation sim = dio::buildSimulation(spec, nullptr);
   const dc::Body& body = sim.bodies()[0];
-  EXPECT_EQ(body.groups().at("tip").size(), 9u);
-  EXPECT_EQ(body.groups().at("one").size(), 1u);
+  EXPECT_EQ(body.mesh().groups.at("tip").size(), 9u);
+  EXPECT_EQ(body.mesh().groups.at("one").size(), 1u);
   EXPECT_EQ(sim.wrenchRadius(0), 0.2);
   // Net load: the wrench's force plus the traction (2.5 Pa on 0.01 m^2) and the 0.01 N point load.
   const Eigen::Vector3d net = body.externalForces().reshaped(3, body.numNodes()).rowwise().sum();

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/finite_element_body.h"
 #include "deformable_sim/core/elements/material.h"
 #include "deformable_sim/core/elements/mesh.h"
 
@@ -42,7 +42,8 @@ class ReferenceBeam {
   const core::Mesh& mesh() const { return mesh_; }
 
   /// A body on this mesh with the reference material, its clamp fixed.
-  core::Body makeBody(const core::BodyEffects& effects, const core::SolverSettings& solver) const;
+  core::FiniteElementBody makeBody(const core::BodyEffects& effects,
+                                   const core::SolverSettings& solver) const;
 
   /// Sets the body's external forces to a total tip load of `load_n` newtons in -z, spread over
   /// the tip nodes by the reference's consistent shares (nodal force = -P weight).

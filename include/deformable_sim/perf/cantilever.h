@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/finite_element_body.h"
 
 namespace deformable_sim::perf {
 
@@ -23,6 +23,6 @@ struct Cantilever {
 Cantilever makeCantilever(const Eigen::Vector3i& cells);
 
 /// A body of the cantilever with its clamp applied, at rest.
-core::Body makeBody(const Cantilever& cantilever);
+core::FiniteElementBody makeBody(const Cantilever& cantilever);
 
 }  // namespace deformable_sim::perf

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/body_list.h"
 #include "deformable_sim/core/outputs/contact_pairs.h"
 #include "deformable_sim/core/outputs/drawn_surfaces.h"
 #include "deformable_sim/core/session/commands.h"
@@ -47,7 +47,7 @@ visualization_msgs::Marker deleteAllMarker(const std_msgs::Header& header = {});
 /// Markers of what acts on the bodies: fixed nodes (red spheres), grasped nodes (yellow spheres),
 /// node groups (blue points) and applied wrenches (green arrows from the application point, 0.1 m
 /// per N). Starts with a DELETEALL so that markers of things that are gone disappear.
-visualization_msgs::MarkerArray interactionMarkers(const std::vector<core::Body>& bodies,
+visualization_msgs::MarkerArray interactionMarkers(const core::BodyList& bodies,
                                                    const core::CommandProcessor& commands,
                                                    const std_msgs::Header& header);
 

@@ -2,9 +2,8 @@
 
 namespace deformable_sim::core {
 
-void ImplicitResponse::begin(Body& body) {
+void ImplicitResponse::begin(FiniteElementBody& body) {
   body_ = &body;
-  body.forgetLastStepFactorization();
   for (int i : used_) slot_of_[i] = -1;
   used_.clear();
   slots_ = 0;

@@ -26,7 +26,7 @@ Eigen::Vector3d startOf(const BodySurface& surface, const SurfacePoint& point) {
 
 }  // namespace
 
-BodyContact::BodyContact(const std::vector<Body>& bodies, const ContactSettings& settings,
+BodyContact::BodyContact(BodyList& bodies, const ContactSettings& settings,
                          const std::vector<bool>& with_bodies, const std::vector<bool>& with_self)
     : settings_(settings), with_bodies_(with_bodies), with_self_(with_self) {
   for (size_t b = 0; b < bodies.size(); ++b) {
@@ -34,7 +34,7 @@ BodyContact::BodyContact(const std::vector<Body>& bodies, const ContactSettings&
     participants_.emplace_back();
     if (!with_bodies_[b] && !with_self_[b]) continue;
     surfaces_.back().emplace(bodies[b].mesh(), bodies[b].positions(), with_self_[b]);
-    participants_.back() = makeParticipant(bodies[b]);
+    participants_.back() = bodies[b].contactParticipant();
   }
   reserveContacts();
   loads_.resize(bodies.size() * bodies.size());
@@ -207,7 +207,7 @@ void BodyContact::separate(std::vector<StepReport>& reports) {
   }
 }
 
-void BodyContact::measureDepths(const std::vector<Body>& bodies) {
+void BodyContact::measureDepths(const BodyList& bodies) {
   const auto at = [&](int b, const SurfacePoint& point) {
     Eigen::Vector3d x = Eigen::Vector3d::Zero();
     for (int k = 0; k < point.count; ++k) {
@@ -303,7 +303,7 @@ void BodyContact::settleVelocities(double dt) {
   }
 }
 
-void BodyContact::resolve(std::vector<Body>& bodies, double dt, std::vector<StepReport>& reports) {
+void BodyContact::resolve(BodyList& bodies, double dt, std::vector<StepReport>& reports) {
   dt_ = dt;
   // An impulse moves the whole body, so nodes that were clear when the contacts were found can
   // be pressed into another surface by it (a cube's sides bulging as its top is pushed). A last
@@ -319,7 +319,7 @@ void BodyContact::resolve(std::vector<Body>& bodies, double dt, std::vector<Step
     if (round == 0) addContactForces(dt);
     separate(reports);
     for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
-      if (surfaces_[b]) participants_[b]->end(bodies[b]);
+      if (surfaces_[b]) participants_[b]->end();
     }
   }
   for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
@@ -327,11 +327,11 @@ void BodyContact::resolve(std::vector<Body>& bodies, double dt, std::vector<Step
   }
 }
 
-void BodyContact::findContacts(std::vector<Body>& bodies, bool new_step) {
+void BodyContact::findContacts(BodyList& bodies, bool new_step) {
   const int n = static_cast<int>(bodies.size());
   for (int b = 0; b < n; ++b) {
     if (!surfaces_[b]) continue;
-    participants_[b]->begin(bodies[b], dt_, new_step);
+    participants_[b]->begin(dt_, new_step);
     double skin = std::numeric_limits<double>::infinity();
     for (int o = 0; o < n; ++o) {
       if (surfaces_[o] && touches(b, o)) skin = std::min(skin, tolerance(b, o));

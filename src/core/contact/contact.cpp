@@ -18,7 +18,7 @@ constexpr int kEntryHalvings = 40;
 constexpr double kOnTheSurface = 1e-9;
 
 /// The body's mass and the velocity of its centre of mass.
-std::pair<double, Eigen::Vector3d> massAndCentreVelocity(const Body& body) {
+std::pair<double, Eigen::Vector3d> massAndCentreVelocity(const FiniteElementBody& body) {
   double mass = 0.0;
   Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
   for (int i = 0; i < body.numNodes(); ++i) {
@@ -110,7 +110,7 @@ Eigen::Vector3d ContactState::weighted(const Eigen::VectorXd& state, int p) cons
   return sum;
 }
 
-double ContactState::freeWeight(const Body& body, int p) const {
+double ContactState::freeWeight(const FiniteElementBody& body, int p) const {
   const Point& point = points_[p];
   double free = 0.0;
   for (int k = 0; k < point.count; ++k) {
@@ -119,7 +119,7 @@ double ContactState::freeWeight(const Body& body, int p) const {
   return free;
 }
 
-bool ContactState::movable(const Body& body, int p) const {
+bool ContactState::movable(const FiniteElementBody& body, int p) const {
   const Point& point = points_[p];
   if (point.count == 1) return !body.isConstrained(point.nodes[0]);
   return freeWeight(body, p) >= kMovable;
@@ -130,7 +130,7 @@ ContactState::Requests::Requests(int num_nodes)
   touched.reserve(num_nodes);
 }
 
-void ContactState::request(const Body& body, int p, const Eigen::Vector3d& change,
+void ContactState::request(const FiniteElementBody& body, int p, const Eigen::Vector3d& change,
                            Requests& requests) const {
   // Moving a vertex's free nodes all alike by change / (their weight) moves it by `change`, its
   // cell shifted, not strained (moving each node by its weight, the least change of the nodes
@@ -160,11 +160,12 @@ void ContactState::grant(Requests& requests, Eigen::VectorXd& state) const {
   requests.touched.clear();
 }
 
-void ContactState::hold(Body& body, const std::vector<PlacedShape>& obstacles, double dt) {
+void ContactState::hold(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
+                        double dt) {
   // A body that touches one obstacle, and that nothing else holds, takes a slip's correction as
   // a whole.
   int touched = -1;
-  whole_ = body.numConstrained() == 0;
+  whole_ = numConstrained(body) == 0;
   for (size_t p = 0; p < points_.size() && whole_; ++p) {
     if (obstacle_[p] < 0) continue;  // held or not: what touches pushes on the body too
     whole_ = touched < 0 || touched == obstacle_[p];
@@ -204,7 +205,8 @@ void ContactState::hold(Body& body, const std::vector<PlacedShape>& obstacles, d
   }
 }
 
-void ContactState::holdOnPlane(Body& body, const std::vector<PlacedShape>& obstacles, int p) {
+void ContactState::holdOnPlane(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
+                               int p) {
   // Each of its free nodes on a plane through its own place, with the point's normal; the
   // point's forces spread by its weights. A node several points share is held once.
   const int k = obstacle_[p];
@@ -225,7 +227,8 @@ void ContactState::holdOnPlane(Body& body, const std::vector<PlacedShape>& obsta
   }
 }
 
-void ContactState::judgePatches(const Body& body, const std::vector<PlacedShape>& obstacles,
+void ContactState::judgePatches(const FiniteElementBody& body,
+                                const std::vector<PlacedShape>& obstacles,
                                 const ContactSettings& settings, double dt) {
   // Coulomb's law for the held points on one obstacle together: single points carry uneven parts
   // of the load, and judging each by itself lets some slip while the body sticks (it creeps) and
@@ -258,7 +261,8 @@ void ContactState::judgePatches(const Body& body, const std::vector<PlacedShape>
   decideSlides(body, settings, dt);
 }
 
-void ContactState::decideSlides(const Body& body, const ContactSettings& settings, double dt) {
+void ContactState::decideSlides(const FiniteElementBody& body, const ContactSettings& settings,
+                                double dt) {
   // Sliding, an obstacle resists with μ times the push, against the slip (or, starting, the
   // tangential force it would have taken to hold it). What it resisted beyond that in the solve
   // goes back to the body: to a body on one obstacle, held by nothing else, as a whole, the
@@ -295,7 +299,7 @@ void ContactState::decideSlides(const Body& body, const ContactSettings& setting
   }
 }
 
-void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles,
+void ContactState::release(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
                            const std::vector<Eigen::Isometry3d>& start_poses,
                            const ContactSettings& settings, double dt) {
   resizeForObstacles(obstacles.size());
@@ -345,7 +349,7 @@ void ContactState::release(Body& body, const std::vector<PlacedShape>& obstacles
   letGo(body);
 }
 
-void ContactState::letGo(Body& body) {
+void ContactState::letGo(FiniteElementBody& body) {
   for (int i : held_) {
     body.releaseNode(i);
     held_flag_[i] = 0;
@@ -369,7 +373,8 @@ void ContactState::slideOnPlane(int p, const Eigen::Vector3d& friction,
   holds_[p] = 1;
 }
 
-void ContactState::judgeOnPlane(const Body& body, const std::vector<PlacedShape>& obstacles,
+void ContactState::judgeOnPlane(const FiniteElementBody& body,
+                                const std::vector<PlacedShape>& obstacles,
                                 const std::vector<Eigen::Isometry3d>& start_poses,
                                 const ContactSettings& settings, double dt, int p) {
   const int k = obstacle_[p];
@@ -407,7 +412,7 @@ void ContactState::judgeOnPlane(const Body& body, const std::vector<PlacedShape>
   friction_[p] = -settings.friction * pushing * slip.normalized();
 }
 
-Eigen::Vector3d ContactState::landingChange(const Body& body, int p,
+Eigen::Vector3d ContactState::landingChange(const FiniteElementBody& body, int p,
                                             const Eigen::Vector3d& obstacle_velocity,
                                             const Eigen::Vector3d& normal,
                                             const ContactSettings& settings) {
@@ -455,7 +460,7 @@ void ContactState::enterThroughItsFace(const Shape& shape, const Eigen::Isometry
   normal = entry_normal;
 }
 
-void ContactState::settleEmbedded(Body& body, const PlacedShape& obstacle, int k) {
+void ContactState::settleEmbedded(FiniteElementBody& body, const PlacedShape& obstacle, int k) {
   const Eigen::Isometry3d to_shape = obstacle.pose.inverse();
   for (int pass = 0; pass < kEmbeddedPasses; ++pass) {
     for (size_t p = 0; p < points_.size(); ++p) {
@@ -472,7 +477,7 @@ void ContactState::settleEmbedded(Body& body, const PlacedShape& obstacle, int k
   }
 }
 
-void ContactState::grantVelocities(Body& body, int k, double dt) {
+void ContactState::grantVelocities(FiniteElementBody& body, int k, double dt) {
   // What the obstacle gave each node, as a force on the body.
   for (int i : velocity_requests_.touched) {
     const Eigen::Vector3d change = velocity_requests_.sum[i] / velocity_requests_.weight[i];
@@ -481,7 +486,8 @@ void ContactState::grantVelocities(Body& body, int k, double dt) {
   grant(velocity_requests_, body.mutableVelocities());
 }
 
-void ContactState::recordNodePlaces(const Body& body, const std::vector<PlacedShape>& obstacles) {
+void ContactState::recordNodePlaces(const FiniteElementBody& body,
+                                    const std::vector<PlacedShape>& obstacles) {
   for (size_t p = 0; p < points_.size(); ++p) {
     const int k = obstacle_[p];
     if (k < 0) continue;
@@ -500,7 +506,7 @@ void ContactState::recordNodePlaces(const Body& body, const std::vector<PlacedSh
   }
 }
 
-void ContactState::putBack(Body& body, int p, const Eigen::Vector3d& x,
+void ContactState::putBack(FiniteElementBody& body, int p, const Eigen::Vector3d& x,
                            const Eigen::Vector3d& on_surface, const Eigen::Vector3d& change,
                            double dt) {
   const int k = obstacle_[p];
@@ -521,7 +527,8 @@ void ContactState::putBack(Body& body, int p, const Eigen::Vector3d& x,
   addForce(k, on_surface, body.nodalMasses()[i] * change / dt);
 }
 
-int ContactState::countTouching(const Body& body, const std::vector<PlacedShape>& obstacles) {
+int ContactState::countTouching(const FiniteElementBody& body,
+                                const std::vector<PlacedShape>& obstacles) {
   for (size_t k = 0; k < obstacles.size(); ++k) to_shape_[k] = obstacles[k].pose.inverse();
   int touching = 0;
   for (ContactLoad& c : contacts_) c.points = 0, c.centre.setZero(), c.depth = 0.0;
@@ -542,7 +549,7 @@ int ContactState::countTouching(const Body& body, const std::vector<PlacedShape>
   return touching;
 }
 
-int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
+int ContactState::project(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
                           const std::vector<Eigen::Isometry3d>& start_poses,
                           const ContactSettings& settings, double dt) {
   for (size_t k = 0; k < obstacles.size(); ++k) {
@@ -561,8 +568,8 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
       if (obstacle_[p] != static_cast<int>(k)) holds_[p] = 0, on_plane_[p] = 0;  // a new contact
       const Eigen::Vector3d local = to_shape * x;
       if (!stuck) {
-        enterThroughItsFace(obstacle.shape, start_poses[k].inverse(), body.rememberedPositions(), q,
-                            local, surface, normal);
+        enterThroughItsFace(obstacle.shape, start_poses[k].inverse(), body.stepStart(), q, local,
+                            surface, normal);
       }
       contacts_[k].penetration = std::max(contacts_[k].penetration, (surface - local).norm());
       const Eigen::Vector3d on_surface = obstacle.pose * surface;
@@ -585,7 +592,7 @@ int ContactState::project(Body& body, const std::vector<PlacedShape>& obstacles,
   for (const ContactLoad& c : contacts_) obstacles_touched += c.points > 0;
   // Touching several, or held otherwise, a body is not moved whole: what slides on them slides
   // on their planes in the next solve.
-  if (obstacles_touched > 1 || body.numConstrained() > 0) {
+  if (obstacles_touched > 1 || numConstrained(body) > 0) {
     for (size_t p = 0; p < points_.size(); ++p) {
       if (!holds_[p] || slip_[p].isZero(0.0)) continue;
       slideOnPlane(static_cast<int>(p), Eigen::Vector3d::Zero());

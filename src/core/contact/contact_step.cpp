@@ -7,25 +7,24 @@
 
 namespace deformable_sim::core {
 
-ContactStep::ContactStep(const std::vector<Body>& bodies, const ContactSettings& settings)
-    : settings_(settings) {
+ContactStep::ContactStep(BodyList& bodies, const ContactSettings& settings) : settings_(settings) {
   states_.reserve(bodies.size());
   for (const Body& body : bodies) {
     states_.emplace_back();
-    if (body.model() == BodyModel::kFiniteElement) states_.back().emplace(body.numNodes());
+    if (body.finiteElements()) states_.back().emplace(body.numNodes());
   }
   addBodyContact(bodies);
 }
 
-void ContactStep::addBodyContact(const std::vector<Body>& bodies) {
+void ContactStep::addBodyContact(BodyList& bodies) {
   if (!settings_.bodies && !settings_.self) return;
   std::vector<bool> with_bodies, with_self;
   for (const Body& body : bodies) {
-    with_bodies.push_back(body.effects().contact_bodies.value_or(settings_.bodies) &&
-                          settings_.bodies);
+    const BodyEffects& effects = body.settings().effects;
+    with_bodies.push_back(effects.contact_bodies.value_or(settings_.bodies) && settings_.bodies);
     // Only finite elements bend far enough to meet themselves.
-    with_self.push_back(body.effects().contact_self.value_or(settings_.self) && settings_.self &&
-                        body.model() == BodyModel::kFiniteElement);
+    with_self.push_back(effects.contact_self.value_or(settings_.self) && settings_.self &&
+                        body.finiteElements());
   }
   const auto count = [](const std::vector<bool>& v) {
     return std::count(v.begin(), v.end(), true);
@@ -52,18 +51,19 @@ void ContactStep::begin(const std::vector<PlacedShape>& obstacles) {
 double ContactStep::hold(int b, Body& body, const std::vector<PlacedShape>& obstacles, double dt) {
   if (!states_[b]) return 0.0;
   const WallClock::time_point start = WallClock::now();
-  states_[b]->hold(body, obstacles, dt);
+  states_[b]->hold(*body.finiteElements(), obstacles, dt);
   return secondsSince(start);
 }
 
-void ContactStep::finish(std::vector<Body>& bodies, const std::vector<PlacedShape>& obstacles,
-                         double dt, int threads, std::vector<StepReport>& reports) {
+void ContactStep::finish(BodyList& bodies, const std::vector<PlacedShape>& obstacles, double dt,
+                         int threads, std::vector<StepReport>& reports) {
   if (body_contact_) resolveBetweenBodies(bodies, dt, reports);
   parallelFor(threads, 0, static_cast<int>(bodies.size()), [&](int b) {
     if (!states_[b]) return;
     const WallClock::time_point start = WallClock::now();
-    states_[b]->release(bodies[b], obstacles, starts_, settings_, dt);
-    reports[b].contacts = states_[b]->project(bodies[b], obstacles, starts_, settings_, dt);
+    FiniteElementBody& body = *bodies[b].finiteElements();
+    states_[b]->release(body, obstacles, starts_, settings_, dt);
+    reports[b].contacts = states_[b]->project(body, obstacles, starts_, settings_, dt);
     reports[b].times.obstacle_contact += secondsSince(start);
   });
   if (body_contact_) body_contact_->measureDepths(bodies);
@@ -71,7 +71,7 @@ void ContactStep::finish(std::vector<Body>& bodies, const std::vector<PlacedShap
   for (size_t k = 0; k < starts_.size(); ++k) starts_[k] = obstacles[k].pose;
 }
 
-void ContactStep::resolveBetweenBodies(std::vector<Body>& bodies, double dt,
+void ContactStep::resolveBetweenBodies(BodyList& bodies, double dt,
                                        std::vector<StepReport>& reports) {
   const WallClock::time_point start = WallClock::now();
   body_contact_->resolve(bodies, dt, reports);

@@ -15,7 +15,8 @@ Eigen::Isometry3d pose(const Body& body, const std::vector<int>& nodes = {}) {
 
 std::string groupNames(const Body& body) {
   std::string names;
-  for (const auto& [group, nodes] : body.groups()) names += (names.empty() ? "" : ", ") + group;
+  for (const auto& [group, nodes] : body.mesh().groups)
+    names += (names.empty() ? "" : ", ") + group;
   return names;
 }
 
@@ -27,7 +28,7 @@ std::string metres(double value) {
 
 }  // namespace
 
-BodyFrame findBodyFrame(const std::vector<Body>& bodies, const std::string& prefix,
+BodyFrame findBodyFrame(const BodyList& bodies, const std::string& prefix,
                         const std::string& frame) {
   for (size_t b = 0; b < bodies.size(); ++b) {
     const Body& body = bodies[b];
@@ -35,8 +36,8 @@ BodyFrame findBodyFrame(const std::vector<Body>& bodies, const std::string& pref
     if (frame == name) return {static_cast<int>(b), "", pose(body)};
     if (frame.rfind(name + "/", 0) != 0) continue;
     const std::string group = frame.substr(name.size() + 1);
-    const auto found = body.groups().find(group);
-    if (found == body.groups().end()) {
+    const auto found = body.mesh().groups.find(group);
+    if (found == body.mesh().groups.end()) {
       const std::string groups = groupNames(body);
       throw CommandError("frame '" + frame + "': body '" + body.name() + "' has no group '" +
                          group + "'" + (groups.empty() ? "" : " (groups: " + groups + ")"));
@@ -46,25 +47,25 @@ BodyFrame findBodyFrame(const std::vector<Body>& bodies, const std::string& pref
   return {};
 }
 
-std::vector<std::pair<std::string, Eigen::Isometry3d>> allBodyFrames(
-    const std::vector<Body>& bodies, const std::string& prefix) {
+std::vector<std::pair<std::string, Eigen::Isometry3d>> allBodyFrames(const BodyList& bodies,
+                                                                     const std::string& prefix) {
   std::vector<std::pair<std::string, Eigen::Isometry3d>> frames;
   for (const Body& body : bodies) {
     frames.emplace_back(prefix + body.name(), pose(body));
-    for (const auto& [group, nodes] : body.groups()) {
+    for (const auto& [group, nodes] : body.mesh().groups) {
       frames.emplace_back(prefix + body.name() + "/" + group, pose(body, nodes));
     }
   }
   return frames;
 }
 
-std::string bodyFrameNames(const std::vector<Body>& bodies, const std::string& prefix) {
+std::string bodyFrameNames(const BodyList& bodies, const std::string& prefix) {
   std::string names;
   for (const Body& body : bodies) names += (names.empty() ? "" : ", ") + prefix + body.name();
   return names;
 }
 
-NearestNode nearestNode(const std::vector<Body>& bodies, const Eigen::Vector3d& point) {
+NearestNode nearestNode(const BodyList& bodies, const Eigen::Vector3d& point) {
   NearestNode nearest;
   for (size_t b = 0; b < bodies.size(); ++b) {
     const Eigen::VectorXd& x = bodies[b].positions();

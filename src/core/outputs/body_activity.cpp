@@ -4,8 +4,8 @@ namespace deformable_sim::core {
 
 std::vector<std::string> activeEffects(const Simulation& simulation, int body) {
   const Body& b = simulation.bodies()[body];
-  std::vector<std::string> names = effectNames(b.effects(), b.model());
-  if (simulation.contact() && b.model() == BodyModel::kFiniteElement) names.emplace_back("contact");
+  std::vector<std::string> names = effectNames(b.settings().effects, b.settings().model);
+  if (simulation.contact() && b.finiteElements()) names.emplace_back("contact");
   return names;
 }
 
@@ -29,10 +29,11 @@ std::string bodySummary(const Simulation& simulation, int body) {
   for (const std::string& name : activeEffects(simulation, body)) {
     effects += (effects.empty() ? "" : ", ") + name;
   }
-  return "body '" + b.name() + "' (" + modelName(b.model()) + "): " + std::to_string(b.numNodes()) +
-         " nodes, " + std::to_string(b.mesh().numTetrahedra()) + " tetrahedra, " +
+  return "body '" + b.name() + "' (" + modelName(b.settings().model) +
+         "): " + std::to_string(b.numNodes()) + " nodes, " +
+         std::to_string(b.mesh().numTetrahedra()) + " tetrahedra, " +
          std::to_string(b.mesh().cells.size()) + " other elements, " +
-         std::to_string(b.numConstrained()) +
+         std::to_string(numConstrained(b)) +
          " fixed; effects: " + (effects.empty() ? "none" : effects);
 }
 

@@ -18,7 +18,7 @@ DrawnNodes drawnNodes(const Body& body, int index, const CommandProcessor& comma
   for (int i = 0; i < body.numNodes(); ++i) {
     if (body.isConstrained(i) && !grasped[i]) drawn.fixed.push_back(x.segment<3>(3 * i));
   }
-  for (const auto& [name, nodes] : body.groups()) {
+  for (const auto& [name, nodes] : body.mesh().groups) {
     std::vector<Eigen::Vector3d> points;
     for (int i : nodes) points.push_back(x.segment<3>(3 * i));
     drawn.groups.emplace_back(name, std::move(points));
@@ -28,8 +28,8 @@ DrawnNodes drawnNodes(const Body& body, int index, const CommandProcessor& comma
 
 }  // namespace
 
-DrawnInteractions drawnInteractions(const std::vector<Body>& bodies,
-                                    const CommandProcessor& commands, double metres_per_newton) {
+DrawnInteractions drawnInteractions(const BodyList& bodies, const CommandProcessor& commands,
+                                    double metres_per_newton) {
   DrawnInteractions drawn;
   for (size_t b = 0; b < bodies.size(); ++b) {
     drawn.bodies.push_back(drawnNodes(bodies[b], static_cast<int>(b), commands));

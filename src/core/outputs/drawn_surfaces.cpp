@@ -14,7 +14,7 @@ DrawnSurfaces::DrawnSurfaces(const Simulation& simulation) {
 }
 
 void DrawnSurfaces::update(const Body& body, int index) {
-  const bool strain = body.effects().stress_colouring;
+  const bool strain = body.settings().effects.stress_colouring;
   if (strain) nodalStrain(body, nodal_strain_);
   if (embedded_[index]) {
     updateEmbedded(*embedded_[index], body, strain);

@@ -4,6 +4,7 @@
 #include <array>
 
 #include "deformable_sim/core/base/rotation.h"
+#include "deformable_sim/core/bodies/finite_element_body.h"
 #include "deformable_sim/core/elements/cell.h"
 #include "deformable_sim/core/elements/tetrahedron.h"
 
@@ -19,19 +20,35 @@ double strainMagnitude(const Eigen::Matrix3d& f, const Eigen::Matrix3d& r) {
 
 double strainMagnitude(const Eigen::Matrix3d& f) { return strainMagnitude(f, extractRotation(f)); }
 
+// A rigid or pseudo-rigid body deforms homogeneously: the strain of one element is everywhere's.
+double homogeneousStrain(const Body& body) {
+  const Mesh& mesh = body.mesh();
+  const Eigen::VectorXd& x = body.positions();
+  if (!mesh.tetrahedra.empty()) {
+    const Tetrahedron& t = mesh.tetrahedra.front();
+    const TetrahedronRest rest = computeTetrahedronRest(
+        {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]], mesh.positions[t[3]]});
+    return strainMagnitude(deformationGradient(rest, x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
+                                               x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3])));
+  }
+  const Cell& cell = mesh.cells.front();
+  CellVectors corners;
+  for (int k = 0; k < cell.size(); ++k) corners[k] = x.segment<3>(3 * cell.nodes[k]);
+  const CellRest rest = computeCellRest(cell.type, cellCorners(cell, mesh.positions));
+  return strainMagnitude(cellDeformationGradient(rest, cell.size(), corners));
+}
+
 }  // namespace
 
 void nodalStrain(const Body& body, std::vector<double>& strain) {
-  strain.assign(body.numNodes(), 0.0);
-  if (const ReducedDynamics* reduced = body.reduced()) {
-    // Homogeneous: the same everywhere (zero for a rigid body).
-    if (reduced->model() == BodyModel::kPseudoRigid) {
-      strain.assign(body.numNodes(), strainMagnitude(reduced->gradient()));
-    }
+  const FiniteElementBody* elements = body.finiteElements();
+  if (!elements) {
+    strain.assign(body.numNodes(), homogeneousStrain(body));
     return;
   }
+  strain.assign(body.numNodes(), 0.0);
   const Eigen::VectorXd& x = body.positions();
-  const std::vector<TetrahedronRest>& rest = body.elasticity().restData();
+  const std::vector<TetrahedronRest>& rest = elements->elasticity().restData();
   const std::vector<Tetrahedron>& tetrahedra = body.mesh().tetrahedra;
   // Tetrahedra a batch of rotations at a time.
   const int num_tetrahedra = static_cast<int>(tetrahedra.size());
@@ -53,7 +70,7 @@ void nodalStrain(const Body& body, std::vector<double>& strain) {
   const std::vector<Cell>& cells = body.mesh().cells;
   for (size_t c = 0; c < cells.size(); ++c) {
     const Cell& cell = cells[c];
-    const CellRest& rest = body.elasticity().cellRestData(static_cast<int>(c));
+    const CellRest& rest = elements->elasticity().cellRestData(static_cast<int>(c));
     CellVectors corners;
     for (int k = 0; k < cell.size(); ++k) corners[k] = x.segment<3>(3 * cell.nodes[k]);
     const double magnitude = strainMagnitude(cellDeformationGradient(rest, cell.size(), corners));

@@ -29,7 +29,7 @@ CommandProcessor::CommandProcessor(Simulation& simulation, CommandLimits limits)
 }
 
 int CommandProcessor::findBody(const std::string& name, const NodeTarget& nodes) const {
-  const std::vector<Body>& bodies = simulation_.bodies();
+  const BodyList& bodies = simulation_.bodies();
   if (!name.empty()) {
     const int index = simulation_.bodyIndex(name);
     if (index >= 0) return index;
@@ -62,10 +62,11 @@ int CommandProcessor::findBody(const std::string& name, const NodeTarget& nodes)
 namespace {
 
 std::vector<int> groupMembers(const Body& body, const std::string& group_name) {
-  const auto group = body.groups().find(group_name);
-  if (group == body.groups().end()) {
+  const auto group = body.mesh().groups.find(group_name);
+  if (group == body.mesh().groups.end()) {
     std::string known;
-    for (const auto& [name, members] : body.groups()) known += (known.empty() ? "" : ", ") + name;
+    for (const auto& [name, members] : body.mesh().groups)
+      known += (known.empty() ? "" : ", ") + name;
     throw CommandError("body '" + body.name() + "' has no group '" + group_name + "'" +
                        (known.empty() ? " (it has none)" : " (groups: " + known + ")"));
   }

@@ -6,14 +6,14 @@ namespace deformable_sim::core {
 
 LiveSettings liveSettings(const Body& body, double rate) {
   LiveSettings settings;
-  settings.youngs_modulus = body.material().youngs_modulus;
-  settings.poisson_ratio = body.material().poisson_ratio;
-  settings.density = body.material().density;
-  const RayleighDamping damping = body.effects().damping.value_or(RayleighDamping{});
+  settings.youngs_modulus = body.settings().material.youngs_modulus;
+  settings.poisson_ratio = body.settings().material.poisson_ratio;
+  settings.density = body.settings().material.density;
+  const RayleighDamping damping = body.settings().effects.damping.value_or(RayleighDamping{});
   settings.damping_mass = damping.mass;
   settings.damping_stiffness = damping.stiffness;
-  settings.solver_tolerance = body.solverSettings().tolerance;
-  settings.solver_max_iterations = body.solverSettings().max_iterations;
+  settings.solver_tolerance = body.settings().solver.tolerance;
+  settings.solver_max_iterations = body.settings().solver.max_iterations;
   settings.rate = rate;
   return settings;
 }
@@ -26,7 +26,7 @@ TuneCommand bodyTune(const Body& body, const LiveSettings& before, const LiveSet
   tune.body = body.name();
   if (after.youngs_modulus != before.youngs_modulus ||
       after.poisson_ratio != before.poisson_ratio || after.density != before.density) {
-    LinearElasticMaterial material = body.material();
+    LinearElasticMaterial material = body.settings().material;
     if (after.youngs_modulus != before.youngs_modulus) {
       material.youngs_modulus = after.youngs_modulus;
     }

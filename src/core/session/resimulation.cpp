@@ -67,7 +67,7 @@ void Resimulation::findStart() {
 }
 
 void Resimulation::indexStates() {
-  const std::vector<Body>& bodies = session_.simulation().bodies();
+  const BodyList& bodies = session_.simulation().bodies();
   for (const auto& [key, state] : recording_.states) {
     const auto& [episode, step, name] = key;
     const int body = session_.simulation().bodyIndex(name);
@@ -153,8 +153,7 @@ void Resimulation::apply(const AppliedCommand& applied) {
 void Resimulation::overrideSolver() {
   if (!solver_.tolerance && !solver_.max_iterations) return;
   for (Body& body : session_.simulation().bodies()) {
-    body.setSolverLimits(solver_.tolerance.value_or(body.solverSettings().tolerance),
-                         solver_.max_iterations.value_or(body.solverSettings().max_iterations));
+    body.tune(BodyTuning{std::nullopt, std::nullopt, solver_.tolerance, solver_.max_iterations});
   }
 }
 

@@ -98,15 +98,9 @@ int Session::applyTune(const TuneCommand& command) {
   if (command.dt && !(*command.dt > 0.0 && std::isfinite(*command.dt))) {
     throw CommandError("tune: dt must be finite and > 0 s");
   }
-  for (Body* body : bodies) {
-    if (command.material) body->setMaterial(*command.material);
-    if (command.damping) body->setDamping(*command.damping);
-    if (command.solver_tolerance || command.solver_max_iterations) {
-      body->setSolverLimits(
-          command.solver_tolerance.value_or(body->solverSettings().tolerance),
-          command.solver_max_iterations.value_or(body->solverSettings().max_iterations));
-    }
-  }
+  const BodyTuning tuning{command.material, command.damping, command.solver_tolerance,
+                          command.solver_max_iterations};
+  for (Body* body : bodies) body->tune(tuning);
   if (command.dt) simulation_->setDt(*command.dt);
   return 0;
 }

@@ -48,24 +48,13 @@ void addWrench(Body& body, const std::vector<int>& nodes, const LoadSpec& load,
     body.externalForces().segment<3>(3 * nodes[k]) += forces[k];
 }
 
-BodyEffects effectsOf(const SceneSpec& spec, const BodySpec& body_spec) {
-  BodyEffects effects = body_spec.effects.value_or(spec.effects);
-  if (body_spec.model != BodyModel::kFiniteElement) {
-    // Inherited from the scene, plasticity is for its finite-element bodies only.
-    if (!body_spec.effects) effects.plasticity.reset();
-  } else if (spec.contact) {
-    effects.reactions = true;  // contact decides stick or slip from the constraint forces
-  }
-  return effects;
-}
-
-void addGroups(Body& body, const BodySpec& body_spec, const std::string& key) {
+void addGroups(Mesh& mesh, const BodySpec& body_spec, const std::string& key) {
   for (const auto& [name, selection] : body_spec.groups) {
     if (name.empty() || name.find('/') != std::string::npos) {
       throw SpecError(key + ".groups",
                       "'" + name + "' is not a valid group name (non-empty, no '/')");
     }
-    body.addGroup(name, selectSome(body.mesh(), selection, key + ".groups." + name));
+    mesh.groups[name] = selectSome(mesh, selection, key + ".groups." + name);
   }
 }
 
@@ -119,9 +108,13 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
 void Simulation::addBody(const SceneSpec& spec, size_t b, Mesh mesh) {
   const BodySpec& body_spec = spec.bodies[b];
   const std::string key = "bodies[" + std::to_string(b) + "]";
+  addGroups(mesh, body_spec, key);
+  const BodySettings settings{
+      body_spec.model, body_spec.material,
+      effectsOf(body_spec.model, spec.effects, body_spec.effects, spec.contact.has_value()),
+      spec.solver};
   try {
-    bodies_.emplace_back(body_spec.name, std::move(mesh), body_spec.material,
-                         effectsOf(spec, body_spec), spec.solver, body_spec.model);
+    bodies_.add(makeBody(body_spec.name, std::move(mesh), settings));
   } catch (const std::invalid_argument& e) {
     throw SpecError(key, e.what());
   }
@@ -131,7 +124,6 @@ void Simulation::addBody(const SceneSpec& spec, size_t b, Mesh mesh) {
   }
   wrench_radii_.push_back(body_spec.wrench_radius);
   recoveries_.push_back(0);
-  addGroups(body, body_spec, key);
   for (size_t k = 0; k < body_spec.fixed.size(); ++k) {
     body.fixNodes(
         selectSome(body.mesh(), body_spec.fixed[k], key + ".fixed[" + std::to_string(k) + "]"));
@@ -139,7 +131,7 @@ void Simulation::addBody(const SceneSpec& spec, size_t b, Mesh mesh) {
   addLoads(body, body_spec, key);
   if (!body_spec.velocity.isZero(0.0)) {
     if (!body_spec.velocity.allFinite()) throw SpecError(key + ".velocity", "must be finite");
-    if (body.numConstrained() > 0) {
+    if (numConstrained(body) > 0) {
       throw SpecError(key + ".velocity", "a body with fixed nodes starts at rest");
     }
     body.setState(body.positions(), body_spec.velocity.replicate(body.numNodes(), 1));
@@ -190,7 +182,6 @@ void Simulation::step(std::vector<StepReport>& reports) {
 
 void Simulation::stepBody(int b, StepReport& report) {
   Body& body = bodies_[b];
-  body.rememberState();
   const double holding = contact_step_ ? contact_step_->hold(b, body, obstacles_, dt_) : 0.0;
   report = body.step(dt_);
   report.times.obstacle_contact = holding;
@@ -202,7 +193,7 @@ void Simulation::stepBody(int b, StepReport& report) {
 }
 
 void Simulation::undoStep(int b, StepReport& report) {
-  bodies_[b].returnToRememberedState();
+  bodies_[b].undoStep();
   report.recovered = true;
   ++recoveries_[b];
 }

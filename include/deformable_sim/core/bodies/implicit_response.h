@@ -10,7 +10,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/finite_element_body.h"
 
 namespace deformable_sim::core {
 
@@ -19,7 +19,7 @@ class ImplicitResponse {
   explicit ImplicitResponse(int num_nodes) : slot_of_(num_nodes, -1) {}
 
   /// A new step of `body`: forgets the columns of the last one (keeps their storage).
-  void begin(Body& body);
+  void begin(FiniteElementBody& body);
   /// The velocity change of node j per unit impulse at node i (zero where either is held).
   Eigen::Matrix3d block(int j, int i);
   /// dv += the body's answer to `impulse` at node i: A^-1 e_i impulse.
@@ -31,7 +31,7 @@ class ImplicitResponse {
   /// The first of node i's three columns, solved on first use (an empty one: a held node).
   int slot(int i);
 
-  Body* body_ = nullptr;
+  FiniteElementBody* body_ = nullptr;
   std::vector<int> slot_of_;              ///< per node, its slot; -1: not solved in this step
   std::vector<int> used_;                 ///< nodes with a slot in this step
   std::vector<Eigen::VectorXd> columns_;  ///< three per slot; grows, never shrinks

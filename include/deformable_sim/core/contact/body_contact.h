@@ -21,10 +21,10 @@
 #include <optional>
 #include <vector>
 
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/body_list.h"
+#include "deformable_sim/core/bodies/contact_participant.h"
 #include "deformable_sim/core/contact/body_surface.h"
 #include "deformable_sim/core/contact/contact.h"
-#include "deformable_sim/core/contact/contact_participant.h"
 
 namespace deformable_sim::core {
 
@@ -32,7 +32,7 @@ class BodyContact {
  public:
   /// `with_bodies[b]`: body b touches the other bodies that do; `with_self[b]`: it touches
   /// itself. Builds the surfaces of those bodies; allocates only here.
-  BodyContact(const std::vector<Body>& bodies, const ContactSettings& settings,
+  BodyContact(BodyList& bodies, const ContactSettings& settings,
               const std::vector<bool>& with_bodies, const std::vector<bool>& with_self);
 
   /// Body b was made from `surface`: it touches with that surface, not its grid's boundary, which
@@ -41,10 +41,10 @@ class BodyContact {
 
   /// After every body's step of length dt: finds and resolves the contacts, and adds to
   /// reports[b] the counts and the depth left. Allocates nothing.
-  void resolve(std::vector<Body>& bodies, double dt, std::vector<StepReport>& reports);
+  void resolve(BodyList& bodies, double dt, std::vector<StepReport>& reports);
   /// At the step's very end (after the obstacles' correction too): each pair's depth, how far
   /// its last contacts are left inside, from the bodies' positions. Allocates nothing.
-  void measureDepths(const std::vector<Body>& bodies);
+  void measureDepths(const BodyList& bodies);
 
   /// The depth a node may be left inside the other body after a step: 1 % of the smaller body's
   /// size (the diagonal of its rest bounding box), m.
@@ -93,7 +93,7 @@ class BodyContact {
   void reserveContacts();
   /// Sweeps the surfaces from the step's start to the bodies' positions now and finds every
   /// contact; `new_step`: the bodies have just stepped (else a later round of the same step).
-  void findContacts(std::vector<Body>& bodies, bool new_step);
+  void findContacts(BodyList& bodies, bool new_step);
   void countContacts(std::vector<StepReport>& reports) const;
   /// Starts the step's loads: the contacts just found, where and how deep.
   void startLoads();

@@ -23,7 +23,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/finite_element_body.h"
 #include "deformable_sim/core/geometry/shape.h"
 #include "deformable_sim/core/surface_bodies/embedded_surface.h"
 
@@ -62,20 +62,19 @@ class ContactState {
 
   /// Before a step of `dt` s, with the obstacles where they will be at its end: holds the free
   /// points that touch an obstacle at their place on it, moved on by their slip.
-  void hold(Body& body, const std::vector<PlacedShape>& obstacles, double dt);
+  void hold(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles, double dt);
   /// After the step of `dt` s: lets the held points go. Those that push out of their obstacle
   /// stay touching (held in the next step): at rest while the constraint forces of the body's
   /// points held on that obstacle together stay within the friction cone, else sliding.
   /// `start_poses`: the obstacles' poses at the step's start (as for project()).
-  void release(Body& body, const std::vector<PlacedShape>& obstacles,
+  void release(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
                const std::vector<Eigen::Isometry3d>& start_poses, const ContactSettings& settings,
                double dt);
   /// Projects the free points out of every obstacle and records them as touching; an obstacle's
   /// velocity is that of its rigid motion from `start_poses[k]` to its pose within the step, and
-  /// the body's nodes at the step's start are its rememberedPositions() (Body::rememberState()
-  /// before the step, as Simulation does).
+  /// the body's nodes at the step's start are its stepStart().
   /// Returns the number of points touching an obstacle.
-  int project(Body& body, const std::vector<PlacedShape>& obstacles,
+  int project(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
               const std::vector<Eigen::Isometry3d>& start_poses, const ContactSettings& settings,
               double dt);
   /// Per obstacle (as given to project()), what the body felt from it in the last step.
@@ -105,15 +104,15 @@ class ContactState {
   /// Sizes the per-point state for points_ (allocates).
   void resizePoints();
   /// Sums the held points' constraint forces per obstacle and judges each patch.
-  void judgePatches(const Body& body, const std::vector<PlacedShape>& obstacles,
+  void judgePatches(const FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
                     const ContactSettings& settings, double dt);
   /// Point p's part of a state of the body's nodes (3n): its position or velocity.
   Eigen::Vector3d weighted(const Eigen::VectorXd& state, int p) const;
   /// The weight of point p on nodes free to move.
-  double freeWeight(const Body& body, int p) const;
+  double freeWeight(const FiniteElementBody& body, int p) const;
   /// Whether point p can be moved: a free node, or a vertex with at least kMovable of its
   /// weight on free nodes.
-  bool movable(const Body& body, int p) const;
+  bool movable(const FiniteElementBody& body, int p) const;
   /// Changes of a body's nodes that its vertices ask for (positions or velocities), granted
   /// together; sized once.
   struct Requests {
@@ -123,22 +122,24 @@ class ContactState {
     std::vector<int> touched;
   };
   /// Vertex p asks that it change by `change`: its free nodes alike.
-  void request(const Body& body, int p, const Eigen::Vector3d& change, Requests& requests) const;
+  void request(const FiniteElementBody& body, int p, const Eigen::Vector3d& change,
+               Requests& requests) const;
   /// Changes each node asked by the weighted mean of what it was asked, and clears the asks.
   void grant(Requests& requests, Eigen::VectorXd& state) const;
   /// Grants the velocity asks from obstacle k, adding the forces they take to its load.
-  void grantVelocities(Body& body, int k, double dt);
+  void grantVelocities(FiniteElementBody& body, int k, double dt);
   /// Judges each patch sliding or not, and what the body gains from those that slide.
-  void decideSlides(const Body& body, const ContactSettings& settings, double dt);
+  void decideSlides(const FiniteElementBody& body, const ContactSettings& settings, double dt);
   /// The velocity change that the obstacle gives point p as it lands (its velocity into it
   /// removed, its sliding slowed by friction; zero when it rests or leaves); it is held from then
   /// on, sliding at what is left.
-  Eigen::Vector3d landingChange(const Body& body, int p, const Eigen::Vector3d& obstacle_velocity,
+  Eigen::Vector3d landingChange(const FiniteElementBody& body, int p,
+                                const Eigen::Vector3d& obstacle_velocity,
                                 const Eigen::Vector3d& normal, const ContactSettings& settings);
   /// Puts point p, found at x inside its obstacle, at `on_surface` and changes its velocity by
   /// `change` (a vertex: asks it of its nodes), adding the force that takes to the load.
-  void putBack(Body& body, int p, const Eigen::Vector3d& x, const Eigen::Vector3d& on_surface,
-               const Eigen::Vector3d& change, double dt);
+  void putBack(FiniteElementBody& body, int p, const Eigen::Vector3d& x,
+               const Eigen::Vector3d& on_surface, const Eigen::Vector3d& change, double dt);
   /// A point found inside `shape` (at `now`, in its frame; nearest surface point and normal
   /// there) that was outside at the step's start (the body's nodes then: `start`) and whose
   /// nearest face is not the one it came in through (it crossed more than half of a thin table)
@@ -147,9 +148,9 @@ class ContactState {
                            const Eigen::VectorXd& start, int p, const Eigen::Vector3d& now,
                            Eigen::Vector3d& surface, Eigen::Vector3d& normal) const;
   /// Puts the points of obstacle k that are still inside (their cells share nodes) back out.
-  void settleEmbedded(Body& body, const PlacedShape& obstacle, int k);
+  void settleEmbedded(FiniteElementBody& body, const PlacedShape& obstacle, int k);
   /// Where each node of a touching point is in its obstacle's frame: it is held there.
-  void recordNodePlaces(const Body& body, const std::vector<PlacedShape>& obstacles);
+  void recordNodePlaces(const FiniteElementBody& body, const std::vector<PlacedShape>& obstacles);
   void resizeForObstacles(size_t count);
   void addForce(int k, const Eigen::Vector3d& at, const Eigen::Vector3d& force);
   Eigen::Vector3d worldNormal(const std::vector<PlacedShape>& obstacles, int p) const;
@@ -158,13 +159,13 @@ class ContactState {
   bool slidesOnPlanes() const { return !whole_; }
   /// Holds sliding point p's free nodes on its obstacle's plane for the next step, with its
   /// friction (and excess) spread over them by its weights.
-  void holdOnPlane(Body& body, const std::vector<PlacedShape>& obstacles, int p);
+  void holdOnPlane(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles, int p);
   /// Releases the nodes held in the step and gives the body its kick.
-  void letGo(Body& body);
+  void letGo(FiniteElementBody& body);
   /// Counts the touching points, per obstacle too, with their centre; returns them all.
-  int countTouching(const Body& body, const std::vector<PlacedShape>& obstacles);
+  int countTouching(const FiniteElementBody& body, const std::vector<PlacedShape>& obstacles);
   /// After a step on its plane: point p lets go, sticks, or slides on against friction.
-  void judgeOnPlane(const Body& body, const std::vector<PlacedShape>& obstacles,
+  void judgeOnPlane(const FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
                     const std::vector<Eigen::Isometry3d>& start_poses,
                     const ContactSettings& settings, double dt, int p);
   /// A sliding point goes on its plane for the next step, with `friction` (and, found sliding

@@ -9,7 +9,7 @@
 #include <optional>
 #include <vector>
 
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/body_list.h"
 #include "deformable_sim/core/contact/body_contact.h"
 #include "deformable_sim/core/contact/contact.h"
 #include "deformable_sim/core/geometry/shape.h"
@@ -23,7 +23,7 @@ class ContactStep {
   /// ones pass through obstacles), contact between bodies and of a body with itself where the
   /// settings and the bodies' own effects ask for it. Allocates here, in embed(), and in begin()
   /// when the number of obstacles changes.
-  ContactStep(const std::vector<Body>& bodies, const ContactSettings& settings);
+  ContactStep(BodyList& bodies, const ContactSettings& settings);
 
   /// Body b touches with `surface`, the one it was made from, not its grid's boundary.
   void embed(int b, const EmbeddedSurface& surface, const Body& body);
@@ -32,14 +32,14 @@ class ContactStep {
   /// others than in the last step (a scene's first step, a robot's links appearing in tf), they
   /// start where they are and no point touches them yet.
   void begin(const std::vector<PlacedShape>& obstacles);
-  /// Body b, its state remembered, about to step by dt: holds its points on the obstacles at
+  /// Body b about to step by dt: holds its points on the obstacles at
   /// their place on them. Returns the wall time it took, s. Bodies may be held side by side.
   double hold(int b, Body& body, const std::vector<PlacedShape>& obstacles, double dt);
   /// After every body's step: between bodies, then the obstacles; reports[b] gains its contact
   /// counts and times, each pair its depth left at the end. Bodies are put back on `threads`
   /// threads.
-  void finish(std::vector<Body>& bodies, const std::vector<PlacedShape>& obstacles, double dt,
-              int threads, std::vector<StepReport>& reports);
+  void finish(BodyList& bodies, const std::vector<PlacedShape>& obstacles, double dt, int threads,
+              std::vector<StepReport>& reports);
   /// Whether contact acts on body b at all.
   bool actsOn(int b) const { return states_[b].has_value() || body_contact_.has_value(); }
   /// Body b went back to where it started the step: what it touched is forgotten.
@@ -53,9 +53,9 @@ class ContactStep {
 
  private:
   /// Contact between bodies and with themselves, if the settings and some body ask for it.
-  void addBodyContact(const std::vector<Body>& bodies);
+  void addBodyContact(BodyList& bodies);
   /// Contact between bodies after their steps; its time shared among those taking part.
-  void resolveBetweenBodies(std::vector<Body>& bodies, double dt, std::vector<StepReport>& reports);
+  void resolveBetweenBodies(BodyList& bodies, double dt, std::vector<StepReport>& reports);
 
   ContactSettings settings_;
   std::vector<std::optional<ContactState>> states_;  ///< per body: its obstacle contact

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/body_list.h"
 #include "deformable_sim/core/session/commands.h"
 #include "deformable_sim/core/session/simulation.h"
 
@@ -24,16 +24,16 @@ struct BodyFrame {
 
 /// The body or group frame called `frame`. Throws CommandError naming the groups the body has
 /// when `frame` is <prefix><body>/<group> with a group the body lacks.
-BodyFrame findBodyFrame(const std::vector<Body>& bodies, const std::string& prefix,
+BodyFrame findBodyFrame(const BodyList& bodies, const std::string& prefix,
                         const std::string& frame);
 
 /// Every frame findBodyFrame knows, by name, posed in the world: each body's, then its groups'.
 /// What the node broadcasts on tf.
-std::vector<std::pair<std::string, Eigen::Isometry3d>> allBodyFrames(
-    const std::vector<Body>& bodies, const std::string& prefix);
+std::vector<std::pair<std::string, Eigen::Isometry3d>> allBodyFrames(const BodyList& bodies,
+                                                                     const std::string& prefix);
 
 /// "<prefix>a, <prefix>b": the bodies' frame names, for messages.
-std::string bodyFrameNames(const std::vector<Body>& bodies, const std::string& prefix);
+std::string bodyFrameNames(const BodyList& bodies, const std::string& prefix);
 
 /// The node of any body closest to a point.
 struct NearestNode {
@@ -41,7 +41,7 @@ struct NearestNode {
   int node = -1;
   double distance = std::numeric_limits<double>::infinity();  ///< m
 };
-NearestNode nearestNode(const std::vector<Body>& bodies, const Eigen::Vector3d& point);
+NearestNode nearestNode(const BodyList& bodies, const Eigen::Vector3d& point);
 
 /// A wrench acting at `point` (world) on the nodes of the nearest body within that body's
 /// wrench_radius of the point. Throws CommandError naming `frame`, the nearest body, its distance

@@ -5,6 +5,8 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <map>
+#include <string>
 #include <vector>
 
 namespace deformable_sim::core {
@@ -52,6 +54,8 @@ struct Mesh {
   bool incompatible_modes = false;
   /// Per cell, the part of each octant that holds material. Empty: every cell is full.
   std::vector<OctantFractions> cell_fractions;
+  /// Named node groups (indices into positions), e.g. from the scene's `groups`.
+  std::map<std::string, std::vector<int>> groups;
 
   /// The material fraction of cells[c], the mean of its octants': 1 without cell_fractions.
   double cellFraction(size_t c) const;

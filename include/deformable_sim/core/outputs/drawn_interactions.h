@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/body_list.h"
 #include "deformable_sim/core/session/commands.h"
 
 namespace deformable_sim::core {
@@ -30,7 +30,7 @@ struct DrawnInteractions {
   std::vector<DrawnArrow> wrenches;
 };
 
-DrawnInteractions drawnInteractions(const std::vector<Body>& bodies,
-                                    const CommandProcessor& commands, double metres_per_newton);
+DrawnInteractions drawnInteractions(const BodyList& bodies, const CommandProcessor& commands,
+                                    double metres_per_newton);
 
 }  // namespace deformable_sim::core

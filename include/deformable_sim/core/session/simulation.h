@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "deformable_sim/core/base/spec_error.h"
-#include "deformable_sim/core/bodies/body.h"
+#include "deformable_sim/core/bodies/body_list.h"
 #include "deformable_sim/core/contact/body_contact.h"
 #include "deformable_sim/core/contact/contact_step.h"
 #include "deformable_sim/core/elements/mesh.h"
@@ -29,8 +29,8 @@ class Simulation {
   long stepCount() const { return step_count_; }
   double time() const { return time_; }  ///< s, simulated since the start
 
-  std::vector<Body>& bodies() { return bodies_; }
-  const std::vector<Body>& bodies() const { return bodies_; }
+  BodyList& bodies() { return bodies_; }
+  const BodyList& bodies() const { return bodies_; }
   /// Throws std::out_of_range naming the body if there is none of that name.
   Body& body(const std::string& name);
   /// Index of the body of that name in bodies(), or -1.
@@ -89,7 +89,7 @@ class Simulation {
   StaticSettings statics_;
   long step_count_ = 0;
   double time_ = 0.0;
-  std::vector<Body> bodies_;
+  BodyList bodies_;
   std::vector<double> wrench_radii_;
   std::optional<ContactSettings> contact_;
   std::optional<ContactStep> contact_step_;  ///< with the contact effect

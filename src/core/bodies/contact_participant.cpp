@@ -1,7 +1,4 @@
-#include "deformable_sim/core/contact/contact_participant.h"
-
-#include "deformable_sim/core/contact/elastic_participant.h"
-#include "deformable_sim/core/contact/whole_body_participant.h"
+#include "deformable_sim/core/bodies/contact_participant.h"
 
 namespace deformable_sim::core {
 
@@ -19,18 +16,6 @@ Eigen::Matrix3d ContactParticipant::complianceFromInverseMass(const SurfacePoint
     }
   }
   return w;
-}
-
-std::unique_ptr<ContactParticipant> makeParticipant(const Body& body) {
-  switch (body.model()) {
-    case BodyModel::kFiniteElement:
-      return std::make_unique<ElasticParticipant>(body);
-    case BodyModel::kPseudoRigid:
-      return std::make_unique<PseudoRigidParticipant>(body);
-    case BodyModel::kRigid:
-      return std::make_unique<RigidParticipant>(body);
-  }
-  return nullptr;
 }
 
 }  // namespace deformable_sim::core

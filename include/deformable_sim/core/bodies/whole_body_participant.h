@@ -4,16 +4,17 @@
 // impulse at an arm turns (rigid) or strains (pseudo-rigid) the body.
 #pragma once
 
-#include "deformable_sim/core/contact/contact_participant.h"
+#include "deformable_sim/core/bodies/contact_participant.h"
+#include "deformable_sim/core/bodies/reduced_body.h"
 
 namespace deformable_sim::core {
 
 class WholeBodyParticipant : public ContactParticipant {
  public:
-  explicit WholeBodyParticipant(const Body& body);
+  explicit WholeBodyParticipant(ReducedBody& body);
 
-  void begin(Body& body, double dt, bool new_step = true) override;
-  void end(Body& body) override;
+  void begin(double dt, bool new_step = true) override;
+  void end() override;
   Eigen::Vector3d position(const SurfacePoint& point) const override;
   Eigen::Vector3d velocity(const SurfacePoint& point) const override;
   void push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool local = false) override;
@@ -40,7 +41,7 @@ class WholeBodyParticipant : public ContactParticipant {
   double inverse_mass_ = 0.0;  ///< of the whole body; 0 while a node holds it
 
  private:
-  const Body* body_ = nullptr;
+  ReducedBody* body_;
   double dt_ = 0.0;  ///< of the step
   Eigen::Vector3d rest_centre_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d centre_change_ = Eigen::Vector3d::Zero(),

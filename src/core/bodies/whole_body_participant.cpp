@@ -1,4 +1,4 @@
-#include "deformable_sim/core/contact/whole_body_participant.h"
+#include "deformable_sim/core/bodies/whole_body_participant.h"
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -7,25 +7,24 @@
 
 namespace deformable_sim::core {
 
-WholeBodyParticipant::WholeBodyParticipant(const Body& body)
+WholeBodyParticipant::WholeBodyParticipant(ReducedBody& body)
     : body_(&body), base_x_(3 * body.numNodes()), base_v_(3 * body.numNodes()) {
-  const MassProperties& mass = body.reduced()->massProperties();
+  const MassProperties& mass = body.reduced().massProperties();
   rest_centre_ = mass.centre;
   inverse_mass_ = 1.0 / mass.mass;
 }
 
-void WholeBodyParticipant::begin(Body& body, double dt, bool) {
-  body_ = &body;
+void WholeBodyParticipant::begin(double dt, bool) {
   dt_ = dt;
-  const ReducedDynamics& reduced = *body.reduced();
-  base_x_ = body.positions();
-  base_v_ = body.velocities();
+  const ReducedDynamics& reduced = body_->reduced();
+  base_x_ = body_->positions();
+  base_v_ = body_->velocities();
   gradient_ = reduced.gradient();
   const MassProperties& mass = reduced.massProperties();
   inverse_moment_ = inverseMoment(mass);
   // A constrained node holds the body: it takes no contact impulse (as a fixed node of a
   // finite-element body does not).
-  inverse_mass_ = body.numConstrained() > 0 ? 0.0 : 1.0 / mass.mass;
+  inverse_mass_ = numConstrained(*body_) > 0 ? 0.0 : 1.0 / mass.mass;
   if (inverse_mass_ == 0.0) inverse_moment_.setZero();
   centre_change_.setZero();
   velocity_change_.setZero();
@@ -33,8 +32,8 @@ void WholeBodyParticipant::begin(Body& body, double dt, bool) {
   rate_change_.setZero();
 }
 
-void WholeBodyParticipant::end(Body& body) {
-  body.moveReducedBy(centre_change_, gradient_change_, velocity_change_, rate_change_);
+void WholeBodyParticipant::end() {
+  body_->moveBy(centre_change_, gradient_change_, velocity_change_, rate_change_);
 }
 
 Eigen::Vector3d WholeBodyParticipant::arm(const SurfacePoint& point) const {

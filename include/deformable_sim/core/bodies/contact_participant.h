@@ -1,14 +1,11 @@
 // A body as contact between bodies sees it: where a point of its surface is, how fast it moves,
-// and how it answers an impulse there. One implementation per kind of body — finite elements
-// (core/contact/elastic_participant.h) and whole-body models
-// (core/contact/whole_body_participant.h) — made by makeParticipant(), the one place that looks at
-// a body's model.
+// and how it answers an impulse there within its last step. One implementation per kind of body
+// — finite elements (core/bodies/elastic_participant.h) and whole-body models
+// (core/bodies/whole_body_participant.h) — made by Body::contactParticipant().
 #pragma once
 
 #include <Eigen/Core>
-#include <memory>
 
-#include "deformable_sim/core/bodies/body.h"
 #include "deformable_sim/core/geometry/surface_point.h"
 
 namespace deformable_sim::core {
@@ -19,10 +16,10 @@ class ContactParticipant {
 
   /// Takes the body's state after its step of `dt`; a rigid or pseudo-rigid body starts with no
   /// change. `new_step`: false for a later round of the same step, whose answers are still good.
-  virtual void begin(Body& body, double dt, bool new_step = true) = 0;
+  virtual void begin(double dt, bool new_step = true) = 0;
   /// Gives the body what the contact changed, and the constraint forces its impulses asked of its
   /// held nodes.
-  virtual void end(Body& body) = 0;
+  virtual void end() = 0;
 
   virtual Eigen::Vector3d position(const SurfacePoint& point) const = 0;
   virtual Eigen::Vector3d velocity(const SurfacePoint& point) const = 0;
@@ -53,8 +50,5 @@ class ContactParticipant {
   /// W from the quadratic form n^T W n on the axes and their sums (W is symmetric).
   Eigen::Matrix3d complianceFromInverseMass(const SurfacePoint& point) const;
 };
-
-/// The participant for `body`'s model, its scratch sized; allocates only here.
-std::unique_ptr<ContactParticipant> makeParticipant(const Body& body);
 
 }  // namespace deformable_sim::core

@@ -3,17 +3,17 @@
 // apart and added to its state once the contact is resolved.
 #pragma once
 
+#include "deformable_sim/core/bodies/contact_participant.h"
 #include "deformable_sim/core/bodies/implicit_response.h"
-#include "deformable_sim/core/contact/contact_participant.h"
 
 namespace deformable_sim::core {
 
 class ElasticParticipant : public ContactParticipant {
  public:
-  explicit ElasticParticipant(const Body& body);
+  explicit ElasticParticipant(FiniteElementBody& body);
 
-  void begin(Body& body, double dt, bool new_step = true) override;
-  void end(Body& body) override;
+  void begin(double dt, bool new_step = true) override;
+  void end() override;
   Eigen::Vector3d position(const SurfacePoint& point) const override;
   Eigen::Vector3d velocity(const SurfacePoint& point) const override;
   double inverseMass(const SurfacePoint& point, const Eigen::Vector3d& normal) const override;
@@ -35,7 +35,7 @@ class ElasticParticipant : public ContactParticipant {
   void addAnswer(const SurfacePoint& point, const Eigen::Vector3d& amount,
                  Eigen::VectorXd& state) const;
 
-  const Body* body_ = nullptr;
+  FiniteElementBody* body_;
   Eigen::VectorXd* x_ = nullptr;  ///< the body's own state, changed in place
   Eigen::VectorXd* v_ = nullptr;
   double dt_ = 0.0;  ///< of the step

@@ -1,25 +1,24 @@
-#include "deformable_sim/core/contact/elastic_participant.h"
+#include "deformable_sim/core/bodies/elastic_participant.h"
 
 namespace deformable_sim::core {
 
-ElasticParticipant::ElasticParticipant(const Body& body)
+ElasticParticipant::ElasticParticipant(FiniteElementBody& body)
     : body_(&body),
       response_(body.numNodes()),
       velocity_change_of_nodes_(Eigen::VectorXd::Zero(3 * body.numNodes())) {}
 
-void ElasticParticipant::begin(Body& body, double dt, bool new_step) {
-  body_ = &body;
+void ElasticParticipant::begin(double dt, bool new_step) {
   dt_ = dt;
-  x_ = &body.mutablePositions();
-  v_ = &body.mutableVelocities();
-  if (new_step) response_.begin(body);
+  x_ = &body_->mutablePositions();
+  v_ = &body_->mutableVelocities();
+  if (new_step) response_.begin(*body_);
   velocity_change_of_nodes_.setZero();
 }
 
-void ElasticParticipant::end(Body& body) {
+void ElasticParticipant::end() {
   *v_ += velocity_change_of_nodes_;
   *x_ += dt_ * velocity_change_of_nodes_;
-  body.addConstraintForces(velocity_change_of_nodes_);
+  body_->addConstraintForces(velocity_change_of_nodes_);
 }
 
 Eigen::Vector3d ElasticParticipant::position(const SurfacePoint& point) const {
