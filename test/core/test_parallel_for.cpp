@@ -2,8 +2,9 @@
 // that give the same bits on any number of threads (built with OpenMP, as the library is).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
-#include <cmath>
+#include <utility>
 #include <vector>
 
 #include "deformable_sim/core/base/parallel_for.h"

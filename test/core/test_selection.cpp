@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "deformable_sim/core/elements/box_mesh.h"
