@@ -130,10 +130,9 @@ TEST(DenseCholesky, WhatIsNotPositiveDefiniteIsReported) {
   EXPECT_FALSE(cholesky.factorize());
 }
 
-// factorize() promises false for a matrix that is not positive definite, but Eigen's LLT tests
-// each pivot with `x <= 0`, which a NaN passes: a matrix with a NaN on its diagonal is reported
-// factorized, and every solve then returns NaN.
-TEST(DenseCholesky, DISABLED_ANotANumberIsNotPositiveDefinite) {
+// Eigen's LLT tests each pivot with `x <= 0`, which a NaN passes: a matrix with a NaN on its
+// diagonal must still be refused, or every solve returns NaN.
+TEST(DenseCholesky, ANotANumberIsNotPositiveDefinite) {
   dc::DenseCholesky cholesky;
   fillLaplacian(cholesky, 3);
   cholesky.matrix()(1, 1) = std::numeric_limits<double>::quiet_NaN();

@@ -191,9 +191,9 @@ TEST(PreorderedLdlt, AZeroPivotIsReportedAndAShiftCuresIt) {
   EXPECT_NEAR(x[1], -1.0 / 3.0, 1e-15);
 }
 
-// The header promises "false if that failed (not definite)", but an LDL^T only fails on an exact
-// zero pivot: an indefinite, nonsingular matrix factorizes, and factorize() reports success.
-TEST(PreorderedLdlt, DISABLED_AnIndefiniteMatrixIsReportedAsNotDefinite) {
+// An LDL^T only fails on an exact zero pivot: an indefinite, nonsingular matrix factorizes, and
+// factorize() must still say it is not positive definite.
+TEST(PreorderedLdlt, AnIndefiniteMatrixIsReportedAsNotDefinite) {
   SymmetricMatrix a;
   a.size = 2;
   a.dense = Eigen::Matrix2d(Eigen::Vector2d(1.0, -1.0).asDiagonal());

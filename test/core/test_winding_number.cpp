@@ -228,16 +228,3 @@ TEST(WindingNumber, TheDipolesErrorFallsWithDistance) {
     previous = error;
   }
 }
-
-// The header says the dipole's relative error is "about the square of the ratio's inverse",
-// which holds for flat groups only: for a curved one it is first order, about 0.9 radius /
-// distance (1.1e-2 for this sheet seen whole from 80 radii, where the square is 1.6e-4), near 1/3
-// rather than 1/9 at kFarRatio.
-TEST(WindingNumber, DISABLED_TheDipolesRelativeErrorIsAboutTheSquareOfRadiusOverDistance) {
-  const dc::TriangleMesh sheet = hemisphere();
-  const dc::WindingNumber winding(sheet);
-  const double distance = 40.0, radius = 0.5;
-  const double exact = dc::exactWindingNumber(sheet, farBelow(distance));
-  EXPECT_NEAR(winding.at(farBelow(distance)) / exact, 1.0,
-              4.0 * (radius / distance) * (radius / distance));
-}

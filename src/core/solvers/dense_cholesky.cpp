@@ -74,7 +74,10 @@ void DenseCholesky::resize(int size) {
 
 bool DenseCholesky::factorize() {
   factor_.compute(matrix_);
-  if (factor_.info() != Eigen::Success) return false;
+  // Eigen refuses a pivot x <= 0, which a NaN passes: ask for > 0, which it does not.
+  if (factor_.info() != Eigen::Success || !(factor_.matrixLLT().diagonal().array() > 0.0).all()) {
+    return false;
+  }
   upper_.triangularView<Eigen::Upper>() = factor_.matrixLLT().transpose();
   inverse_diagonal_ = factor_.matrixLLT().diagonal().cwiseInverse();
   return true;

@@ -39,7 +39,9 @@ std::vector<int> PreorderedLdlt::setPattern(int size,
 bool PreorderedLdlt::factorize(double shift) {
   factorization_.setShift(shift);
   factorization_.refactorize(matrix_);
-  return factorization_.info() == Eigen::Success;
+  // LDL^T only fails on an exact zero pivot; a matrix that is not positive definite (or NaN)
+  // shows in D.
+  return factorization_.info() == Eigen::Success && factorization_.pivotsPositive();
 }
 
 void PreorderedLdlt::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {

@@ -31,8 +31,9 @@ class WindingNumber {
   /// their dipole, the rest exactly. Allocates nothing.
   double at(const Eigen::Vector3d& q) const;
 
-  /// At this distance over a group's radius the dipole's relative error, about the square of the
-  /// ratio's inverse, is small beside the margin of a threshold at 1/2.
+  /// At this distance over a group's radius the dipole's relative error (of the order of the
+  /// ratio's inverse for a curved group, its square for a flat one) stays within the margin of a
+  /// threshold at 1/2.
   static constexpr double kFarRatio = 3.0;
 
  private:

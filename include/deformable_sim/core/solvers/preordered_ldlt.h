@@ -29,7 +29,7 @@ class PreorderedLdlt {
   /// Entries of the factor L below its diagonal (known once the pattern is set).
   int factorNonZeros() const { return factorization_.nonZeros(); }
 
-  /// Factorizes A + shift I for the values written; false if that failed (not definite).
+  /// Factorizes A + shift I for the values written; false if it is not positive definite.
   bool factorize(double shift = 0.0);
 
   /// x = A^-1 b in the original order of the unknowns (x must not alias b).
@@ -43,6 +43,8 @@ class PreorderedLdlt {
       factorize_preordered<true>(upper);
     }
     int nonZeros() const { return static_cast<int>(m_matrix.nonZeros()); }
+    /// D > 0 (vectorD() would return a copy).
+    bool pivotsPositive() const { return (m_diag.array() > 0.0).all(); }
   };
 
   Eigen::SparseMatrix<double> matrix_;
