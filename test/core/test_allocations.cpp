@@ -15,34 +15,10 @@
 #include "deformable_sim/core/session/default_scene.h"
 #include "deformable_sim/core/session/simulation.h"
 #include "deformable_sim/core/surface_bodies/surface_body.h"
+#include "malloc_counter.h"
 #include "scene_builder.h"
 #include "simulation_test_helpers.h"
 #include "surface_test_helpers.h"
-
-// Every heap allocation of the process goes through malloc (operator new and Eigen both call it):
-// interpose it and count the calls, forwarding to glibc's own implementation.
-extern "C" {
-void* __libc_malloc(size_t size);
-void* __libc_calloc(size_t count, size_t size);
-void* __libc_realloc(void* p, size_t size);
-
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* malloc(size_t size) {
-  ++g_allocations;
-  return __libc_malloc(size);
-}
-void* calloc(size_t count, size_t size) {
-  ++g_allocations;
-  return __libc_calloc(count, size);
-}
-void* realloc(void* p, size_t size) {
-  ++g_allocations;
-  return __libc_realloc(p, size);
-}
-}
 
 namespace dc = deformable_sim::core;
 
@@ -66,12 +42,12 @@ dc::FiniteElementBody clampedBeam(double length, double young, const dc::BodyEff
 
 TEST(Allocations, NoneInAStepAfterTheFirst) {
   // Sanity check of the counter itself.
-  const long start = g_allocations.load();
+  const long start = deformable_sim::test::g_allocations.load();
   static void* volatile sink = nullptr;
   (void)sink;
   std::vector<double> probe(1000 + start % 2);
   sink = probe.data();
-  EXPECT_GT(g_allocations.load(), start);
+  EXPECT_GT(deformable_sim::test::g_allocations.load(), start);
   // The 99-node beam keeps its coarse system dense, the 825-node one sparse.
   for (auto [warping, threads, cells] : {std::tuple{true, 1, Eigen::Vector3i(10, 2, 2)},
                                          std::tuple{false, 1, Eigen::Vector3i(10, 2, 2)},
@@ -85,10 +61,10 @@ TEST(Allocations, NoneInAStepAfterTheFirst) {
     effects.damping = dc::RayleighDamping{0.1, 0.01};
     dc::FiniteElementBody body = clampedBeam(1.0, 1e5, effects, solver, cells);
     body.step(0.01);
-    const long before = g_allocations.load();
+    const long before = deformable_sim::test::g_allocations.load();
     int iterations = 0;
     for (int s = 0; s < 20; ++s) iterations += body.step(0.01).solve.iterations;
-    EXPECT_EQ(g_allocations.load() - before, 0)
+    EXPECT_EQ(deformable_sim::test::g_allocations.load() - before, 0)
         << "warping " << warping << ", threads " << threads << ", " << body.numNodes() << " nodes";
     EXPECT_GT(iterations, 0);  // the steps really solved something
   }
@@ -113,13 +89,13 @@ TEST(Allocations, NoneInStepsOfABodyFromASurfaceNorInItsEmbeddedSurface) {
   body.fixNodes(dc::selectNodes(body.mesh(), bottom));
   body.step(0.01);
   made.surface.update(body.positions());
-  const long before = g_allocations.load();
+  const long before = deformable_sim::test::g_allocations.load();
   int iterations = 0;
   for (int s = 0; s < 10; ++s) {
     iterations += body.step(0.01).solve.iterations;
     made.surface.update(body.positions());
   }
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(deformable_sim::test::g_allocations.load() - before, 0);
   EXPECT_GT(iterations, 0);
 }
 
@@ -139,9 +115,10 @@ TEST(Allocations, NoneInRefactorizations) {
     effects.gravity = Eigen::Vector3d(0, 0, -9.81);
     dc::FiniteElementBody body = clampedBeam(1.0, 1e5, effects, solver);
     body.step(0.01);
-    const long before = g_allocations.load();
+    const long before = deformable_sim::test::g_allocations.load();
     for (int s = 0; s < 10; ++s) EXPECT_TRUE(body.step(0.01).solve.converged);
-    EXPECT_EQ(g_allocations.load() - before, 0) << "method " << static_cast<int>(method);
+    EXPECT_EQ(deformable_sim::test::g_allocations.load() - before, 0)
+        << "method " << static_cast<int>(method);
     EXPECT_LT(body.positions().minCoeff(), -0.05 - 1e-4);  // the beam really sagged
   }
 }
@@ -161,7 +138,7 @@ TEST(Allocations, NoneInStepsSolvedAgainOrSplit) {
     tip.kind = dc::NodeSelection::Kind::kBox;
     tip.box = {{0.5 - 1e-9, -1, -1}, {0.5 + 1e-9, 1, 1}};
     const std::vector<int> end = dc::selectNodes(body.mesh(), tip);
-    const long before = g_allocations.load();
+    const long before = deformable_sim::test::g_allocations.load();
     for (int i : end) body.externalForces()[3 * i + 1] = 4.9e5 / end.size();
     int solves = 0, splits = 0;
     for (int s = 0; s < 10; ++s) {
@@ -170,7 +147,7 @@ TEST(Allocations, NoneInStepsSolvedAgainOrSplit) {
       splits += report.splits;
       if (s == 0) body.externalForces().setZero();
     }
-    EXPECT_EQ(g_allocations.load() - before, 0) << "threads " << threads;
+    EXPECT_EQ(deformable_sim::test::g_allocations.load() - before, 0) << "threads " << threads;
     EXPECT_GT(solves, 10);
     EXPECT_GT(splits, 0);
   }
@@ -197,9 +174,9 @@ TEST(Allocations, NoneWhenAGraspMovesEveryTick) {
     simulation.step(reports);
   };
   tick(1);
-  const long before = g_allocations.load();
+  const long before = deformable_sim::test::g_allocations.load();
   for (int s = 2; s <= 20; ++s) tick(s);
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(deformable_sim::test::g_allocations.load() - before, 0);
   const dc::Body& body = simulation.bodies()[0];
   const int node = commands.grasps().at("gripper").nodes[0];
   EXPECT_NEAR(body.positions()[3 * node + 2] - body.restPositions()[3 * node + 2], 0.02, 1e-9);
@@ -234,13 +211,13 @@ TEST(Allocations, NoneInContactWithAMeshObstacle) {
   dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
   std::vector<dc::StepReport> reports;
   for (int s = 0; s < 5; ++s) sim.step(reports);  // it lands: contacts exist from here on
-  const long before = g_allocations.load();
+  const long before = deformable_sim::test::g_allocations.load();
   int contacts = 0;
   for (int s = 0; s < 20; ++s) {
     sim.step(reports);
     contacts += reports[0].contacts;
   }
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(deformable_sim::test::g_allocations.load() - before, 0);
   EXPECT_GT(contacts, 0);
 }
 
@@ -264,14 +241,14 @@ TEST(Allocations, NoneInContactOfSurfacesWithAnObstacleAndEachOther) {
   std::vector<dc::StepReport> reports;
   for (int s = 0; s < 10; ++s) sim.step(reports);  // they land: contacts exist from here on
   ASSERT_GT(reports[1].body_contacts, 0);
-  const long before = g_allocations.load();
+  const long before = deformable_sim::test::g_allocations.load();
   int contacts = 0, body_contacts = 0;
   for (int s = 0; s < 20; ++s) {
     sim.step(reports);
     contacts += reports[0].contacts;
     body_contacts += reports[1].body_contacts;
   }
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(deformable_sim::test::g_allocations.load() - before, 0);
   EXPECT_GT(contacts, 0);
   EXPECT_GT(body_contacts, 0);
 }
@@ -301,9 +278,9 @@ TEST(Allocations, NoneInContactBetweenBodies) {
     std::vector<dc::StepReport> reports;
     for (int s = 0; s < 20; ++s) simulation.step(reports);
     ASSERT_GT(reports[1].body_contacts, 0);
-    const long before = g_allocations.load();
+    const long before = deformable_sim::test::g_allocations.load();
     for (int s = 0; s < 20; ++s) simulation.step(reports);
-    EXPECT_EQ(g_allocations.load() - before, 0);
+    EXPECT_EQ(deformable_sim::test::g_allocations.load() - before, 0);
     EXPECT_GT(reports[1].body_contacts, 0);
   }
 }

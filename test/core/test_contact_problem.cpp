@@ -14,31 +14,7 @@
 #include <vector>
 
 #include "deformable_sim/core/contact/contact_problem.h"
-
-// Every heap allocation of this test binary goes through malloc: counted here (no other file of
-// the binary interposes it).
-extern "C" {
-void* __libc_malloc(size_t size);
-void* __libc_calloc(size_t count, size_t size);
-void* __libc_realloc(void* p, size_t size);
-
-namespace {
-std::atomic<long> g_contact_problem_allocations{0};
-}  // namespace
-
-void* malloc(size_t size) {
-  ++g_contact_problem_allocations;
-  return __libc_malloc(size);
-}
-void* calloc(size_t count, size_t size) {
-  ++g_contact_problem_allocations;
-  return __libc_calloc(count, size);
-}
-void* realloc(void* p, size_t size) {
-  ++g_contact_problem_allocations;
-  return __libc_realloc(p, size);
-}
-}
+#include "malloc_counter.h"
 
 namespace dc = deformable_sim::core;
 
@@ -372,11 +348,11 @@ TEST(ContactProblem, ASolveWithinTheReserveAllocatesNothingAndRepeatsItsBits) {
   problem.reserve(10, 45);
   scene.fill(problem);  // a first problem of that size, to warm anything lazy
   problem.solve(tight(200));
-  const long before = g_contact_problem_allocations.load();
+  const long before = deformable_sim::test::g_allocations.load();
   scene.fill(problem);
   const dc::ContactSolveReport first = problem.solve(tight(200));
   std::vector<Eigen::Vector3d> impulses;
-  const long after = g_contact_problem_allocations.load();
+  const long after = deformable_sim::test::g_allocations.load();
   EXPECT_EQ(after, before);
   for (int i = 0; i < problem.size(); ++i) impulses.push_back(problem.impulse(i));
   scene.fill(problem);

@@ -57,6 +57,13 @@ void writeValues(dc::PreorderedLdlt& ldlt, const SymmetricMatrix& a, const Eigen
   }
 }
 
+// Gives `ldlt` a's pattern and values; returns where each entry's value went.
+std::vector<int> load(dc::PreorderedLdlt& ldlt, const SymmetricMatrix& a) {
+  const std::vector<int> value_of_entry = ldlt.setPattern(a.size, a.entries);
+  writeValues(ldlt, a, a.dense, value_of_entry);
+  return value_of_entry;
+}
+
 Eigen::VectorXd ramp(int size) {
   Eigen::VectorXd b(size);
   for (int i = 0; i < size; ++i) b[i] = 1.0 + 0.37 * i - 0.01 * i * i;
@@ -100,8 +107,7 @@ TEST(PreorderedLdlt, EachSymmetricPairOfEntriesHasOneStoredValue) {
 TEST(PreorderedLdlt, SolvesInTheCallersOrderAsTheDenseMatrixDoes) {
   const SymmetricMatrix a = gridLaplacian(6, 5, 0.1);
   dc::PreorderedLdlt ldlt;
-  const std::vector<int> value_of_entry = ldlt.setPattern(a.size, a.entries);
-  writeValues(ldlt, a, a.dense, value_of_entry);
+  const std::vector<int> value_of_entry = load(ldlt, a);
   ASSERT_TRUE(ldlt.factorize());
   const Eigen::VectorXd b = ramp(a.size);
   Eigen::VectorXd x(a.size);
@@ -114,8 +120,7 @@ TEST(PreorderedLdlt, SolvesInTheCallersOrderAsTheDenseMatrixDoes) {
 TEST(PreorderedLdlt, TheShiftAddsToEveryDiagonalEntry) {
   const SymmetricMatrix a = gridLaplacian(4, 4, 0.0);
   dc::PreorderedLdlt ldlt;
-  const std::vector<int> value_of_entry = ldlt.setPattern(a.size, a.entries);
-  writeValues(ldlt, a, a.dense, value_of_entry);
+  const std::vector<int> value_of_entry = load(ldlt, a);
   const double shift = 2.5;
   ASSERT_TRUE(ldlt.factorize(shift));
   const Eigen::VectorXd b = ramp(a.size);
@@ -133,8 +138,7 @@ TEST(PreorderedLdlt, TheShiftAddsToEveryDiagonalEntry) {
 TEST(PreorderedLdlt, RefactorizingWithNewValuesSolvesTheNewMatrix) {
   const SymmetricMatrix a = gridLaplacian(5, 3, 0.0);
   dc::PreorderedLdlt ldlt;
-  const std::vector<int> value_of_entry = ldlt.setPattern(a.size, a.entries);
-  writeValues(ldlt, a, a.dense, value_of_entry);
+  const std::vector<int> value_of_entry = load(ldlt, a);
   ASSERT_TRUE(ldlt.factorize());
   // Same pattern, other values: the off-diagonal couplings halved, the diagonal weighted.
   Eigen::MatrixXd second = 0.5 * a.dense;
