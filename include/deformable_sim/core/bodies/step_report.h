@@ -32,7 +32,8 @@ struct StepReport {
   /// energy (SolverSettings::max_rotation_updates).
   int solves = 0;
   /// Times the step (or a part of it) was split in two halves because those solves did not
-  /// settle; at most Body::kMaxSplits deep and Body::kMaxSolves solves in all.
+  /// settle; at most FiniteElementBody::kMaxSplits deep and FiniteElementBody::kMaxSolves solves in
+  /// all.
   int splits = 0;
   /// Largest angle an element turned from the last solve's rotations to the step's end, rad.
   double largest_rotation_change = 0.0;
