@@ -9,6 +9,7 @@
 #include "deformable_sim/core/elements/box_mesh.h"
 #include "deformable_sim/core/elements/selection.h"
 #include "deformable_sim/core/outputs/strain.h"
+#include "thrown_message.h"
 
 namespace dc = deformable_sim::core;
 using deformable_sim::test::momentum;
@@ -163,6 +164,18 @@ TEST(Body, FixingAndReleasingAtRunTimeKeepsThePattern) {
   EXPECT_EQ(body.reactionForces().norm(), 0.0);
   EXPECT_EQ(body.elasticity().stiffness().numBlocks(), blocks);
   EXPECT_EQ(body.elasticity().stiffness().blocks().data(), storage);
+}
+
+TEST(Body, AHoldOnANodeOutOfRangeIsRefusedAndChangesNothing) {
+  dc::FiniteElementBody body = makeBeam(true, std::nullopt);
+  const int n = body.numNodes();
+  for (const std::vector<int>& nodes : {std::vector<int>{0, -1}, std::vector<int>{n}}) {
+    const std::string refused = deformable_sim::test::thrownMessage<std::invalid_argument>(
+        [&] { body.fixNodes(nodes); }, "an index out of range was taken");
+    EXPECT_EQ(refused, "body 'beam': node index " + std::to_string(nodes.back()) + " out of range");
+    EXPECT_EQ(numConstrained(body), 0);
+  }
+  EXPECT_THROW(body.releaseNodes({n + 7}), std::invalid_argument);
 }
 
 TEST(Body, TargetsDragTheNodesExactlyThere) {

@@ -176,7 +176,10 @@ StaticReport Body::solveStatic(const StaticSettings& settings) {
 
 void Body::fixNodes(const std::vector<int>& nodes) {
   std::vector<Eigen::Vector3d> here;
-  for (int i : nodes) here.emplace_back(positions().segment<3>(3 * i));
+  for (int i : nodes) {  // an index out of range is refused by setNodeTargets, not read
+    here.emplace_back(i >= 0 && i < numNodes() ? Eigen::Vector3d(positions().segment<3>(3 * i))
+                                               : Eigen::Vector3d::Zero());
+  }
   setNodeTargets(nodes, here);
 }
 
