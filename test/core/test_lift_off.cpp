@@ -1,0 +1,106 @@
+// Contact only pushes: a plate that presses a foam cube on a table and lifts away leaves the cube
+// where it was, and while it rises the force it exerts on the cube never pulls it up.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "body_meters.h"
+#include "deformable_sim/core/session/simulation.h"
+#include "scene_builder.h"
+#include "simulation_test_helpers.h"
+
+namespace dc = deformable_sim::core;
+using deformable_sim::test::centreOfMass;
+
+namespace {
+
+constexpr double kSide = 0.06;    // m, the cube
+constexpr double kPress = 0.003;  // m the plate goes below the cube's top
+constexpr double kPlate = 0.01;   // m, the plate's thickness
+constexpr double kRaise = 0.02;   // m the plate rises above the cube's top
+
+struct LiftOff {
+  double settled = 0.0;     ///< the cube's centre of mass before the plate comes, m
+  double end = 0.0;         ///< where it is at the end, m
+  double largest_pull = 0;  ///< the largest upward force of the plate on the cube, N
+  double pressing = 0.0;    ///< the plate's push while it presses, N
+};
+
+LiftOff pressAndLift(double friction, double plate_width, int lift_steps) {
+  dc::SceneSpec spec = deformable_sim::test::SceneBuilder()
+                           .dt(0.01)
+                           .gravity(9.81)
+                           .warped()
+                           .damping(2.0, 0.002)
+                           .contact(friction)
+                           .floor({0.4, 0.4, 0.04}, "table");
+  dc::PlacedShape plate;
+  plate.name = "plate";
+  plate.shape.kind = dc::Shape::Kind::kBox;
+  plate.shape.size = Eigen::Vector3d(plate_width, plate_width, kPlate);
+  const auto plateAt = [&](double bottom) {
+    plate.pose.translation() = Eigen::Vector3d(0, 0, bottom + 0.5 * kPlate);
+    return plate;
+  };
+  spec.obstacles.push_back(plateAt(kSide + kRaise));
+  dc::BodySpec cube;
+  cube.name = "cube";
+  cube.box_mesh = dc::BoxMeshSpec{
+      {-0.5 * kSide, -0.5 * kSide, 0.0}, {0.5 * kSide, 0.5 * kSide, kSide}, {4, 4, 4}};
+  cube.material = {3.0e4, 0.3, 150.0};
+  spec.bodies.push_back(cube);
+  dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+  std::vector<dc::StepReport> reports;
+  for (int s = 0; s < 100; ++s) sim.step(reports);  // the cube settles on the table
+  LiftOff run;
+  run.settled = centreOfMass(sim.bodies()[0]).z();
+  const double top = kSide - 0.001;  // about where the settled cube's top is
+  const auto movePlate = [&](double bottom) { sim.obstacles()[1] = plateAt(bottom); };
+  for (int s = 1; s <= 50; ++s) {  // down to kPress into the cube in 0.5 s, and held 0.2 s
+    movePlate(top + kRaise - (kRaise + kPress) * s / 50.0);
+    sim.step(reports);
+  }
+  for (int s = 0; s < 20; ++s) sim.step(reports);
+  run.pressing = -sim.obstacleContacts(0)[1].force.z();
+  for (int s = 1; s <= 150; ++s) {  // up and away in lift_steps, then on to 1.5 s
+    if (s <= lift_steps) movePlate(top - kPress + (kRaise + kPress) * s / lift_steps);
+    sim.step(reports);
+    run.largest_pull = std::max(run.largest_pull, sim.obstacleContacts(0)[1].force.z());
+  }
+  run.end = centreOfMass(sim.bodies()[0]).z();
+  return run;
+}
+
+// What the plate leaves: the cube back where it settled (its rebound may throw it up for a while:
+// foam pressed 3 mm stores enough to jump), and never a pull on it while the plate rises.
+void expectLeftWhereItWas(double friction, double width, int lift_steps) {
+  const LiftOff run = pressAndLift(friction, width, lift_steps);
+  const std::string what = "friction " + std::to_string(friction) + ", plate " +
+                           std::to_string(width) + " m, lift in " + std::to_string(lift_steps) +
+                           " steps";
+  EXPECT_GT(run.pressing, 1.0) << what << ": the plate did not press";
+  EXPECT_LT(std::abs(run.end - run.settled), 0.001) << what;
+  EXPECT_LE(run.largest_pull, 1e-9) << what;
+}
+
+}  // namespace
+
+TEST(LiftOff, APlateWiderThanTheCubeLiftsAwayWithoutIt) {
+  for (double friction : {0.5, 1.0}) {
+    for (int lift_steps : {50, 5, 1}) expectLeftWhereItWas(friction, 0.1, lift_steps);
+  }
+}
+
+// [contact-space] reports it: a plate narrower than the cube's top sinks into it and, lifting away,
+// carries the cube with it. Measured: a 3 cm plate pressed 3 mm into the 6 cm foam cube and
+// raised 2.3 cm in 0.5 s leaves it 2.1 cm up at μ = 1.0 (a pull of 0.67 N on a cube of 0.32 N),
+// and in 0.05 s 2.4 cm up at μ = 0.5 and 2.5 cm at μ = 1.0 (pulls up to 2.7 N). The plate's
+// sides stand on a column of nodes (1.5 cm cells): pressed in, those nodes are put back onto its
+// side walls, squeeze them, and friction holds them there as the plate rises.
+TEST(LiftOff, DISABLED_APlateNarrowerThanTheCubeLiftsAwayWithoutIt) {
+  for (double friction : {0.5, 1.0}) {
+    for (int lift_steps : {50, 5, 1}) expectLeftWhereItWas(friction, 0.03, lift_steps);
+  }
+}
