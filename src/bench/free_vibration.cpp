@@ -22,7 +22,7 @@ const std::vector<Eigen::Vector3d>& releasedShape(const std::string& mesh, Bench
   const ReferenceBeam& beam = context.beam(mesh);
   core::SolverSettings direct;
   direct.method = core::SolverSettings::Method::kDirect;
-  core::FiniteElementBody body = beam.makeBody(core::BodyEffects{}, direct);
+  core::FiniteElementBody body = beam.makeBeamBody(core::BodyEffects{}, direct);
   beam.applyTipLoad(body, kReleasedLoad);
   body.solveStatic(core::StaticSettings{});
   for (int i = 0; i < body.numNodes(); ++i) shape.emplace_back(body.positions().segment<3>(3 * i));
@@ -41,7 +41,7 @@ void simulateRelease(const BenchSetting& setting, const ReferenceBeam& beam,
   core::BodyEffects effects;
   effects.warping = setting.warping;
   const std::size_t heap_before = liveHeapBytes();
-  core::FiniteElementBody body = beam.makeBody(effects, setting.solver);
+  core::FiniteElementBody body = beam.makeBeamBody(effects, setting.solver);
   body.setState(positions, Eigen::VectorXd::Zero(positions.size()));
   tip_uz.push_back(beam.tipDisplacement(body).z());
   for (long tick = 1; tick <= ticks; ++tick) {

@@ -128,8 +128,8 @@ ReferenceBeam::ReferenceBeam(const std::string& reference_dir, const std::string
   }
 }
 
-core::FiniteElementBody ReferenceBeam::makeBody(const core::BodyEffects& effects,
-                                                const core::SolverSettings& solver) const {
+core::FiniteElementBody ReferenceBeam::makeBeamBody(const core::BodyEffects& effects,
+                                                    const core::SolverSettings& solver) const {
   core::FiniteElementBody body(id_, mesh_, referenceMaterial(), effects, solver);
   body.fixNodes(clamp_);
   return body;

@@ -46,7 +46,7 @@ core::FiniteElementBody solveUnderTipLoad(const BenchSetting& setting, const Ref
   core::BodyEffects effects;
   effects.warping = setting.warping;
   const std::size_t heap_before = liveHeapBytes();
-  core::FiniteElementBody body = beam.makeBody(effects, setting.solver);
+  core::FiniteElementBody body = beam.makeBeamBody(effects, setting.solver);
   beam.applyTipLoad(body, load);
   solveTimed(body, statics, run);
   run.memory_bytes = liveHeapBytes() - heap_before;

@@ -34,7 +34,7 @@ TipPath simulate(const ReferenceBeam& beam, bool warping, const core::SolverSett
   core::BodyEffects effects;
   effects.warping = warping;
   const std::size_t heap_before = liveHeapBytes();
-  core::FiniteElementBody body = beam.makeBody(effects, solver);
+  core::FiniteElementBody body = beam.makeBeamBody(effects, solver);
   beam.applyTipLoad(body, largeDeflectionLoad(kLoadAlpha));
   for (int sample = 0; sample < kSamples; ++sample) {
     for (long tick = 0; tick < ticks; ++tick) {

@@ -17,7 +17,7 @@ Cantilever makeCantilever(const Eigen::Vector3i& cells) {
   return c;
 }
 
-core::FiniteElementBody makeBody(const Cantilever& cantilever) {
+core::FiniteElementBody makeCantileverBody(const Cantilever& cantilever) {
   core::FiniteElementBody body("cantilever", cantilever.mesh, cantilever.material,
                                cantilever.effects, cantilever.solver);
   body.fixNodes(cantilever.clamped);

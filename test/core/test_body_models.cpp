@@ -352,7 +352,9 @@ TEST(RigidBody, NewMaterialKeepsTheVelocitiesAndTheNodesFollow) {
   const double energy = body.kineticEnergy();
   dc::LinearElasticMaterial heavier = kSteelish;
   heavier.density *= 3.0;
-  body.tune(dc::BodyTuning{heavier, std::nullopt, std::nullopt, std::nullopt});
+  dc::BodyTuning tuning;
+  tuning.material = heavier;
+  body.tune(tuning);
   EXPECT_LT((body.reduced().angularVelocity() - Eigen::Vector3d(3, 1, 2)).norm(), 1e-12);
   EXPECT_LT((body.velocities() - v).norm(), 1e-12);
   EXPECT_NEAR(body.kineticEnergy(), 3.0 * energy, 1e-12 * energy);

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "deformable_sim/core/elements/mesh.h"
 #include "deformable_sim/core/geometry/triangle_aabb_tree.h"
@@ -50,13 +51,23 @@ double edgeDepth(const dc::Body& body, const dc::PlacedShape& bar) {
   return deepest;
 }
 
-}  // namespace
+dc::PlacedShape edgeFirstBar() {
+  dc::PlacedShape bar;
+  bar.name = "bar";
+  bar.shape.kind = dc::Shape::Kind::kBox;
+  bar.shape.size = Eigen::Vector3d(kBar, 0.08, kBar);
+  bar.pose.linear() = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  return bar;
+}
 
-// [contact-space] reports that the edges and corners of box obstacles sink about 1 mm into a
-// body's faces, unseen by contact that looks only at the body's points. Here the edge comes down
-// between two columns of nodes, 5 mm from each: the bar feels nothing and its edge ends 3.96 mm
-// inside the cube (the whole 4 mm it was pressed), until contact looks at the obstacle's features.
-TEST(ObstacleEdges, DISABLED_ABoxPressedEdgeFirstStaysOutOfTheFaceBetweenNodes) {
+// The bar with its lower edge at `edge_height`, along y, 5 mm off the cube's middle: half way
+// between two columns of nodes.
+dc::PlacedShape barAt(dc::PlacedShape bar, double edge_height) {
+  bar.pose.translation() = Eigen::Vector3d(0.005, 0.0, edge_height + std::sqrt(0.5) * kBar);
+  return bar;
+}
+
+dc::SceneSpec cubeUnderABar() {
   dc::SceneSpec spec = deformable_sim::test::SceneBuilder()
                            .dt(0.01)
                            .gravity(9.81)
@@ -64,28 +75,36 @@ TEST(ObstacleEdges, DISABLED_ABoxPressedEdgeFirstStaysOutOfTheFaceBetweenNodes) 
                            .damping(2.0, 0.002)
                            .contact(0.5)
                            .floor({0.4, 0.4, 0.04}, "table");
-  dc::PlacedShape bar;
-  bar.name = "bar";
-  bar.shape.kind = dc::Shape::Kind::kBox;
-  bar.shape.size = Eigen::Vector3d(kBar, 0.08, kBar);
-  bar.pose.linear() = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitY()).toRotationMatrix();
-  // The edge along y, 5 mm off the cube's middle: half way between two columns of nodes.
-  const auto barAt = [&](double edge_height) {
-    bar.pose.translation() = Eigen::Vector3d(0.005, 0.0, edge_height + std::sqrt(0.5) * kBar);
-    return bar;
-  };
-  spec.obstacles.push_back(barAt(kSide + 0.01));
+  spec.obstacles.push_back(barAt(edgeFirstBar(), kSide + 0.01));
   dc::BodySpec cube;
   cube.name = "cube";
   cube.box_mesh = dc::BoxMeshSpec{
       {-0.5 * kSide, -0.5 * kSide, 0.0}, {0.5 * kSide, 0.5 * kSide, kSide}, {4, 4, 4}};
   cube.material = {3.0e4, 0.3, 150.0};
   spec.bodies.push_back(cube);
-  dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+  return spec;
+}
+
+}  // namespace
+
+TEST(ObstacleEdges, TheMeterReadsHowDeepAnEdgeIsInAnUndeformedCube) {
+  // The meter the next test relies on: an edge 4 mm below the top of a cube at rest is 4 mm
+  // inside; 1 mm above it, out.
+  const dc::Simulation sim = deformable_sim::test::boxMeshSimulation(cubeUnderABar());
+  EXPECT_NEAR(edgeDepth(sim.bodies()[0], barAt(edgeFirstBar(), kSide - 0.004)), 0.004, 1e-12);
+  EXPECT_EQ(edgeDepth(sim.bodies()[0], barAt(edgeFirstBar(), kSide + 0.001)), 0.0);
+}
+
+// [contact-space] reports that the edges and corners of box obstacles sink about 1 mm into a
+// body's faces, unseen by contact that looks only at the body's points. Here the edge comes down
+// between two columns of nodes, 5 mm from each: the bar feels nothing and its edge ends 3.96 mm
+// inside the cube (the whole 4 mm it was pressed), until contact looks at the obstacle's features.
+TEST(ObstacleEdges, DISABLED_ABoxPressedEdgeFirstStaysOutOfTheFaceBetweenNodes) {
+  dc::Simulation sim = deformable_sim::test::boxMeshSimulation(cubeUnderABar());
   std::vector<dc::StepReport> reports;
   for (int s = 0; s < 50; ++s) sim.step(reports);
   for (int s = 1; s <= 50; ++s) {  // the edge comes down to 4 mm below the top in 0.5 s
-    sim.obstacles()[1] = barAt(kSide + 0.01 - 0.014 * s / 50.0);
+    sim.obstacles()[1] = barAt(edgeFirstBar(), kSide + 0.01 - 0.014 * s / 50.0);
     sim.step(reports);
   }
   for (int s = 0; s < 20; ++s) sim.step(reports);

@@ -25,7 +25,7 @@ std::vector<int> tipNodes(const core::Mesh& mesh) {
 }
 
 double coreTipSag(const perf::Cantilever& cantilever) {
-  core::FiniteElementBody body = perf::makeBody(cantilever);
+  core::FiniteElementBody body = perf::makeCantileverBody(cantilever);
   const core::StaticReport report = body.solveStatic({});
   EXPECT_TRUE(report.converged);
   double sum = 0.0;

@@ -42,8 +42,8 @@ class ReferenceBeam {
   const core::Mesh& mesh() const { return mesh_; }
 
   /// A body on this mesh with the reference material, its clamp fixed.
-  core::FiniteElementBody makeBody(const core::BodyEffects& effects,
-                                   const core::SolverSettings& solver) const;
+  core::FiniteElementBody makeBeamBody(const core::BodyEffects& effects,
+                                       const core::SolverSettings& solver) const;
 
   /// Sets the body's external forces to a total tip load of `load_n` newtons in -z, spread over
   /// the tip nodes by the reference's consistent shares (nodal force = -P weight).

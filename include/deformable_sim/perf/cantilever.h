@@ -23,6 +23,6 @@ struct Cantilever {
 Cantilever makeCantilever(const Eigen::Vector3i& cells);
 
 /// A body of the cantilever with its clamp applied, at rest.
-core::FiniteElementBody makeBody(const Cantilever& cantilever);
+core::FiniteElementBody makeCantileverBody(const Cantilever& cantilever);
 
 }  // namespace deformable_sim::perf

@@ -207,10 +207,12 @@ void Body::setNodeTargets(const std::vector<int>& nodes,
 }
 
 void Body::releaseNodes(const std::vector<int>& nodes) {
-  for (int i : nodes) {
+  for (int i : nodes) {  // all checked first: a refused release lets none go
     if (i < 0 || i >= numNodes()) {
       throw std::invalid_argument(where() + "node index " + std::to_string(i) + " out of range");
     }
+  }
+  for (int i : nodes) {
     if (constrained_[i]) holdChanged(i, false);
     constrained_[i] = 0;
     reaction_.segment<3>(3 * i).setZero();

@@ -54,7 +54,7 @@ std::unique_ptr<ContactParticipant> FiniteElementBody::contactParticipant() {
 void FiniteElementBody::changeMaterial(const LinearElasticMaterial& material) {
   elasticity_.setMaterial(material);
   stiffness_current_ = false;
-  matrix_changed_ = true;
+  matrixChanged();
   cg_.clearPreviousSolutions();
 }
 
@@ -62,6 +62,7 @@ void FiniteElementBody::assignState(const Eigen::VectorXd& positions,
                                     const Eigen::VectorXd& velocities) {
   x_ = positions;
   v_ = velocities;
+  response_factored_ = false;
   restartWarmStart();
   rotations_current_ = false;
 }
@@ -69,6 +70,7 @@ void FiniteElementBody::assignState(const Eigen::VectorXd& positions,
 bool FiniteElementBody::stateIsFinite() const { return x_.allFinite() && v_.allFinite(); }
 
 void FiniteElementBody::undoStep() {
+  response_factored_ = false;
   reaction_.setZero();  // of the undone step
   x_ = step_start_;
   v_.setZero();
@@ -77,13 +79,13 @@ void FiniteElementBody::undoStep() {
 }
 
 void FiniteElementBody::holdNodeAt(int node, const Eigen::Vector3d& target) {
-  if (!constrained_[node]) matrix_changed_ = true;
+  if (!constrained_[node]) matrixChanged();
   constrained_[node] = 1;
   targets_.segment<3>(3 * node) = target;
 }
 
 void FiniteElementBody::releaseNode(int node) {
-  if (constrained_[node]) matrix_changed_ = true;
+  if (constrained_[node]) matrixChanged();
   constrained_[node] = 0;
   reaction_.segment<3>(3 * node).setZero();
 }
@@ -95,7 +97,7 @@ void FiniteElementBody::holdNodeOnPlane(int node, const Eigen::Vector3d& normal,
   hold.normal = normal;
   hold.offset = normal.dot(target);
   plane_holds_.push_back(hold);
-  matrix_changed_ = true;
+  matrixChanged();
 }
 
 void FiniteElementBody::addStepForce(int node, const Eigen::Vector3d& force) {
@@ -104,7 +106,7 @@ void FiniteElementBody::addStepForce(int node, const Eigen::Vector3d& force) {
 }
 
 void FiniteElementBody::releasePlaneHolds() {
-  if (!plane_holds_.empty()) matrix_changed_ = true;
+  if (!plane_holds_.empty()) matrixChanged();
   for (const PlaneHold& hold : plane_holds_) reaction_.segment<3>(3 * hold.node).setZero();
   plane_holds_.clear();
   if (has_step_forces_) step_forces_.setZero();

@@ -152,8 +152,11 @@ void Resimulation::apply(const AppliedCommand& applied) {
 
 void Resimulation::overrideSolver() {
   if (!solver_.tolerance && !solver_.max_iterations) return;
+  BodyTuning limits;
+  limits.solver_tolerance = solver_.tolerance;
+  limits.solver_max_iterations = solver_.max_iterations;
   for (Body& body : session_.simulation().bodies()) {
-    body.tune(BodyTuning{std::nullopt, std::nullopt, solver_.tolerance, solver_.max_iterations});
+    body.tune(limits);
   }
 }
 

@@ -98,8 +98,11 @@ int Session::applyTune(const TuneCommand& command) {
   if (command.dt && !(*command.dt > 0.0 && std::isfinite(*command.dt))) {
     throw CommandError("tune: dt must be finite and > 0 s");
   }
-  const BodyTuning tuning{command.material, command.damping, command.solver_tolerance,
-                          command.solver_max_iterations};
+  BodyTuning tuning;
+  tuning.material = command.material;
+  tuning.damping = command.damping;
+  tuning.solver_tolerance = command.solver_tolerance;
+  tuning.solver_max_iterations = command.solver_max_iterations;
   for (Body* body : bodies) body->tune(tuning);
   if (command.dt) simulation_->setDt(*command.dt);
   return 0;

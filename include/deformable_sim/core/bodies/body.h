@@ -1,8 +1,9 @@
 // A body of a scene as everything above the bodies sees it: its mesh and settings, its state,
 // the nodes it holds and the loads on it, its step and static solve, and how it answers an
 // impulse within a step. Each model is one class behind this interface, made by makeBody(), the
-// one place that looks at a body's model: finite elements (core/bodies/finite_element_body.h)
-// and the reduced rigid and pseudo-rigid bodies (core/bodies/reduced_body.h).
+// one place that picks a body's class: finite elements (core/bodies/finite_element_body.h) and
+// the reduced rigid and pseudo-rigid bodies (core/bodies/reduced_body.h), which tell their two
+// kinds of coordinates apart themselves.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,5 +1,6 @@
 // The bodies of a simulation, each of its own model, in scene order. Each stays where it was made
-// (contact keeps pointers to them); indexing and iteration give the bodies themselves.
+// (contact keeps pointers to them); indexing and iteration give the bodies themselves. Only the
+// simulation adds bodies, while it is built: what contact sized for them stays right.
 #pragma once
 
 #include <cstddef>
@@ -10,6 +11,8 @@
 #include "deformable_sim/core/bodies/body.h"
 
 namespace deformable_sim::core {
+
+class Simulation;
 
 class BodyList {
   using Owned = std::vector<std::unique_ptr<Body>>;
@@ -42,9 +45,6 @@ class BodyList {
   using iterator = Iterator<Body, Owned::const_iterator>;
   using const_iterator = Iterator<const Body, Owned::const_iterator>;
 
-  void reserve(size_t count) { bodies_.reserve(count); }
-  Body& add(std::unique_ptr<Body> body) { return *bodies_.emplace_back(std::move(body)); }
-
   size_t size() const { return bodies_.size(); }
   bool empty() const { return bodies_.empty(); }
   Body& operator[](size_t i) { return *bodies_[i]; }
@@ -60,6 +60,10 @@ class BodyList {
   const_iterator end() const { return const_iterator(bodies_.cend()); }
 
  private:
+  friend class Simulation;
+  void reserve(size_t count) { bodies_.reserve(count); }
+  Body& add(std::unique_ptr<Body> body) { return *bodies_.emplace_back(std::move(body)); }
+
   Owned bodies_;
 };
 

@@ -84,9 +84,15 @@ class FiniteElementBody : public Body {
   void changeMaterial(const LinearElasticMaterial& material) override;
   void assignState(const Eigen::VectorXd& positions, const Eigen::VectorXd& velocities) override;
   StaticReport solveStaticChecked(const StaticSettings& settings) override;
-  void holdChanged(int, bool) override { matrix_changed_ = true; }
+  void holdChanged(int, bool) override { matrixChanged(); }
 
  private:
+  /// The step's matrix is another from now on: the direct solver and solveLastStep factorize
+  /// it again when next asked.
+  void matrixChanged() {
+    matrix_changed_ = true;
+    response_factored_ = false;
+  }
   /// Updates rotations, K' and f0' from the current positions when they can have changed;
   /// adds the time of each half to `times` when given. Returns the inverted elements at x_.
   int updateStiffness(StepTimes* times = nullptr);
