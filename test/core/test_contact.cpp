@@ -21,13 +21,7 @@ namespace {
 // z = 0 (obstacle "table"), under gravity, lightly damped, with contact and friction 0.5.
 dc::SceneSpec blockAboveATable(double thickness, const dc::BoxMeshSpec& block_mesh,
                                const dc::LinearElasticMaterial& material) {
-  dc::SceneSpec spec = deformable_sim::test::SceneBuilder()
-                           .dt(0.01)
-                           .gravity(9.81)
-                           .warped()
-                           .damping(2.0, 0.002)
-                           .contact(0.5)
-                           .floor({1.0, 1.0, thickness}, "table");
+  dc::SceneSpec spec = deformable_sim::test::dampedTable(0.5, {1.0, 1.0, thickness});
   dc::BodySpec block;
   block.name = "block";
   block.box_mesh = block_mesh;

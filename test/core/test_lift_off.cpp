@@ -30,13 +30,7 @@ struct LiftOff {
 };
 
 LiftOff pressAndLift(double friction, double plate_width, int lift_steps) {
-  dc::SceneSpec spec = deformable_sim::test::SceneBuilder()
-                           .dt(0.01)
-                           .gravity(9.81)
-                           .warped()
-                           .damping(2.0, 0.002)
-                           .contact(friction)
-                           .floor({0.4, 0.4, 0.04}, "table");
+  dc::SceneSpec spec = deformable_sim::test::dampedTable(friction, {0.4, 0.4, 0.04});
   dc::PlacedShape plate;
   plate.name = "plate";
   plate.shape.kind = dc::Shape::Kind::kBox;
@@ -46,12 +40,9 @@ LiftOff pressAndLift(double friction, double plate_width, int lift_steps) {
     return plate;
   };
   spec.obstacles.push_back(plateAt(kSide + kRaise));
-  dc::BodySpec cube;
-  cube.name = "cube";
-  cube.box_mesh = dc::BoxMeshSpec{
-      {-0.5 * kSide, -0.5 * kSide, 0.0}, {0.5 * kSide, 0.5 * kSide, kSide}, {4, 4, 4}};
-  cube.material = {3.0e4, 0.3, 150.0};
-  spec.bodies.push_back(cube);
+  spec.bodies.push_back(deformable_sim::test::boxBody("cube", {-0.5 * kSide, -0.5 * kSide, 0.0},
+                                                      {0.5 * kSide, 0.5 * kSide, kSide}, {4, 4, 4},
+                                                      {3.0e4, 0.3, 150.0}));
   dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
   std::vector<dc::StepReport> reports;
   for (int s = 0; s < 100; ++s) sim.step(reports);  // the cube settles on the table

@@ -68,20 +68,11 @@ dc::PlacedShape barAt(dc::PlacedShape bar, double edge_height) {
 }
 
 dc::SceneSpec cubeUnderABar() {
-  dc::SceneSpec spec = deformable_sim::test::SceneBuilder()
-                           .dt(0.01)
-                           .gravity(9.81)
-                           .warped()
-                           .damping(2.0, 0.002)
-                           .contact(0.5)
-                           .floor({0.4, 0.4, 0.04}, "table");
+  dc::SceneSpec spec = deformable_sim::test::dampedTable(0.5, {0.4, 0.4, 0.04});
   spec.obstacles.push_back(barAt(edgeFirstBar(), kSide + 0.01));
-  dc::BodySpec cube;
-  cube.name = "cube";
-  cube.box_mesh = dc::BoxMeshSpec{
-      {-0.5 * kSide, -0.5 * kSide, 0.0}, {0.5 * kSide, 0.5 * kSide, kSide}, {4, 4, 4}};
-  cube.material = {3.0e4, 0.3, 150.0};
-  spec.bodies.push_back(cube);
+  spec.bodies.push_back(deformable_sim::test::boxBody("cube", {-0.5 * kSide, -0.5 * kSide, 0.0},
+                                                      {0.5 * kSide, 0.5 * kSide, kSide}, {4, 4, 4},
+                                                      {3.0e4, 0.3, 150.0}));
   return spec;
 }
 

@@ -100,4 +100,17 @@ class SceneBuilder {
   core::SceneSpec spec_;
 };
 
+/// The contact tests' table top: 0.01 s steps, gravity, warping, light damping (alpha 2 /s,
+/// beta 2 ms), contact with `friction`, and a box table of `size` (top at z = 0) named "table".
+inline SceneBuilder dampedTable(double friction, const Eigen::Vector3d& size) {
+  SceneBuilder builder;
+  builder.dt(0.01)
+      .gravity(9.81)
+      .warped()
+      .damping(2.0, 0.002)
+      .contact(friction)
+      .floor(size, "table");
+  return builder;
+}
+
 }  // namespace deformable_sim::test
