@@ -191,3 +191,21 @@ TEST(BodyStack, BlocksSideBySideOnAFloorStayWhereTheyAre) {
     }
   }
 }
+
+// A body keeps its answers to impulses while its step's matrix stands
+// (core/bodies/implicit_response.h): a pile at rest solves for the nodes it first touched with,
+// and then for nothing.
+TEST(BodyStack, APileAtRestSolvesForItsAnswersOnlyWhenItFirstTouches) {
+  for (const auto method :
+       {dc::SolverSettings::Method::kDirect, dc::SolverSettings::Method::kConjugateGradient}) {
+    dc::Simulation sim = rowOfBlocks(3, 2, method);
+    std::vector<dc::StepReport> reports;
+    int first = 0, later = 0;
+    for (int s = 0; s < 200; ++s) {
+      sim.step(reports);
+      for (const dc::StepReport& r : reports) (s < 5 ? first : later) += r.body_contact_solves;
+    }
+    EXPECT_GT(first, 0);
+    EXPECT_EQ(later, 0);
+  }
+}

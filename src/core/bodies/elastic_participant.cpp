@@ -4,7 +4,7 @@ namespace deformable_sim::core {
 
 ElasticParticipant::ElasticParticipant(FiniteElementBody& body)
     : body_(&body),
-      response_(body.numNodes()),
+      response_(body),
       velocity_change_of_nodes_(Eigen::VectorXd::Zero(3 * body.numNodes())) {}
 
 void ElasticParticipant::begin(double dt, bool new_step) {
@@ -12,10 +12,11 @@ void ElasticParticipant::begin(double dt, bool new_step) {
   x_ = &body_->mutablePositions();
   v_ = &body_->mutableVelocities();
   if (new_step) response_.begin(*body_);
-  velocity_change_of_nodes_.setZero();
+  response_.clearImpulses();
 }
 
 void ElasticParticipant::end() {
+  response_.velocityChanges(velocity_change_of_nodes_);
   *v_ += velocity_change_of_nodes_;
   *x_ += dt_ * velocity_change_of_nodes_;
   body_->addConstraintForces(velocity_change_of_nodes_);
@@ -26,7 +27,7 @@ Eigen::Vector3d ElasticParticipant::position(const SurfacePoint& point) const {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   for (int k = 0; k < point.count; ++k) {
     const int i = 3 * point.nodes[k];
-    p += point.weights[k] * (x_->segment<3>(i) + dt_ * velocity_change_of_nodes_.segment<3>(i));
+    p += point.weights[k] * (x_->segment<3>(i) + dt_ * response_.velocityChange(point.nodes[k]));
   }
   return p;
 }
@@ -35,7 +36,7 @@ Eigen::Vector3d ElasticParticipant::velocity(const SurfacePoint& point) const {
   Eigen::Vector3d u = Eigen::Vector3d::Zero();
   for (int k = 0; k < point.count; ++k) {
     const int i = 3 * point.nodes[k];
-    u += point.weights[k] * (v_->segment<3>(i) + velocity_change_of_nodes_.segment<3>(i));
+    u += point.weights[k] * (v_->segment<3>(i) + response_.velocityChange(point.nodes[k]));
   }
   return u;
 }
@@ -63,9 +64,10 @@ void ElasticParticipant::push(const SurfacePoint& point, const Eigen::Vector3d& 
     addLumped(point, dt_ * impulse, *x_);
     return;
   }
-  // Kept apart until end(): one pass over the body per node, where adding the answer to the
-  // velocities, the positions and the constraint forces each took three.
-  addAnswer(point, impulse, velocity_change_of_nodes_);
+  // Gathered until end(), where the whole body takes them at once.
+  for (int k = 0; k < point.count; ++k) {
+    response_.addImpulse(point.nodes[k], point.weights[k] * impulse);
+  }
 }
 
 void ElasticParticipant::nudge(const SurfacePoint& point, const Eigen::Vector3d& shift) {
@@ -115,13 +117,6 @@ double ElasticParticipant::movable(const SurfacePoint& point) const {
     if (!body_->isConstrained(point.nodes[k])) free += point.weights[k];
   }
   return free;
-}
-
-void ElasticParticipant::addAnswer(const SurfacePoint& point, const Eigen::Vector3d& amount,
-                                   Eigen::VectorXd& state) const {
-  for (int k = 0; k < point.count; ++k) {
-    response_.add(point.nodes[k], point.weights[k] * amount, state);
-  }
 }
 
 }  // namespace deformable_sim::core

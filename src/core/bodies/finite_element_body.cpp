@@ -55,6 +55,7 @@ void FiniteElementBody::changeMaterial(const LinearElasticMaterial& material) {
   elasticity_.setMaterial(material);
   stiffness_current_ = false;
   matrixChanged();
+  ++matrix_version_;
   cg_.clearPreviousSolutions();
 }
 
@@ -63,6 +64,7 @@ void FiniteElementBody::assignState(const Eigen::VectorXd& positions,
   x_ = positions;
   v_ = velocities;
   response_factored_ = false;
+  ++matrix_version_;
   restartWarmStart();
   rotations_current_ = false;
 }
@@ -71,6 +73,7 @@ bool FiniteElementBody::stateIsFinite() const { return x_.allFinite() && v_.allF
 
 void FiniteElementBody::undoStep() {
   response_factored_ = false;
+  ++matrix_version_;
   reaction_.setZero();  // of the undone step
   x_ = step_start_;
   v_.setZero();
@@ -420,6 +423,7 @@ void FiniteElementBody::finishAdvance(const SystemMatrix& a, double h, bool prod
   std::swap(v_history_[0], v_);  // v_history_[0] = last velocity; v_ holds a dead buffer
   v_ = next_;
   history_size_ = std::min(history_size_ + 1, 3);
+  if (h != history_dt_) ++matrix_version_;
   history_dt_ = h;
 }
 

@@ -52,6 +52,13 @@ void BodyContact::reserveContacts() {
     if (surface) points += surface->nodes().size() + kEdgeHits * surface->edges().size();
   }
   contacts_.reserve(points);
+  warm_.resize(surfaces_.size());
+  for (size_t b = 0; b < surfaces_.size(); ++b) {
+    if (!surfaces_[b]) continue;
+    const std::vector<int>& corners = surfaces_[b]->nodes();
+    const int count = corners.empty() ? 0 : *std::max_element(corners.begin(), corners.end()) + 1;
+    warm_[b].assign(count, Warm{});
+  }
 }
 
 double BodyContact::tolerance(int a, int b) const {
@@ -102,6 +109,7 @@ void BodyContact::findContact(int a, int i) {
   }
   if (best_depth == std::numeric_limits<double>::infinity()) return;
   best.node_body = a;
+  best.corner = i;
   best.node = mine.corner(i);
   add(best);
 }
@@ -244,40 +252,63 @@ double BodyContact::compliance(const Contact& c, const Eigen::Vector3d& directio
   return direction.dot(c.compliance * direction);
 }
 
-void BodyContact::pushApart(Contact& c, double dt) {
+void BodyContact::update(Contact& c, double dt) {
   const double w = compliance(c, c.normal);
   if (!(w > 0.0)) return;  // both held: nothing can move
-  // Approaching no faster than closes the gap the pair had at the step's start, it ends the
-  // step touching; a pair that started inside only stops approaching (separate() does the rest).
+  // The normal first: approaching no faster than closes the gap the pair had at the step's
+  // start, it ends the step touching; a pair that started inside only stops approaching
+  // (separate() does the rest). An impulse only pushes.
   const ContactParticipant& node = *participants_[c.node_body];
   const ContactParticipant& triangle = *participants_[c.triangle_body];
+  const Eigen::Vector3d relative = node.velocity(c.node) - triangle.velocity(c.triangle);
   const double target = -std::max(c.start_gap, 0.0) / dt;
-  const double separating = c.normal.dot(node.velocity(c.node) - triangle.velocity(c.triangle));
-  const double impulse = std::max(0.0, c.impulse + (target - separating) / w);
-  const double change = impulse - c.impulse;
+  const double impulse = std::max(0.0, c.impulse + (target - c.normal.dot(relative)) / w);
+  Eigen::Vector3d change = (impulse - c.impulse) * c.normal;
   c.impulse = impulse;
-  if (change != 0.0) apply(c, change * c.normal);
+  // Then friction, against the slip the new normal impulse leaves, kept in the cone.
+  if (settings_.friction > 0.0) {
+    Eigen::Vector3d sliding = relative + c.compliance * change;
+    sliding -= sliding.dot(c.normal) * c.normal;
+    const double speed = sliding.norm();
+    const Eigen::Vector3d direction =
+        speed > 0.0 ? Eigen::Vector3d(sliding / speed) : Eigen::Vector3d::Zero();
+    const double wt = speed > 0.0 ? compliance(c, direction) : 0.0;
+    const Eigen::Vector3d wanted =
+        wt > 0.0 ? Eigen::Vector3d(c.friction - speed / wt * direction) : c.friction;
+    const double cone = settings_.friction * c.impulse;
+    const Eigen::Vector3d friction =
+        wanted.norm() <= cone ? wanted : Eigen::Vector3d(cone / wanted.norm() * wanted);
+    change += friction - c.friction;
+    c.friction = friction;
+  }
+  if (change.isZero(0.0)) return;
+  apply(c, change);
+  // How much this update moved the pair: the sweeps stop when no update moves any by much.
+  largest_change_ = std::max(largest_change_, (c.compliance * change).norm());
 }
 
-void BodyContact::holdByFriction(Contact& c) {
-  const ContactParticipant& node = *participants_[c.node_body];
-  const ContactParticipant& triangle = *participants_[c.triangle_body];
-  Eigen::Vector3d sliding = node.velocity(c.node) - triangle.velocity(c.triangle);
-  sliding -= sliding.dot(c.normal) * c.normal;
-  const double speed = sliding.norm();
-  if (!(speed > 0.0)) return;
-  const Eigen::Vector3d direction = sliding / speed;
-  const double w = compliance(c, direction);
-  if (!(w > 0.0)) return;
-  // The pair's friction impulse so far and the change that stops the slip, kept in the cone of
-  // its normal impulse.
-  const Eigen::Vector3d wanted = c.friction - speed / w * direction;
+void BodyContact::startFromLastStep(Contact& c) {
+  if (c.corner < 0) return;
+  const Warm& last = warm_[c.node_body][c.corner];
+  if (last.triangle_body != c.triangle_body) return;
+  // Last step's impulse on the pair, turned into this step's normal and cone.
+  c.impulse = std::max(0.0, c.normal.dot(last.impulse));
+  Eigen::Vector3d friction = last.impulse - c.normal.dot(last.impulse) * c.normal;
   const double cone = settings_.friction * c.impulse;
-  const Eigen::Vector3d friction =
-      wanted.norm() <= cone ? wanted : Eigen::Vector3d(cone / wanted.norm() * wanted);
-  const Eigen::Vector3d change = friction - c.friction;
+  if (friction.norm() > cone) friction *= cone / friction.norm();
   c.friction = friction;
-  apply(c, change);
+  const Eigen::Vector3d impulse = c.impulse * c.normal + c.friction;
+  if (!impulse.isZero(0.0)) apply(c, impulse);
+}
+
+void BodyContact::keepForNextStep() {
+  for (std::vector<Warm>& warm : warm_) {
+    for (Warm& w : warm) w.triangle_body = -1;
+  }
+  for (const Contact& c : contacts_) {
+    if (c.corner < 0) continue;
+    warm_[c.node_body][c.corner] = {c.triangle_body, c.impulse * c.normal + c.friction};
+  }
 }
 
 void BodyContact::settleVelocities(double dt) {
@@ -294,13 +325,16 @@ void BodyContact::settleVelocities(double dt) {
     c.compliance = Eigen::Matrix3d::Zero();
     if (c.node_moves) c.compliance += node.compliance(c.node, c.local);
     if (c.triangle_moves) c.compliance += triangle.compliance(c.triangle, c.local);
+    startFromLastStep(c);
   }
+  passes_ = 0;
   for (int pass = 0; pass < kVelocityPasses; ++pass) {
-    for (Contact& c : contacts_) {
-      pushApart(c, dt);
-      if (settings_.friction > 0.0) holdByFriction(c);
-    }
+    largest_change_ = 0.0;
+    for (Contact& c : contacts_) update(c, dt);
+    ++passes_;
+    if (largest_change_ <= kVelocityTolerance) break;
   }
+  keepForNextStep();
 }
 
 void BodyContact::resolve(BodyList& bodies, double dt, std::vector<StepReport>& reports) {
@@ -323,7 +357,9 @@ void BodyContact::resolve(BodyList& bodies, double dt, std::vector<StepReport>& 
     }
   }
   for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
-    if (surfaces_[b]) surfaces_[b]->setStart(bodies[b].positions());
+    if (!surfaces_[b]) continue;
+    surfaces_[b]->setStart(bodies[b].positions());
+    reports[b].body_contact_solves = participants_[b]->solves();
   }
 }
 

@@ -31,18 +31,14 @@ class ElasticParticipant : public ContactParticipant {
                  Eigen::VectorXd& state) const;
   /// The mass of the point's free nodes (a point that shifts its cells moves them as one).
   double clusterMass(const SurfacePoint& point) const;
-  /// `amount` at the point, answered by the whole body, added to `state`.
-  void addAnswer(const SurfacePoint& point, const Eigen::Vector3d& amount,
-                 Eigen::VectorXd& state) const;
 
   FiniteElementBody* body_;
   Eigen::VectorXd* x_ = nullptr;  ///< the body's own state, changed in place
   Eigen::VectorXd* v_ = nullptr;
   double dt_ = 0.0;  ///< of the step
-  /// Columns solved lazily, so `mutable`; and the velocity change the whole-body answers made so
-  /// far (not yet in the state).
+  /// Columns solved lazily, so `mutable`; it gathers the impulses of the whole-body answers.
   mutable ImplicitResponse response_;
-  Eigen::VectorXd velocity_change_of_nodes_;
+  Eigen::VectorXd velocity_change_of_nodes_;  ///< their change of every node, made in end()
 };
 
 }  // namespace deformable_sim::core

@@ -79,6 +79,11 @@ class FiniteElementBody : public Body {
   /// solveLastStep) asks of the constrained ones, (A dv) / h there, and of the springs of nodes
   /// held on planes.
   void addConstraintForces(const Eigen::VectorXd& dv);
+  /// The nodes held on planes in the coming or last step.
+  const std::vector<PlaneHold>& planeHolds() const { return plane_holds_; }
+  /// Changes whenever the step's matrix changes by more than its rotations and holds: a new
+  /// material, a state set from outside, an undone step, another step length.
+  int matrixVersion() const { return matrix_version_; }
 
  protected:
   void changeMaterial(const LinearElasticMaterial& material) override;
@@ -161,6 +166,7 @@ class FiniteElementBody : public Body {
   Eigen::VectorXd end_positions_;        ///< x + h v+ of the step being taken
   Eigen::VectorXd prescribed_velocity_;  ///< of the constrained nodes in the step being taken
   bool matrix_changed_ = true;           ///< for the direct solver: refactorize on the next solve
+  int matrix_version_ = 0;               ///< see matrixVersion()
   double last_mass_coefficient_ = -1.0, last_stiffness_coefficient_ = -1.0;
 
   std::vector<PlaneHold> plane_holds_;  ///< room for every node, reserved once

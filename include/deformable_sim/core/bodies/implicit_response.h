@@ -5,6 +5,19 @@
 // implicit step would have. A node's lumped mass alone misses the dt^2 K that ties it to its
 // neighbours, a hundred times its mass for a soft cube at 0.01 s, and a correction made with it
 // compresses the layer of elements it touches instead of carrying the body.
+//
+// The columns are kept from step to step while the matrix they came from still stands for the
+// body's: the same nodes held (in place and on planes), the same material and step length, and
+// its elements turned on average by less than kStaleTurn since. A body resting in a pile then
+// solves nothing at all after its first step in contact: only nodes that start touching cost
+// their three solves. Kept columns answer as the body did a few steps ago, to within the turn;
+// an answer of any A^-1 whose K' has the rigid translations in its null space keeps momentum
+// exactly (1^T M A^-1 = 1^T / (1 + h a)), so contact keeps it too.
+//
+// Impulses are gathered node by node (addImpulse) while their velocity changes are kept only
+// where contact looks, at the nodes with columns, through the columns' rows there (a dense block
+// over those nodes, a third of a soft block's nodes for a block in a row of them): an impulse
+// costs that block's width, not the body's. The whole body's change is made once, at the end.
 #pragma once
 
 #include <Eigen/Core>
@@ -16,27 +29,60 @@ namespace deformable_sim::core {
 
 class ImplicitResponse {
  public:
-  explicit ImplicitResponse(int num_nodes) : slot_of_(num_nodes, -1) {}
+  explicit ImplicitResponse(const FiniteElementBody& body);
 
-  /// A new step of `body`: forgets the columns of the last one (keeps their storage).
+  /// A new step of `body`: keeps the columns of earlier steps if they still answer for its
+  /// matrix (see above), else forgets them (keeping their storage).
   void begin(FiniteElementBody& body);
   /// The velocity change of node j per unit impulse at node i (zero where either is held).
   Eigen::Matrix3d block(int j, int i);
-  /// dv += the body's answer to `impulse` at node i: A^-1 e_i impulse.
-  void add(int i, const Eigen::Vector3d& impulse, Eigen::VectorXd& dv);
-  /// Linear solves taken since begin(): three for each node asked about.
+  /// Starts gathering impulses: none so far.
+  void clearImpulses();
+  /// Node i takes `impulse` (N s) within the step.
+  void addImpulse(int i, const Eigen::Vector3d& impulse);
+  /// The velocity change of node j from the impulses so far.
+  Eigen::Vector3d velocityChange(int j) const;
+  /// dv = the velocity change of every node from the impulses so far, sum_i A^-1 e_i f_i.
+  void velocityChanges(Eigen::VectorXd& dv) const;
+  /// Linear solves taken since begin(): three for each node asked about for the first time
+  /// since the columns were last forgotten.
   int solves() const { return solves_; }
+  /// Nodes whose columns are kept.
+  int kept() const { return slots_; }
+
+  /// The root mean square of the elements' turns (rad) past which kept columns are solved again.
+  static constexpr double kStaleTurn = 0.05;
 
  private:
   /// The first of node i's three columns, solved on first use (an empty one: a held node).
   int slot(int i);
+  /// Whether the kept columns still answer for the body's matrix now.
+  bool stillAnswers(const FiniteElementBody& body) const;
+  /// What the columns about to be solved depend on: holds, version, rotations.
+  void remember(const FiniteElementBody& body);
+  void forget();
+  /// Room in the dense block for `slots` nodes (grows it, keeping what it holds).
+  void makeRoom(int slots);
 
   FiniteElementBody* body_ = nullptr;
-  std::vector<int> slot_of_;              ///< per node, its slot; -1: not solved in this step
-  std::vector<int> used_;                 ///< nodes with a slot in this step
+  std::vector<int> slot_of_;              ///< per node, its slot; -1: no kept column
+  std::vector<int> used_;                 ///< nodes with a slot
   std::vector<Eigen::VectorXd> columns_;  ///< three per slot; grows, never shrinks
   Eigen::VectorXd unit_;
   int slots_ = 0, solves_ = 0;
+  /// The columns' rows at the nodes with slots: 3x3 block (t, s) is the velocity change of
+  /// slot t's node per unit impulse at slot s's. Room for capacity_ slots.
+  Eigen::MatrixXd near_;
+  int capacity_ = 0;
+  Eigen::VectorXd impulses_;      ///< per slot, the impulse gathered (3 each)
+  Eigen::VectorXd near_changes_;  ///< per slot, its node's velocity change (3 each)
+  bool has_impulses_ = false;
+  // What the kept columns were solved for.
+  bool remembered_ = false;
+  std::vector<char> held_;              ///< per node, held in place
+  std::vector<PlaneHold> planes_;       ///< room for every node, reserved once
+  std::vector<Eigen::Matrix3d> turns_;  ///< per element, its rotation
+  int matrix_version_ = -1;
 };
 
 }  // namespace deformable_sim::core

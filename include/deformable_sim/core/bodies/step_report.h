@@ -44,6 +44,9 @@ struct StepReport {
   int body_contacts = 0;
   int self_contacts = 0;
   double body_penetration = 0.0;
+  /// Linear solves contact between bodies took for the body's answers to impulses: three per
+  /// node that started touching (core/bodies/implicit_response.h).
+  int body_contact_solves = 0;
   /// The step left a non-finite value and was undone by Simulation's watchdog: the body is back
   /// at its last good positions, at rest.
   bool recovered = false;

@@ -6,15 +6,17 @@
 // swept test of core/node_triangle.h; so is each surface edge that ended the step across an edge
 // of another body (or of its own, away from it), or nearer than the tolerance
 // (core/edge_edge.h): edges meet where neither surface has a node. Equal and opposite impulses on
-// the node and the triangle's point (barycentric among its corners), in Gauss-Seidel passes, then
-// let each pair approach no faster than closes the gap it had at the step's start, and friction
-// stop its slip within Coulomb's cone; each impulse moves the end positions with the velocities (x
-// = x0 + dt v). A finite-element body answers an impulse as its implicit step would have, through
-// its own matrix (core/implicit_response.h), so a body resting on a soft body is carried, and what
-// presses on a body goes through it to what holds it. Against a surface held all over the free side
-// answers node by node. A last round finds the contacts again and puts back, node by node, what
-// the impulses pressed in elsewhere. Momentum is kept (doc/physics.md). A body made from a surface
-// takes part with that surface (embed()): its points are on its cells' nodes.
+// the node and the triangle's point (barycentric among its corners), in Gauss-Seidel passes that
+// start from the impulses the same node had last step and stop once they change nothing by more
+// than kVelocityTolerance, then let each pair approach no faster than closes the gap it had at the
+// step's start, and friction stop its slip within Coulomb's cone; each impulse moves the end
+// positions with the velocities (x = x0 + dt v). A finite-element body answers an impulse as its
+// implicit step would have, through its own matrix (core/implicit_response.h), so a body resting on
+// a soft body is carried, and what presses on a body goes through it to what holds it. Against a
+// surface held all over the free side answers node by node. A last round finds the contacts again
+// and puts back, node by node, what the impulses pressed in elsewhere. Momentum is kept
+// (doc/physics.md). A body made from a surface takes part with that surface (embed()): its points
+// are on its cells' nodes.
 #pragma once
 
 #include <memory>
@@ -59,9 +61,12 @@ class BodyContact {
 
   /// Fraction of a pair's tolerance to which the position passes bring every contact.
   static constexpr double kTarget = 0.01;
-  /// Passes over the contacts to separate them (Gauss-Seidel) and to settle their velocities.
+  /// Passes over the contacts to separate them (Gauss-Seidel) and, at most, to settle their
+  /// velocities.
   static constexpr int kPositionPasses = 64;
   static constexpr int kVelocityPasses = 32;
+  /// m/s: the velocity passes stop once no update in a pass moved its pair by more.
+  static constexpr double kVelocityTolerance = 1e-5;
   /// Rounds of finding and resolving contacts a step.
   static constexpr int kRounds = 2;
   /// The most edges one edge meets in a step (two bars laid crosswise: each edge crosses two).
@@ -74,6 +79,7 @@ class BodyContact {
  private:
   struct Contact {
     int node_body = 0, triangle_body = 0;
+    int corner = -1;  ///< the node's surface corner; -1: edges that meet
     SurfacePoint node, triangle;
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< out of the triangle's body
     double pushed = 0.0;   ///< kg m: the normal shift of the position passes
@@ -109,15 +115,20 @@ class BodyContact {
   /// Position passes until every contact is within kTarget of its tolerance; returns the
   /// largest depth left, per body into `left`.
   void separate(std::vector<StepReport>& reports);
-  /// Velocity passes (Gauss-Seidel): each pair's normal impulse, then its friction.
+  /// Velocity passes (Gauss-Seidel): each pair's normal impulse, then its friction, from last
+  /// step's impulses, until they change the velocities by less than kVelocityTolerance.
   void settleVelocities(double dt);
+  /// One Gauss-Seidel update of the pair: its normal impulse, then its friction, applied at once.
+  void update(Contact& c, double dt);
+  /// Gives a node's contact the impulse it had last step on the same body, if it had one.
+  void startFromLastStep(Contact& c);
+  /// Keeps the impulses of the node contacts for the next step's start.
+  void keepForNextStep();
   double startGap(const Contact& c) const;
   /// How fast the pair's points part along `direction` per unit impulse there.
   double compliance(const Contact& c, const Eigen::Vector3d& direction) const;
   /// Equal and opposite impulses on the pair, their end positions moved with them.
   void apply(Contact& c, const Eigen::Vector3d& impulse);
-  void pushApart(Contact& c, double dt);
-  void holdByFriction(Contact& c);
   double gap(const Contact& c) const;
   /// Sets which sides of a contact just found take impulses, and adds it.
   void add(Contact c);
@@ -131,6 +142,14 @@ class BodyContact {
   /// At most one per surface node and kEdgeHits per edge: reserved once.
   std::vector<Contact> contacts_;
   std::vector<ContactLoad> loads_;  ///< per pair of bodies (see load()), sized once
+  /// A node contact's impulse (world, N s) and the body it touched, kept for the next step.
+  struct Warm {
+    int triangle_body = -1;
+    Eigen::Vector3d impulse = Eigen::Vector3d::Zero();
+  };
+  std::vector<std::vector<Warm>> warm_;  ///< per body, per surface corner; sized once
+  double largest_change_ = 0.0;          ///< m/s, in the current velocity pass
+  int passes_ = 0;                       ///< velocity passes in the last step
 };
 
 }  // namespace deformable_sim::core
