@@ -30,13 +30,15 @@
 // ModelStep/<model>/<mesh>: a step of a free rigid (0) or pseudo-rigid (1) body of the cantilever's
 // mesh under gravity and the tip load, on 1.5k and 98k tetrahedra: the same cost for both.
 //
-// ContactCost/<bodies>/<contact>/<direct>: a step of the whole scene of perf/blocks_on_floor.h, 1,
-// 5 or 20 blocks of 1,536 tetrahedra side by side on a floor: 0, contact with the floor only; 1,
-// and between bodies; 2, and each block with itself (the cost of the search alone: a block
-// resting on a floor does not meet itself); solved by CG (0) or the direct solver (1); timed over
-// 20 steps after 40 to settle. Counters: pairs between bodies per step, and the linear solves per
-// step that contact between bodies took for the bodies' answers (three per node that started
-// touching, or all again where a body's kept answers went stale).
+// ContactCost/<bodies>/<contact>/<direct>/<threads>: a step of the whole scene of
+// perf/blocks_on_floor.h, 1, 5 or 20 blocks of 1,536 tetrahedra side by side on a floor: 0,
+// contact with the floor only; 1, and between bodies; 2, and each block with itself (the cost of
+// the search alone: a block resting on a floor does not meet itself); solved by CG (0) or the
+// direct solver (1), on 1 or 2 threads (the bodies' steps side by side, contact between them
+// found and answered a body to a thread); timed over 20 steps after 40 to settle. Counters:
+// pairs between bodies per step, and the linear solves per step that contact between bodies
+// took for the bodies' answers (three per node that started touching, or all again where a
+// body's kept answers went stale).
 //
 // ManyBodies/<bodies>/<threads>: 1, 5 or 20 such blocks hanging apart (clamped at one face, no
 // floor, no contact), on 1 or 2 threads: the bodies step side by side.
@@ -310,6 +312,7 @@ void ContactCost(benchmark::State& state) {
   const int count = static_cast<int>(state.range(0)), contact = static_cast<int>(state.range(1));
   perf::BlocksOnFloor scene{count, contact >= 1, contact >= 2};
   scene.direct = state.range(2) == 1;
+  scene.threads = static_cast<int>(state.range(3));
   core::Simulation sim = perf::makeBlocksOnFloor(scene);
   std::vector<core::StepReport> reports;
   for (int k = 0; k < kWarmUpSteps; ++k) sim.step(reports);  // settled on the floor
@@ -432,11 +435,12 @@ BENCHMARK(ContactCost)
     ->Apply([](benchmark::internal::Benchmark* b) {
       for (int bodies : {1, 5, 20}) {
         for (int contact : {0, 1, 2}) {
-          for (int direct : {0, 1}) b->Args({bodies, contact, direct});
+          for (int direct : {0, 1}) b->Args({bodies, contact, direct, 1});
+          if (bodies > 1 && contact < 2) b->Args({bodies, contact, 0, 2});
         }
       }
     })
-    ->ArgNames({"bodies", "contact", "direct"})
+    ->ArgNames({"bodies", "contact", "direct", "threads"})
     ->Iterations(20)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

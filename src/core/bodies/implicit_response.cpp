@@ -123,7 +123,38 @@ Eigen::Matrix3d ImplicitResponse::block(int j, int i) {
   return b;
 }
 
+int ImplicitResponse::keepPoint(const int* nodes, const double* weights, int count) {
+  for (int k = 0; k < count; ++k) slot(nodes[k]);  // every slot first: the sum covers them all
+  const int p = kept_points_++;
+  if (points_.rows() < 3 * capacity_ || points_.cols() < 3 * kept_points_) {
+    // Grows, keeping the points summed so far, only past the most ever kept.
+    const Eigen::Index cols = std::max<Eigen::Index>(3 * kept_points_, 2 * points_.cols());
+    points_.conservativeResize(3 * capacity_, cols);
+    point_slots_.resize(cols / 3);
+  }
+  auto sum = points_.block(0, 3 * p, 3 * slots_, 3);
+  sum.setZero();
+  for (int k = 0; k < count; ++k) {
+    sum.noalias() += weights[k] * near_.block(0, 3 * slot_of_[nodes[k]], 3 * slots_, 3);
+  }
+  point_slots_[p] = slots_;
+  return p;
+}
+
+void ImplicitResponse::addPointImpulse(int point, const int* nodes, const double* weights,
+                                       int count, const Eigen::Vector3d& impulse) {
+  if (point_slots_[point] != slots_) {  // a node started touching since: node by node
+    for (int k = 0; k < count; ++k) addImpulse(nodes[k], weights[k] * impulse);
+    return;
+  }
+  for (int k = 0; k < count; ++k)
+    impulses_.segment<3>(3 * slot_of_[nodes[k]]) += weights[k] * impulse;
+  near_changes_.head(3 * slots_).noalias() += points_.block(0, 3 * point, 3 * slots_, 3) * impulse;
+  has_impulses_ = true;
+}
+
 void ImplicitResponse::clearImpulses() {
+  kept_points_ = 0;
   impulses_.head(3 * slots_).setZero();
   near_changes_.head(3 * slots_).setZero();
   has_impulses_ = false;

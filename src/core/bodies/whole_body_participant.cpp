@@ -60,7 +60,8 @@ Eigen::Vector3d WholeBodyParticipant::velocity(const SurfacePoint& point) const 
   return u + velocity_change_ + rate_change_ * arm(point);
 }
 
-void WholeBodyParticipant::push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool) {
+void WholeBodyParticipant::push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool,
+                                int) {
   velocity_change_ += inverse_mass_ * impulse;
   rate_change_ += gradientChange(arm(point), impulse);
   centre_change_ += dt_ * inverse_mass_ * impulse;

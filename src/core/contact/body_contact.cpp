@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "deformable_sim/core/base/parallel_for.h"
 #include "deformable_sim/core/contact/edge_edge.h"
 #include "deformable_sim/core/contact/node_triangle.h"
 
@@ -52,6 +53,11 @@ void BodyContact::reserveContacts() {
     if (surface) points += surface->nodes().size() + kEdgeHits * surface->edges().size();
   }
   contacts_.reserve(points);
+  found_.resize(surfaces_.size());
+  for (size_t b = 0; b < surfaces_.size(); ++b) {
+    if (!surfaces_[b]) continue;
+    found_[b].reserve(surfaces_[b]->nodes().size() + kEdgeHits * surfaces_[b]->edges().size());
+  }
   warm_.resize(surfaces_.size());
   for (size_t b = 0; b < surfaces_.size(); ++b) {
     if (!surfaces_[b]) continue;
@@ -69,7 +75,7 @@ bool BodyContact::touches(int a, int b) const {
   return a == b ? bool(with_self_[a]) : with_bodies_[a] && with_bodies_[b];
 }
 
-void BodyContact::findContact(int a, int i) {
+void BodyContact::findContact(int a, int i, std::vector<Contact>& found) const {
   const BodySurface& mine = *surfaces_[a];
   SweptNode node{mine.start().segment<3>(3 * i), participants_[a]->position(mine.corner(i))};
   Contact best;
@@ -111,13 +117,13 @@ void BodyContact::findContact(int a, int i) {
   best.node_body = a;
   best.corner = i;
   best.node = mine.corner(i);
-  add(best);
+  add(best, found);
 }
 
-void BodyContact::add(Contact c) {
+void BodyContact::add(Contact c, std::vector<Contact>& found) const {
   c.node_moves = participants_[c.node_body]->movable(c.node) >= kMovable;
   c.triangle_moves = participants_[c.triangle_body]->movable(c.triangle) >= kMovable;
-  contacts_.push_back(c);
+  found.push_back(c);
 }
 
 Eigen::Vector3d BodyContact::outwardAt(int b, const SurfaceEdge& edge) const {
@@ -134,7 +140,7 @@ Eigen::Vector3d BodyContact::outwardAt(int b, const SurfaceEdge& edge) const {
   return outward;
 }
 
-void BodyContact::findEdgeContacts(int a, int e) {
+void BodyContact::findEdgeContacts(int a, int e, std::vector<Contact>& found) const {
   const BodySurface& mine = *surfaces_[a];
   const SurfaceEdge& edge = mine.edges()[e];
   SweptEdge swept;
@@ -174,7 +180,7 @@ void BodyContact::findEdgeContacts(int a, int e) {
       c.node = mine.edgePoint(edge, hit.s);
       c.triangle = other.edgePoint(across, hit.t);
       c.normal = hit.normal;
-      add(c);
+      add(c, found);
       ++hits;
     });
   }
@@ -244,8 +250,8 @@ void BodyContact::apply(Contact& c, const Eigen::Vector3d& impulse) {
   // (ContactParticipant::push): the step stays an implicit Euler step, x = x0 + dt v.
   ContactParticipant& node = *participants_[c.node_body];
   ContactParticipant& triangle = *participants_[c.triangle_body];
-  if (c.node_moves) node.push(c.node, impulse, c.local);
-  if (c.triangle_moves) triangle.push(c.triangle, -impulse, c.local);
+  if (c.node_moves) node.push(c.node, impulse, c.local, c.node_kept);
+  if (c.triangle_moves) triangle.push(c.triangle, -impulse, c.local, c.triangle_kept);
 }
 
 double BodyContact::compliance(const Contact& c, const Eigen::Vector3d& direction) const {
@@ -325,8 +331,13 @@ void BodyContact::settleVelocities(double dt) {
     c.compliance = Eigen::Matrix3d::Zero();
     if (c.node_moves) c.compliance += node.compliance(c.node, c.local);
     if (c.triangle_moves) c.compliance += triangle.compliance(c.triangle, c.local);
-    startFromLastStep(c);
   }
+  // Every point's answers are known now: each side sums its nodes' once for all the passes.
+  for (Contact& c : contacts_) {
+    c.node_kept = c.local ? -1 : participants_[c.node_body]->keep(c.node);
+    c.triangle_kept = c.local ? -1 : participants_[c.triangle_body]->keep(c.triangle);
+  }
+  for (Contact& c : contacts_) startFromLastStep(c);
   passes_ = 0;
   for (int pass = 0; pass < kVelocityPasses; ++pass) {
     largest_change_ = 0.0;
@@ -337,14 +348,15 @@ void BodyContact::settleVelocities(double dt) {
   keepForNextStep();
 }
 
-void BodyContact::resolve(BodyList& bodies, double dt, std::vector<StepReport>& reports) {
+void BodyContact::resolve(BodyList& bodies, double dt, int threads,
+                          std::vector<StepReport>& reports) {
   dt_ = dt;
   // An impulse moves the whole body, so nodes that were clear when the contacts were found can
   // be pressed into another surface by it (a cube's sides bulging as its top is pushed). A last
   // round finds the contacts again and only puts back what is inside, node by node.
   for (int round = 0; round < kRounds; ++round) {
     const bool last = round == kRounds - 1;
-    findContacts(bodies, round == 0);
+    findContacts(bodies, round == 0, threads);
     if (round == 0) {
       countContacts(reports);
       startLoads();
@@ -352,9 +364,9 @@ void BodyContact::resolve(BodyList& bodies, double dt, std::vector<StepReport>& 
     if (!last) settleVelocities(dt);
     if (round == 0) addContactForces(dt);
     separate(reports);
-    for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
+    parallelFor(threads, 0, static_cast<int>(bodies.size()), [&](int b) {
       if (surfaces_[b]) participants_[b]->end();
-    }
+    });
   }
   for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
     if (!surfaces_[b]) continue;
@@ -363,10 +375,12 @@ void BodyContact::resolve(BodyList& bodies, double dt, std::vector<StepReport>& 
   }
 }
 
-void BodyContact::findContacts(BodyList& bodies, bool new_step) {
+void BodyContact::findContacts(BodyList& bodies, bool new_step, int threads) {
   const int n = static_cast<int>(bodies.size());
-  for (int b = 0; b < n; ++b) {
-    if (!surfaces_[b]) continue;
+  // Each body by itself, then each body's contacts by itself, put together in body order: the
+  // same contacts in the same order on any thread count.
+  parallelFor(threads, 0, n, [&](int b) {
+    if (!surfaces_[b]) return;
     participants_[b]->begin(dt_, new_step);
     double skin = std::numeric_limits<double>::infinity();
     for (int o = 0; o < n; ++o) {
@@ -374,12 +388,19 @@ void BodyContact::findContacts(BodyList& bodies, bool new_step) {
     }
     surfaces_[b]->sweep(bodies[b].positions(),
                         skin == std::numeric_limits<double>::infinity() ? 0.0 : skin);
-  }
+  });
+  parallelFor(threads, 0, n, [&](int a) {
+    std::vector<Contact>& found = found_[a];
+    found.clear();
+    if (!surfaces_[a]) return;
+    for (int i : surfaces_[a]->nodes()) findContact(a, i, found);
+    for (int e = 0; e < static_cast<int>(surfaces_[a]->edges().size()); ++e) {
+      findEdgeContacts(a, e, found);
+    }
+  });
   contacts_.clear();
-  for (int a = 0; a < n; ++a) {
-    if (!surfaces_[a]) continue;
-    for (int i : surfaces_[a]->nodes()) findContact(a, i);
-    for (int e = 0; e < static_cast<int>(surfaces_[a]->edges().size()); ++e) findEdgeContacts(a, e);
+  for (const std::vector<Contact>& found : found_) {
+    contacts_.insert(contacts_.end(), found.begin(), found.end());  // within the reserve
   }
 }
 

@@ -57,7 +57,7 @@ double ContactStep::hold(int b, Body& body, const std::vector<PlacedShape>& obst
 
 void ContactStep::finish(BodyList& bodies, const std::vector<PlacedShape>& obstacles, double dt,
                          int threads, std::vector<StepReport>& reports) {
-  if (body_contact_) resolveBetweenBodies(bodies, dt, reports);
+  if (body_contact_) resolveBetweenBodies(bodies, dt, threads, reports);
   parallelFor(threads, 0, static_cast<int>(bodies.size()), [&](int b) {
     if (!states_[b]) return;
     const WallClock::time_point start = WallClock::now();
@@ -71,10 +71,10 @@ void ContactStep::finish(BodyList& bodies, const std::vector<PlacedShape>& obsta
   for (size_t k = 0; k < starts_.size(); ++k) starts_[k] = obstacles[k].pose;
 }
 
-void ContactStep::resolveBetweenBodies(BodyList& bodies, double dt,
+void ContactStep::resolveBetweenBodies(BodyList& bodies, double dt, int threads,
                                        std::vector<StepReport>& reports) {
   const WallClock::time_point start = WallClock::now();
-  body_contact_->resolve(bodies, dt, reports);
+  body_contact_->resolve(bodies, dt, threads, reports);
   ++body_steps_;
   const double spent = secondsSince(start);
   const int n = static_cast<int>(bodies.size());

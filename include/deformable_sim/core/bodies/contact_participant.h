@@ -34,8 +34,13 @@ class ContactParticipant {
   /// The point's body takes `impulse` (N s) there within the step: its velocities change by
   /// W impulse and, the step being x = x0 + dt v, its positions by dt W impulse (`local`: see
   /// compliance()).
-  virtual void push(const SurfacePoint& point, const Eigen::Vector3d& impulse,
-                    bool local = false) = 0;
+  virtual void push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool local = false,
+                    int kept = -1) = 0;
+  /// Readies the point for many push()es within the round (a finite-element body sums its
+  /// nodes' answers once, not at every push) and returns the `kept` to pass them; -1: nothing to
+  /// ready. Once every point of the round has had its compliance() taken. Allocates only while
+  /// a body meets more points than ever before.
+  virtual int keep(const SurfacePoint&) { return -1; }
   /// A small correction of positions only (what is left inside after the impulses), momentum
   /// untouched: a finite-element body's nodes move by their lumped inverse masses alone, so that
   /// the correction stays where it is needed; other bodies with their whole motion.

@@ -19,7 +19,12 @@ class ElasticParticipant : public ContactParticipant {
   double inverseMass(const SurfacePoint& point, const Eigen::Vector3d& normal) const override;
   Eigen::Matrix3d compliance(const SurfacePoint& point, bool local = false) const override;
   int solves() const override { return response_.solves(); }
-  void push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool local = false) override;
+  void push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool local = false,
+            int kept = -1) override;
+  /// Sums the answers of a point of more than kFewNodes nodes (a vertex or triangle of a surface
+  /// a body was made from: 8 or 24).
+  int keep(const SurfacePoint& point) override;
+  static constexpr int kFewNodes = 4;
   void nudge(const SurfacePoint& point, const Eigen::Vector3d& shift) override;
   double nudgeCompliance(const SurfacePoint& point, const Eigen::Vector3d& normal) const override;
   double movable(const SurfacePoint& point) const override;

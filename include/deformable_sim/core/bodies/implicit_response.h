@@ -42,6 +42,13 @@ class ImplicitResponse {
   void addImpulse(int i, const Eigen::Vector3d& impulse);
   /// The velocity change of node j from the impulses so far.
   Eigen::Vector3d velocityChange(int j) const;
+  /// Sums the dense block's columns of a point on `count` nodes with `weights` once, for many
+  /// addPointImpulse()s; returns its number. Forgotten by clearImpulses().
+  int keepPoint(const int* nodes, const double* weights, int count);
+  /// addImpulse(nodes[k], weights[k] impulse) for every k at the cost of one, through the sum
+  /// kept (point = keepPoint()'s number for the same nodes and weights).
+  void addPointImpulse(int point, const int* nodes, const double* weights, int count,
+                       const Eigen::Vector3d& impulse);
   /// dv = the velocity change of every node from the impulses so far, sum_i A^-1 e_i f_i.
   void velocityChanges(Eigen::VectorXd& dv) const;
   /// Linear solves taken since begin(): three for each node asked about for the first time
@@ -74,6 +81,10 @@ class ImplicitResponse {
   /// slot t's node per unit impulse at slot s's. Room for capacity_ slots.
   Eigen::MatrixXd near_;
   int capacity_ = 0;
+  /// Per kept point, its three summed columns of near_ and how many slots they cover.
+  Eigen::MatrixXd points_;
+  std::vector<int> point_slots_;
+  int kept_points_ = 0;
   Eigen::VectorXd impulses_;      ///< per slot, the impulse gathered (3 each)
   Eigen::VectorXd near_changes_;  ///< per slot, its node's velocity change (3 each)
   bool has_impulses_ = false;

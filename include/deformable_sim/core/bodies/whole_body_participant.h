@@ -17,7 +17,8 @@ class WholeBodyParticipant : public ContactParticipant {
   void end() override;
   Eigen::Vector3d position(const SurfacePoint& point) const override;
   Eigen::Vector3d velocity(const SurfacePoint& point) const override;
-  void push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool local = false) override;
+  void push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool local = false,
+            int kept = -1) override;
   void nudge(const SurfacePoint& point, const Eigen::Vector3d& shift) override;
   double nudgeCompliance(const SurfacePoint& point, const Eigen::Vector3d& normal) const override {
     return inverseMass(point, normal);

@@ -42,8 +42,9 @@ class BodyContact {
   void embed(int b, const EmbeddedSurface& surface, const Body& body);
 
   /// After every body's step of length dt: finds and resolves the contacts, and adds to
-  /// reports[b] the counts and the depth left. Allocates nothing.
-  void resolve(BodyList& bodies, double dt, std::vector<StepReport>& reports);
+  /// reports[b] the counts and the depth left. Finds them and gives each body its answers on
+  /// `threads` threads, a body to a thread (the same bits on any count). Allocates nothing.
+  void resolve(BodyList& bodies, double dt, int threads, std::vector<StepReport>& reports);
   /// At the step's very end (after the obstacles' correction too): each pair's depth, how far
   /// its last contacts are left inside, from the bodies' positions. Allocates nothing.
   void measureDepths(const BodyList& bodies);
@@ -66,7 +67,7 @@ class BodyContact {
   static constexpr int kPositionPasses = 64;
   static constexpr int kVelocityPasses = 32;
   /// m/s: the velocity passes stop once no update in a pass moved its pair by more.
-  static constexpr double kVelocityTolerance = 1e-5;
+  static constexpr double kVelocityTolerance = 1e-4;
   /// Rounds of finding and resolving contacts a step.
   static constexpr int kRounds = 2;
   /// The most edges one edge meets in a step (two bars laid crosswise: each edge crosses two).
@@ -88,7 +89,8 @@ class BodyContact {
     double start_gap = 0.0;  ///< m: along the normal, node minus triangle point, at the start
     /// m/s per N s: how the points part per unit impulse on the pair (both bodies' answers).
     Eigen::Matrix3d compliance = Eigen::Matrix3d::Zero();
-    bool local = false;  ///< answered node by node (see settleVelocities)
+    bool local = false;                      ///< answered node by node (see settleVelocities)
+    int node_kept = -1, triangle_kept = -1;  ///< each side's ContactParticipant::keep()
     /// Whether each side takes impulses: a point that lies mostly on held nodes does not (see
     /// kMovable); what holds them takes its share.
     bool node_moves = true, triangle_moves = true;
@@ -99,17 +101,18 @@ class BodyContact {
   void reserveContacts();
   /// Sweeps the surfaces from the step's start to the bodies' positions now and finds every
   /// contact; `new_step`: the bodies have just stepped (else a later round of the same step).
-  void findContacts(BodyList& bodies, bool new_step);
+  void findContacts(BodyList& bodies, bool new_step, int threads);
   void countContacts(std::vector<StepReport>& reports) const;
   /// Starts the step's loads: the contacts just found, where and how deep.
   void startLoads();
   /// Adds the velocity passes' impulses over dt to the loads.
   void addContactForces(double dt);
-  /// The contact of surface node i of body a, if it ended the step behind some triangle.
-  void findContact(int a, int i);
+  /// The contact of surface node i of body a, if it ended the step behind some triangle, into
+  /// `found`.
+  void findContact(int a, int i, std::vector<Contact>& found) const;
   /// The contacts of surface edge e of body a with the edges of bodies after a (and of a itself,
   /// after e) that it ended the step across or near: up to kEdgeHits.
-  void findEdgeContacts(int a, int e);
+  void findEdgeContacts(int a, int e, std::vector<Contact>& found) const;
   /// Out of body b at its surface edge e, now: the sum of its two triangles' unit normals.
   Eigen::Vector3d outwardAt(int b, const SurfaceEdge& edge) const;
   /// Position passes until every contact is within kTarget of its tolerance; returns the
@@ -130,8 +133,8 @@ class BodyContact {
   /// Equal and opposite impulses on the pair, their end positions moved with them.
   void apply(Contact& c, const Eigen::Vector3d& impulse);
   double gap(const Contact& c) const;
-  /// Sets which sides of a contact just found take impulses, and adds it.
-  void add(Contact c);
+  /// Sets which sides of a contact just found take impulses, and adds it to `found`.
+  void add(Contact c, std::vector<Contact>& found) const;
   void shift(Contact& c, const Eigen::Vector3d& amount);
 
   ContactSettings settings_;
@@ -141,7 +144,8 @@ class BodyContact {
   std::vector<std::unique_ptr<ContactParticipant>> participants_;
   /// At most one per surface node and kEdgeHits per edge: reserved once.
   std::vector<Contact> contacts_;
-  std::vector<ContactLoad> loads_;  ///< per pair of bodies (see load()), sized once
+  std::vector<std::vector<Contact>> found_;  ///< per body, the contacts it found; reserved once
+  std::vector<ContactLoad> loads_;           ///< per pair of bodies (see load()), sized once
   /// A node contact's impulse (world, N s) and the body it touched, kept for the next step.
   struct Warm {
     int triangle_body = -1;

@@ -55,7 +55,8 @@ class ContactStep {
   /// Contact between bodies and with themselves, if the settings and some body ask for it.
   void addBodyContact(BodyList& bodies);
   /// Contact between bodies after their steps; its time shared among those taking part.
-  void resolveBetweenBodies(BodyList& bodies, double dt, std::vector<StepReport>& reports);
+  void resolveBetweenBodies(BodyList& bodies, double dt, int threads,
+                            std::vector<StepReport>& reports);
 
   ContactSettings settings_;
   std::vector<std::optional<ContactState>> states_;  ///< per body: its obstacle contact
