@@ -1,3 +1,5 @@
+// Shipped surface objects at rest: alone on a floor, and in a pile.
+//
 // A body at rest on a floor costs one solve a step. Its rotations still turn by micro-radians a
 // step, and the energy that adds was once judged against a round-off of 1e-12 of the body's
 // energy: the shipped ball (config/meshes/ball.stl) resting on a floor gained 5e-9 of it, solved
@@ -50,4 +52,29 @@ TEST(RestOnFloor, TheShippedBallSolvesEachStepOnce) {
   EXPECT_EQ(splits, 0);
   EXPECT_GT(reports[0].contacts, 0);
   EXPECT_LT(sim.bodies()[0].kineticEnergy(), 1e-9);
+}
+
+// config/scenes/pile.yaml: three sponges crossed on a floor, a ball on top and a tube against the
+// bottom one, all made from surfaces and touching each other. It stands: each body settles by
+// less than a few millimetres, and each rests on what it was put on.
+TEST(RestOnFloor, TheShippedPileStands) {
+  dc::Simulation sim = dio::buildSimulation(
+      dio::readSceneFile(std::string(DEFORMABLE_SIM_SOURCE_DIR) + "/config/scenes/pile.yaml"),
+      nullptr);
+  const auto centre = [&](int b) {
+    const Eigen::VectorXd& x = sim.bodies()[b].positions();
+    return Eigen::Vector3d(x.reshaped(3, x.size() / 3).rowwise().mean());
+  };
+  std::vector<Eigen::Vector3d> start;
+  for (int b = 0; b < static_cast<int>(sim.bodies().size()); ++b) start.push_back(centre(b));
+  std::vector<dc::StepReport> reports;
+  for (int s = 0; s < 150; ++s) sim.step(reports);
+  ASSERT_EQ(sim.bodies().size(), 5u);
+  for (int b = 0; b < 5; ++b) {
+    EXPECT_LT((centre(b) - start[b]).norm(), 0.01) << sim.bodies()[b].name();
+    EXPECT_GT(reports[b].body_contacts, 0) << sim.bodies()[b].name();
+    EXPECT_LT(sim.bodies()[b].kineticEnergy(), 1e-6) << sim.bodies()[b].name();
+  }
+  const double tolerance = sim.bodyContact()->tolerance(0, 1);
+  for (int b = 0; b < 5; ++b) EXPECT_LE(reports[b].body_penetration, tolerance);
 }

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """A flood of hostile messages on every command topic, at more than 1 kHz for 30 s, while the
-node steps a sagging beam in real time and a few good commands arrive among them.
+node steps a sagging beam with a soft block resting on it (contact between bodies) in real time
+and a few good commands arrive among them.
 
 What must hold (the promise of the README's Security section):
 (a) the node stays up and answers: ~stats never stops for a second, and hostile calls of the
@@ -41,7 +42,7 @@ import tf2_ros
 from geometry_msgs.msg import Point, TransformStamped, Vector3, WrenchStamped
 from rosgraph_msgs.msg import Log
 
-from deformable_sim.msg import Applied, FixedNodes, Grasp, NodeWrench, Stats
+from deformable_sim.msg import Applied, ContactPair, Contacts, FixedNodes, Grasp, NodeWrench, Stats
 from deformable_sim.srv import SetGrasp
 from sim_client import (SimClient, connected, node_wrench, start_recording, stop_recording,
                         wrench_stamped)
@@ -170,6 +171,8 @@ class Flood(unittest.TestCase):
         cls.stats = []      # (stamp, step, dropped_messages) of every ~stats message
         cls.warnings = []   # (stamp, text) of the node's warnings
         rospy.Subscriber(NODE + '/stats', Stats, cls.on_stats, queue_size=100)
+        cls.resting = []    # per ~contacts message: the beam's push up on the block, N, or None
+        rospy.Subscriber(NODE + '/contacts', Contacts, cls.on_contacts, queue_size=100)
         rospy.Subscriber('/rosout', Log, cls.on_log, queue_size=1000)
         cls.sim = SimClient()
         cls.publishers = {
@@ -198,6 +201,13 @@ class Flood(unittest.TestCase):
         with cls.lock:
             cls.stats.append((message.header.stamp.to_sec(), message.step,
                               message.dropped_messages))
+
+    @classmethod
+    def on_contacts(cls, message):
+        push = [p.force.z for p in message.pairs
+                if (p.body, p.other, p.kind) == ('block', 'beam', ContactPair.BODY)]
+        with cls.lock:
+            cls.resting.append(push[0] if push else None)
 
     @classmethod
     def on_log(cls, log):
@@ -394,6 +404,15 @@ class Flood(unittest.TestCase):
         self.assertGreater(states, MIN_STEP_RATE * NOMINAL_HZ * FLOOD_S)
         self.assertEqual(float(match.group(2)), 0.0)
         self.assertEqual(float(match.group(3)), 0.0)
+
+    def test_g_the_block_rested_on_the_beam_through_it(self):
+        # Contact between bodies ran all along: the beam carried the block's weight.
+        weight = 0.06 ** 3 * 100.0 * 9.81
+        with self.lock:
+            resting = list(self.resting)
+        self.assertGreater(len(resting), 10)
+        carried = [z for z in resting if z is not None and abs(z - weight) < 0.1 * weight]
+        self.assertGreater(len(carried), 0.9 * len(resting))
 
 
 if __name__ == '__main__':
