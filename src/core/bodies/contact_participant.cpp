@@ -2,7 +2,7 @@
 
 namespace deformable_sim::core {
 
-Eigen::Matrix3d ContactParticipant::compliance(const SurfacePoint& point, bool) const {
+Eigen::Matrix3d ContactParticipant::compliance(const SurfacePoint& point, bool, int) const {
   return complianceFromInverseMass(point);
 }
 

@@ -46,9 +46,15 @@ double ElasticParticipant::inverseMass(const SurfacePoint& point,
   return normal.dot(compliance(point) * normal);
 }
 
-Eigen::Matrix3d ElasticParticipant::compliance(const SurfacePoint& point, bool local) const {
+Eigen::Matrix3d ElasticParticipant::compliance(const SurfacePoint& point, bool local,
+                                               int kept) const {
   if (local) return nudgeCompliance(point, Eigen::Vector3d::UnitX()) * Eigen::Matrix3d::Identity();
-  Eigen::Matrix3d w = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d w;
+  if (kept >= 0 &&
+      response_.keptCompliance(kept, point.nodes.data(), point.weights.data(), point.count, w)) {
+    return 0.5 * (w + w.transpose());
+  }
+  w.setZero();
   for (int a = 0; a < point.count; ++a) {
     for (int b = 0; b < point.count; ++b) {
       w += point.weights[a] * point.weights[b] * response_.block(point.nodes[a], point.nodes[b]);

@@ -123,8 +123,7 @@ Eigen::Matrix3d ImplicitResponse::block(int j, int i) {
   return b;
 }
 
-int ImplicitResponse::keepPoint(const int* nodes, const double* weights, int count) {
-  for (int k = 0; k < count; ++k) slot(nodes[k]);  // every slot first: the sum covers them all
+int ImplicitResponse::newPoint() {
   const int p = kept_points_++;
   if (points_.rows() < 3 * capacity_ || points_.cols() < 3 * kept_points_) {
     // Grows, keeping the points summed so far, only past the most ever kept.
@@ -132,12 +131,31 @@ int ImplicitResponse::keepPoint(const int* nodes, const double* weights, int cou
     points_.conservativeResize(3 * capacity_, cols);
     point_slots_.resize(cols / 3);
   }
+  point_slots_[p] = slots_;
+  return p;
+}
+
+int ImplicitResponse::keepPoint(const int* nodes, const double* weights, int count) {
+  for (int k = 0; k < count; ++k) slot(nodes[k]);  // every slot first: the sum covers them all
+  const int p = newPoint();
   auto sum = points_.block(0, 3 * p, 3 * slots_, 3);
   sum.setZero();
   for (int k = 0; k < count; ++k) {
     sum.noalias() += weights[k] * near_.block(0, 3 * slot_of_[nodes[k]], 3 * slots_, 3);
   }
-  point_slots_[p] = slots_;
+  return p;
+}
+
+int ImplicitResponse::keepSum(const int* points, const double* weights, int count) {
+  for (int k = 0; k < count; ++k) {
+    if (point_slots_[points[k]] != slots_) return -1;
+  }
+  const int p = newPoint();
+  auto sum = points_.block(0, 3 * p, 3 * slots_, 3);
+  sum.setZero();
+  for (int k = 0; k < count; ++k) {
+    sum.noalias() += weights[k] * points_.block(0, 3 * points[k], 3 * slots_, 3);
+  }
   return p;
 }
 
@@ -151,6 +169,16 @@ void ImplicitResponse::addPointImpulse(int point, const int* nodes, const double
     impulses_.segment<3>(3 * slot_of_[nodes[k]]) += weights[k] * impulse;
   near_changes_.head(3 * slots_).noalias() += points_.block(0, 3 * point, 3 * slots_, 3) * impulse;
   has_impulses_ = true;
+}
+
+bool ImplicitResponse::keptCompliance(int point, const int* nodes, const double* weights, int count,
+                                      Eigen::Matrix3d& w) const {
+  if (point_slots_[point] != slots_) return false;
+  w.setZero();
+  for (int k = 0; k < count; ++k) {
+    w += weights[k] * points_.block<3, 3>(3 * slot_of_[nodes[k]], 3 * point);
+  }
+  return true;
 }
 
 void ImplicitResponse::clearImpulses() {

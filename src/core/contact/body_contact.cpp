@@ -65,6 +65,13 @@ void BodyContact::reserveContacts() {
     const int count = corners.empty() ? 0 : *std::max_element(corners.begin(), corners.end()) + 1;
     warm_[b].assign(count, Warm{});
   }
+  corner_kept_.resize(surfaces_.size());
+  kept_corners_.resize(surfaces_.size());
+  for (size_t b = 0; b < surfaces_.size(); ++b) {
+    corner_kept_[b].assign(warm_[b].size(), kNotKept);
+    kept_corners_[b].clear();
+    kept_corners_[b].reserve(warm_[b].size());
+  }
 }
 
 double BodyContact::tolerance(int a, int b) const {
@@ -110,12 +117,15 @@ void BodyContact::findContact(int a, int i, std::vector<Contact>& found) const {
       best_depth = std::abs(hit.depth);
       best.triangle_body = b;
       best.triangle = other.trianglePoint(tri, {hit.weights[0], hit.weights[1], hit.weights[2]});
+      best.triangle_corners = {
+          3, {tri[0], tri[1], tri[2]}, {hit.weights[0], hit.weights[1], hit.weights[2]}};
       best.normal = hit.normal;
     });
   }
   if (best_depth == std::numeric_limits<double>::infinity()) return;
   best.node_body = a;
   best.corner = i;
+  best.node_corners = {1, {i, 0, 0}, {1.0, 0.0, 0.0}};
   best.node = mine.corner(i);
   add(best, found);
 }
@@ -179,6 +189,8 @@ void BodyContact::findEdgeContacts(int a, int e, std::vector<Contact>& found) co
       c.triangle_body = b;
       c.node = mine.edgePoint(edge, hit.s);
       c.triangle = other.edgePoint(across, hit.t);
+      c.node_corners = {2, {edge.nodes[0], edge.nodes[1], 0}, {1.0 - hit.s, hit.s, 0.0}};
+      c.triangle_corners = {2, {across.nodes[0], across.nodes[1], 0}, {1.0 - hit.t, hit.t, 0.0}};
       c.normal = hit.normal;
       add(c, found);
       ++hits;
@@ -317,26 +329,60 @@ void BodyContact::keepForNextStep() {
   }
 }
 
-void BodyContact::settleVelocities(double dt) {
+int BodyContact::keepPoint(int b, const Corners& corners) {
+  ContactParticipant& body = *participants_[b];
+  std::array<int, 3> kept{};
+  for (int k = 0; k < corners.count; ++k) {
+    int& corner = corner_kept_[b][corners.ids[k]];
+    if (corner == kNotKept) {
+      corner = body.keep(surfaces_[b]->corner(corners.ids[k]));
+      kept_corners_[b].push_back(corners.ids[k]);
+    }
+    if (corner < 0) return -1;
+    kept[k] = corner;
+  }
+  if (corners.count == 1 && corners.weights[0] == 1.0) return kept[0];
+  return body.keepSum(kept.data(), corners.weights.data(), corners.count);
+}
+
+void BodyContact::prepareAnswers(int b) {
+  ContactParticipant& body = *participants_[b];
+  for (int corner : kept_corners_[b]) corner_kept_[b][corner] = kNotKept;
+  kept_corners_[b].clear();
+  // Each side sums its nodes' answers once for all the passes, and its compliance from them.
+  // (A node that starts touching after a point was kept makes that point's sum stale: it is
+  // then answered node by node in this round.)
+  for (Contact& c : contacts_) {
+    if (c.node_body == b) c.node_kept = c.local ? -1 : keepPoint(b, c.node_corners);
+    if (c.triangle_body == b) c.triangle_kept = c.local ? -1 : keepPoint(b, c.triangle_corners);
+  }
+  for (Contact& c : contacts_) {
+    if (c.node_body == b && c.node_moves) {
+      c.node_compliance = body.compliance(c.node, c.local, c.node_kept);
+    }
+    if (c.triangle_body == b && c.triangle_moves) {
+      c.triangle_compliance = body.compliance(c.triangle, c.local, c.triangle_kept);
+    }
+  }
+}
+
+void BodyContact::settleVelocities(double dt, int threads) {
   for (Contact& c : contacts_) {
     c.start_gap = startGap(c);
-    // On a body touching itself the node's and the triangle's answers to each other are left
-    // out: the passes then take smaller steps, which only slows them.
-    const ContactParticipant& node = *participants_[c.node_body];
-    const ContactParticipant& triangle = *participants_[c.triangle_body];
     // Against a surface that cannot move there (held all over: a plate driven as a whole; or
     // held about the point) the free side answers node by node: its whole-body answer, pinned
     // between such surfaces, makes the passes converge too slowly to keep it out of them.
     c.local = !c.node_moves || !c.triangle_moves;
-    c.compliance = Eigen::Matrix3d::Zero();
-    if (c.node_moves) c.compliance += node.compliance(c.node, c.local);
-    if (c.triangle_moves) c.compliance += triangle.compliance(c.triangle, c.local);
+    c.node_compliance.setZero();
+    c.triangle_compliance.setZero();
   }
-  // Every point's answers are known now: each side sums its nodes' once for all the passes.
-  for (Contact& c : contacts_) {
-    c.node_kept = c.local ? -1 : participants_[c.node_body]->keep(c.node);
-    c.triangle_kept = c.local ? -1 : participants_[c.triangle_body]->keep(c.triangle);
-  }
+  // Each body its own answers, a body to a thread.
+  parallelForEach(threads, 0, static_cast<int>(participants_.size()), [&](int b) {
+    if (surfaces_[b]) prepareAnswers(b);
+  });
+  // On a body touching itself the node's and the triangle's answers to each other are left out:
+  // the passes then take smaller steps, which only slows them.
+  for (Contact& c : contacts_) c.compliance = c.node_compliance + c.triangle_compliance;
   for (Contact& c : contacts_) startFromLastStep(c);
   passes_ = 0;
   for (int pass = 0; pass < kVelocityPasses; ++pass) {
@@ -361,7 +407,7 @@ void BodyContact::resolve(BodyList& bodies, double dt, int threads,
       countContacts(reports);
       startLoads();
     }
-    if (!last) settleVelocities(dt);
+    if (!last) settleVelocities(dt, threads);
     if (round == 0) addContactForces(dt);
     separate(reports);
     parallelFor(threads, 0, static_cast<int>(bodies.size()), [&](int b) {

@@ -19,6 +19,18 @@ void parallelFor(int threads, int begin, int end, Function&& body) {
   }
 }
 
+/// body(i) for i in [begin, end), each index taken by the next free thread: for a few items of
+/// uneven cost (bodies of different sizes). body(i) must give the same result on any thread.
+template <typename Function>
+void parallelForEach(int threads, int begin, int end, Function&& body) {
+  if (threads > 1) {
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+    for (int i = begin; i < end; ++i) body(i);
+  } else {
+    for (int i = begin; i < end; ++i) body(i);
+  }
+}
+
 /// The sum of body(i) for i in [begin, end) (a Value with +=), taken in fixed chunks of `chunk`
 /// indices whose sums are added in chunk order: the same bits on any thread count. `partials`
 /// holds the chunk sums (resized on the first call only).

@@ -27,8 +27,10 @@ class ContactParticipant {
   /// quadratic form in n, whatever its length).
   virtual double inverseMass(const SurfacePoint& point, const Eigen::Vector3d& normal) const = 0;
   /// W itself: the point's velocity change per unit impulse there; `local`: a finite-element
-  /// body's nodes answering alone, by their lumped masses.
-  virtual Eigen::Matrix3d compliance(const SurfacePoint& point, bool local = false) const;
+  /// body's nodes answering alone, by their lumped masses; `kept`: keep()'s number for the point
+  /// (then W comes from what it summed).
+  virtual Eigen::Matrix3d compliance(const SurfacePoint& point, bool local = false,
+                                     int kept = -1) const;
   /// Linear solves a finite-element body took in this step to answer impulses.
   virtual int solves() const { return 0; }
   /// The point's body takes `impulse` (N s) there within the step: its velocities change by
@@ -37,10 +39,13 @@ class ContactParticipant {
   virtual void push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool local = false,
                     int kept = -1) = 0;
   /// Readies the point for many push()es within the round (a finite-element body sums its
-  /// nodes' answers once, not at every push) and returns the `kept` to pass them; -1: nothing to
-  /// ready. Once every point of the round has had its compliance() taken. Allocates only while
-  /// a body meets more points than ever before.
+  /// nodes' answers once, not at every push) and returns the `kept` to pass them and
+  /// compliance(); -1: nothing to ready. A point kept before another point's nodes first touched
+  /// is answered as if not kept. Allocates only while a body meets more points than ever before.
   virtual int keep(const SurfacePoint&) { return -1; }
+  /// A point that is the sum of kept points with `weights` (a triangle's of its corners'),
+  /// kept as keep() would; -1 when not kept.
+  virtual int keepSum(const int*, const double*, int) { return -1; }
   /// A small correction of positions only (what is left inside after the impulses), momentum
   /// untouched: a finite-element body's nodes move by their lumped inverse masses alone, so that
   /// the correction stays where it is needed; other bodies with their whole motion.

@@ -17,7 +17,8 @@ class ElasticParticipant : public ContactParticipant {
   Eigen::Vector3d position(const SurfacePoint& point) const override;
   Eigen::Vector3d velocity(const SurfacePoint& point) const override;
   double inverseMass(const SurfacePoint& point, const Eigen::Vector3d& normal) const override;
-  Eigen::Matrix3d compliance(const SurfacePoint& point, bool local = false) const override;
+  Eigen::Matrix3d compliance(const SurfacePoint& point, bool local = false,
+                             int kept = -1) const override;
   int solves() const override { return response_.solves(); }
   void push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool local = false,
             int kept = -1) override;
@@ -25,6 +26,9 @@ class ElasticParticipant : public ContactParticipant {
   /// a body was made from: 8 or 24).
   int keep(const SurfacePoint& point) override;
   static constexpr int kFewNodes = 4;
+  int keepSum(const int* kept, const double* weights, int count) override {
+    return response_.keepSum(kept, weights, count);
+  }
   void nudge(const SurfacePoint& point, const Eigen::Vector3d& shift) override;
   double nudgeCompliance(const SurfacePoint& point, const Eigen::Vector3d& normal) const override;
   double movable(const SurfacePoint& point) const override;

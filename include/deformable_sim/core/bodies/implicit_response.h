@@ -45,10 +45,17 @@ class ImplicitResponse {
   /// Sums the dense block's columns of a point on `count` nodes with `weights` once, for many
   /// addPointImpulse()s; returns its number. Forgotten by clearImpulses().
   int keepPoint(const int* nodes, const double* weights, int count);
+  /// A point kept as the sum of kept points with `weights` (-1 if one went stale: a node started
+  /// touching since).
+  int keepSum(const int* points, const double* weights, int count);
   /// addImpulse(nodes[k], weights[k] impulse) for every k at the cost of one, through the sum
   /// kept (point = keepPoint()'s number for the same nodes and weights).
   void addPointImpulse(int point, const int* nodes, const double* weights, int count,
                        const Eigen::Vector3d& impulse);
+  /// w = the point's velocity change per unit impulse there, from its kept sum: its rows at
+  /// the point's nodes, weighed. False (w untouched) when a node started touching since.
+  bool keptCompliance(int point, const int* nodes, const double* weights, int count,
+                      Eigen::Matrix3d& w) const;
   /// dv = the velocity change of every node from the impulses so far, sum_i A^-1 e_i f_i.
   void velocityChanges(Eigen::VectorXd& dv) const;
   /// Linear solves taken since begin(): three for each node asked about for the first time
@@ -63,6 +70,8 @@ class ImplicitResponse {
  private:
   /// The first of node i's three columns, solved on first use (an empty one: a held node).
   int slot(int i);
+  /// Room for one more kept point, covering the slots there are now; its number.
+  int newPoint();
   /// Whether the kept columns still answer for the body's matrix now.
   bool stillAnswers(const FiniteElementBody& body) const;
   /// What the columns about to be solved depend on: holds, version, rotations.

@@ -19,6 +19,7 @@
 // are on its cells' nodes.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -78,9 +79,17 @@ class BodyContact {
   static constexpr double kMovable = 0.2;
 
  private:
+  /// A point as a weighed sum of surface corners: a node (one), an edge's point (two), a
+  /// triangle's (three).
+  struct Corners {
+    int count = 0;
+    std::array<int, 3> ids{};
+    std::array<double, 3> weights{};
+  };
   struct Contact {
     int node_body = 0, triangle_body = 0;
-    int corner = -1;  ///< the node's surface corner; -1: edges that meet
+    Corners node_corners, triangle_corners;  ///< of node and triangle
+    int corner = -1;                         ///< the node's surface corner; -1: edges that meet
     SurfacePoint node, triangle;
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< out of the triangle's body
     double pushed = 0.0;   ///< kg m: the normal shift of the position passes
@@ -89,6 +98,9 @@ class BodyContact {
     double start_gap = 0.0;  ///< m: along the normal, node minus triangle point, at the start
     /// m/s per N s: how the points part per unit impulse on the pair (both bodies' answers).
     Eigen::Matrix3d compliance = Eigen::Matrix3d::Zero();
+    /// Each side's part of it (zero for a side that takes no impulses).
+    Eigen::Matrix3d node_compliance = Eigen::Matrix3d::Zero();
+    Eigen::Matrix3d triangle_compliance = Eigen::Matrix3d::Zero();
     bool local = false;                      ///< answered node by node (see settleVelocities)
     int node_kept = -1, triangle_kept = -1;  ///< each side's ContactParticipant::keep()
     /// Whether each side takes impulses: a point that lies mostly on held nodes does not (see
@@ -120,7 +132,12 @@ class BodyContact {
   void separate(std::vector<StepReport>& reports);
   /// Velocity passes (Gauss-Seidel): each pair's normal impulse, then its friction, from last
   /// step's impulses, until they change the velocities by less than kVelocityTolerance.
-  void settleVelocities(double dt);
+  void settleVelocities(double dt, int threads);
+  /// Body b's part of each contact: its compliance at its point and its kept answers there.
+  void prepareAnswers(int b);
+  /// Body b's kept answers at a point of its surface, summed from its corners' (each kept once a
+  /// round); -1: not kept.
+  int keepPoint(int b, const Corners& corners);
   /// One Gauss-Seidel update of the pair: its normal impulse, then its friction, applied at once.
   void update(Contact& c, double dt);
   /// Gives a node's contact the impulse it had last step on the same body, if it had one.
@@ -152,8 +169,13 @@ class BodyContact {
     Eigen::Vector3d impulse = Eigen::Vector3d::Zero();
   };
   std::vector<std::vector<Warm>> warm_;  ///< per body, per surface corner; sized once
-  double largest_change_ = 0.0;          ///< m/s, in the current velocity pass
-  int passes_ = 0;                       ///< velocity passes in the last step
+  /// Per body, per surface corner: its ContactParticipant::keep() in this round, kNotKept yet;
+  /// and the corners kept (sized once).
+  std::vector<std::vector<int>> corner_kept_;
+  std::vector<std::vector<int>> kept_corners_;
+  static constexpr int kNotKept = -2;
+  double largest_change_ = 0.0;  ///< m/s, in the current velocity pass
+  int passes_ = 0;               ///< velocity passes in the last step
 };
 
 }  // namespace deformable_sim::core
