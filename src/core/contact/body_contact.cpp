@@ -84,7 +84,7 @@ bool BodyContact::touches(int a, int b) const {
 
 void BodyContact::findContact(int a, int i, std::vector<Contact>& found) const {
   const BodySurface& mine = *surfaces_[a];
-  SweptNode node{mine.start().segment<3>(3 * i), participants_[a]->position(mine.corner(i))};
+  SweptNode node{mine.start().segment<3>(3 * i), mine.now(i)};
   Contact best;
   double best_depth = std::numeric_limits<double>::infinity();
   int best_rank = 3;
@@ -94,7 +94,6 @@ void BodyContact::findContact(int a, int i, std::vector<Contact>& found) const {
     const double skin = tolerance(a, b);
     Box3 box(node.start.cwiseMin(node.end), node.start.cwiseMax(node.end));
     box = Box3(box.min().array() - skin, box.max().array() + skin);
-    const ContactParticipant& corners = *participants_[b];
     other.tree().query(box, [&](int t) {
       const Triangle& tri = other.triangles()[t];
       if (a == b &&
@@ -104,7 +103,7 @@ void BodyContact::findContact(int a, int i, std::vector<Contact>& found) const {
       SweptTriangle swept;
       for (int k = 0; k < 3; ++k) {
         swept.start[k] = other.start().segment<3>(3 * tri[k]);
-        swept.end[k] = corners.position(other.corner(tri[k]));
+        swept.end[k] = other.now(tri[k]);
       }
       NodeTriangleHit hit;
       const double shallow = kShallowFraction * other.shortestEdge();
@@ -140,11 +139,9 @@ Eigen::Vector3d BodyContact::outwardAt(int b, const SurfaceEdge& edge) const {
   Eigen::Vector3d outward = Eigen::Vector3d::Zero();
   for (int k = 0; k < 2; ++k) {
     const Triangle& t = surfaces_[b]->triangles()[edge.triangles[k]];
-    const ContactParticipant& body = *participants_[b];
     const BodySurface& surface = *surfaces_[b];
-    const Eigen::Vector3d corner = body.position(surface.corner(t[0]));
-    const Eigen::Vector3d normal = (body.position(surface.corner(t[1])) - corner)
-                                       .cross(body.position(surface.corner(t[2])) - corner);
+    const Eigen::Vector3d corner = surface.now(t[0]);
+    const Eigen::Vector3d normal = (surface.now(t[1]) - corner).cross(surface.now(t[2]) - corner);
     if (normal.norm() > 0.0) outward += normal.normalized();
   }
   return outward;
@@ -156,7 +153,7 @@ void BodyContact::findEdgeContacts(int a, int e, std::vector<Contact>& found) co
   SweptEdge swept;
   for (int k = 0; k < 2; ++k) {
     swept.start[k] = mine.start().segment<3>(3 * edge.nodes[k]);
-    swept.end[k] = participants_[a]->position(mine.corner(edge.nodes[k]));
+    swept.end[k] = mine.now(edge.nodes[k]);
   }
   const Eigen::Vector3d outward = outwardAt(a, edge);
   int hits = 0;
@@ -179,7 +176,7 @@ void BodyContact::findEdgeContacts(int a, int e, std::vector<Contact>& found) co
       SweptEdge them;
       for (int k = 0; k < 2; ++k) {
         them.start[k] = other.start().segment<3>(3 * across.nodes[k]);
-        them.end[k] = participants_[b]->position(other.corner(across.nodes[k]));
+        them.end[k] = other.now(across.nodes[k]);
       }
       EdgeEdgeHit hit;
       const double shallow = kShallowFraction * std::min(mine.shortestEdge(), other.shortestEdge());
@@ -425,7 +422,7 @@ void BodyContact::findContacts(BodyList& bodies, bool new_step, int threads) {
   const int n = static_cast<int>(bodies.size());
   // Each body by itself, then each body's contacts by itself, put together in body order: the
   // same contacts in the same order on any thread count.
-  parallelFor(threads, 0, n, [&](int b) {
+  parallelForEach(threads, 0, n, [&](int b) {
     if (!surfaces_[b]) return;
     participants_[b]->begin(dt_, new_step);
     double skin = std::numeric_limits<double>::infinity();
@@ -435,7 +432,7 @@ void BodyContact::findContacts(BodyList& bodies, bool new_step, int threads) {
     surfaces_[b]->sweep(bodies[b].positions(),
                         skin == std::numeric_limits<double>::infinity() ? 0.0 : skin);
   });
-  parallelFor(threads, 0, n, [&](int a) {
+  parallelForEach(threads, 0, n, [&](int a) {
     std::vector<Contact>& found = found_[a];
     found.clear();
     if (!surfaces_[a]) return;

@@ -26,7 +26,7 @@ void forEachElement(const Mesh& mesh, Visit&& visit) {
 }  // namespace
 
 BodySurface::BodySurface(const Mesh& mesh, const Eigen::VectorXd& positions, bool with_neighbours)
-    : triangles_(extractSurface(mesh)), start_(positions) {
+    : triangles_(extractSurface(mesh)), start_(positions), corners_now_(positions) {
   build(mesh.positions, positions);
   if (!with_neighbours) return;
   std::vector<std::vector<int>> lists(mesh.numNodes());
@@ -50,8 +50,8 @@ BodySurface::BodySurface(const EmbeddedSurface& surface, const Eigen::VectorXd& 
   for (const Eigen::Vector3i& t : surface.triangles()) triangles_.push_back({t[0], t[1], t[2]});
   for (int v = 0; v < surface.numVertices(); ++v) vertices_[v] = vertexPoint(surface, v);
   corner_start_.resize(3 * surface.numVertices());
-  corners_now_.resize(3 * surface.numVertices());
   placeCorners(positions, corner_start_);
+  corners_now_ = corner_start_;
   build(surface.restPositions(), corner_start_);
 }
 
@@ -141,8 +141,12 @@ void BodySurface::findEdges(const std::vector<Eigen::Vector3d>& rest) {
 }
 
 void BodySurface::sweep(const Eigen::VectorXd& positions, double margin) {
-  if (embedded_) placeCorners(positions, corners_now_);
-  const Eigen::VectorXd& now = embedded_ ? corners_now_ : positions;
+  if (embedded_) {
+    placeCorners(positions, corners_now_);
+  } else {
+    corners_now_ = positions;  // sized when built: no allocation
+  }
+  const Eigen::VectorXd& now = corners_now_;
   const Eigen::VectorXd& start = this->start();
   const Eigen::Vector3d widen = Eigen::Vector3d::Constant(margin);
   for (size_t k = 0; k < triangles_.size(); ++k) {

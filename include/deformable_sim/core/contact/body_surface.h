@@ -63,6 +63,8 @@ class BodySurface {
   /// Where the corners were at the step's start (3 per corner), and the nodes (3n).
   const Eigen::VectorXd& start() const { return embedded_ ? corner_start_ : start_; }
   const Eigen::VectorXd& nodeStart() const { return start_; }
+  /// Where corner c was at the last sweep (its end).
+  Eigen::Vector3d now(int c) const { return corners_now_.segment<3>(3 * c); }
   const AabbTree& tree() const { return tree_; }           ///< over the swept triangles
   const AabbTree& edgeTree() const { return edge_tree_; }  ///< over the swept edges
 
@@ -84,11 +86,11 @@ class BodySurface {
   std::vector<int> nodes_;
   double size_ = 0.0, shortest_edge_ = 0.0;
   Eigen::VectorXd start_;  ///< node positions at the step's start
-  /// An embedded surface: each vertex on its cell's nodes; the vertices at the step's start and
-  /// now (scratch of sweep()).
+  /// An embedded surface: each vertex on its cell's nodes, and the vertices at the step's start.
   bool embedded_ = false;
   std::vector<SurfacePoint> vertices_;
-  Eigen::VectorXd corner_start_, corners_now_;
+  Eigen::VectorXd corner_start_;
+  Eigen::VectorXd corners_now_;   ///< the corners at the last sweep
   std::vector<Box3> boxes_;       ///< swept box of each triangle
   std::vector<Box3> edge_boxes_;  ///< and of each edge
   AabbTree tree_, edge_tree_;
