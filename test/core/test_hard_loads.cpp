@@ -95,8 +95,8 @@ TEST(HardCases, ImpulsiveWrenchOfTenThousandWeightsThenRest) {
 }
 
 // The end is thrown ~16 m in one step and elements turn by radians within it, too far for the
-// end-of-step rotations to settle: the step is split (FiniteElementBody::kMaxSplits). With the rotations of
-// the step's start alone the beam held 16 times the kick's work right after it.
+// end-of-step rotations to settle: the step is split (FiniteElementBody::kMaxSplits). With the
+// rotations of the step's start alone the beam held 16 times the kick's work right after it.
 TEST(HardCases, ImpulsiveWrenchEnergyStaysWithinItsWork) {
   const ImpulseRun run = impulse();
   ASSERT_FALSE(HasFatalFailure());

@@ -11,12 +11,13 @@
 // than kVelocityTolerance, then let each pair approach no faster than closes the gap it had at the
 // step's start, and friction stop its slip within Coulomb's cone; each impulse moves the end
 // positions with the velocities (x = x0 + dt v). A finite-element body answers an impulse as its
-// implicit step would have, through its own matrix (core/implicit_response.h), so a body resting on
-// a soft body is carried, and what presses on a body goes through it to what holds it. Against a
-// surface held all over the free side answers node by node. A last round finds the contacts again
-// and puts back, node by node, what the impulses pressed in elsewhere. Momentum is kept
-// (doc/physics.md). A body made from a surface takes part with that surface (embed()): its points
-// are on its cells' nodes.
+// implicit step would have, through its own matrix (core/bodies/implicit_response.h), so a body
+// resting on a soft body is carried, and what presses on a body goes through it to what holds
+// it. Against a surface held all over the free side answers node by node. A last round finds the
+// contacts again and puts back, node by node, what the impulses pressed in elsewhere. Momentum is
+// kept (doc/physics.md). A body made from a surface takes part with that surface (embed()): its
+// points are on its cells' nodes. Each body finds its contacts and takes its answers on the
+// solver's threads: the same bits on any count.
 #pragma once
 
 #include <array>
