@@ -1,7 +1,8 @@
 // How a finite-element body answers contact impulses (core/bodies/implicit_response.h): impulses
 // gathered node by node answer as one solve of them all, at the nodes contact looks at and at
-// every other; the columns are kept from step to step while the step's matrix stands, and solved
-// again when its holds change or its elements turn.
+// every other; points kept as sums of their nodes' answers answer as their nodes do; the columns
+// are kept from step to step while the step's matrix stands, and solved again when its holds
+// change or its elements turn.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -116,4 +117,61 @@ TEST(ImplicitResponse, KeepsItsColumnsWhileTheMatrixStandsAndSolvesAgainWhenItDo
     response.begin(body);
     EXPECT_EQ(response.kept(), rate < 5.0 ? 1 : 0) << "rate " << rate;
   }
+}
+
+TEST(ImplicitResponse, KeptPointsAnswerAsTheirNodesDo) {
+  std::unique_ptr<dc::Body> cube = steppedCube();
+  dc::FiniteElementBody& body = *cube->finiteElements();
+  dc::ImplicitResponse kept(body), by_node(body);
+  for (dc::ImplicitResponse* r : {&kept, &by_node}) {
+    r->begin(body);
+    r->clearImpulses();
+  }
+  // Two corners of a surface on grid nodes, and a point between them (their nodes merged).
+  const int first_nodes[] = {3, 4, 12, 13}, second_nodes[] = {13, 14, 22, 23};
+  const double first_weights[] = {0.1, 0.2, 0.3, 0.4}, second_weights[] = {0.25, 0.25, 0.25, 0.25};
+  for (int node : {3, 4, 12, 13, 14, 22, 23}) kept.block(node, node);  // all touching first
+  const int first = kept.keepPoint(first_nodes, first_weights, 4);
+  const int second = kept.keepPoint(second_nodes, second_weights, 4);
+  const int both[] = {first, second};
+  const double along[] = {0.6, 0.4};
+  const int between = kept.keepSum(both, along, 2);
+  ASSERT_GE(between, 0);
+  const int merged_nodes[] = {3, 4, 12, 13, 14, 22, 23};
+  const double merged_weights[] = {0.06, 0.12, 0.18, 0.24 + 0.1, 0.1, 0.1, 0.1};
+
+  // Its compliance from the kept sum is the double sum over its nodes' blocks.
+  Eigen::Matrix3d from_sum, expected = Eigen::Matrix3d::Zero();
+  ASSERT_TRUE(kept.keptCompliance(between, merged_nodes, merged_weights, 7, from_sum));
+  for (int a = 0; a < 7; ++a) {
+    for (int b = 0; b < 7; ++b) {
+      expected +=
+          merged_weights[a] * merged_weights[b] * by_node.block(merged_nodes[a], merged_nodes[b]);
+    }
+  }
+  EXPECT_LT((from_sum - expected).norm(), 1e-12 * expected.norm());
+
+  // An impulse there answers as the same impulse spread over the nodes one by one.
+  const Eigen::Vector3d impulse(0.02, -0.01, 0.03);
+  kept.addPointImpulse(between, merged_nodes, merged_weights, 7, impulse);
+  for (int k = 0; k < 7; ++k) by_node.addImpulse(merged_nodes[k], merged_weights[k] * impulse);
+  Eigen::VectorXd dv(3 * body.numNodes()), expected_dv(3 * body.numNodes());
+  kept.velocityChanges(dv);
+  by_node.velocityChanges(expected_dv);
+  EXPECT_LT((dv - expected_dv).norm(), 1e-12 * expected_dv.norm());
+  for (int j : merged_nodes) {
+    EXPECT_LT((kept.velocityChange(j) - expected_dv.segment<3>(3 * j)).norm(),
+              1e-12 * expected_dv.norm());
+  }
+
+  // A node that starts touching after the point was kept leaves its sum stale: the compliance is
+  // refused and impulses go node by node, as exactly.
+  kept.block(26, 26);
+  EXPECT_FALSE(kept.keptCompliance(between, merged_nodes, merged_weights, 7, from_sum));
+  kept.addPointImpulse(between, merged_nodes, merged_weights, 7, impulse);
+  for (int k = 0; k < 7; ++k) by_node.addImpulse(merged_nodes[k], merged_weights[k] * impulse);
+  kept.velocityChanges(dv);
+  by_node.velocityChanges(expected_dv);
+  EXPECT_LT((dv - expected_dv).norm(), 1e-12 * expected_dv.norm());
+  EXPECT_EQ(kept.keepSum(both, along, 2), -1);
 }

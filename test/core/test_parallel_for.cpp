@@ -1,4 +1,5 @@
-// Loops split over threads: every index visited once whatever the thread count, and chunked sums
+// Loops split over threads (in static chunks, or an index to the next free thread): every index
+// visited once whatever the thread count, and chunked sums
 // that give the same bits on any number of threads (built with OpenMP, as the library is).
 #include <gtest/gtest.h>
 
@@ -31,6 +32,28 @@ TEST(ParallelFor, VisitsEveryIndexOfTheRangeExactlyOnce) {
             << threads << " threads, [" << begin << ", " << end << "), index " << i;
       }
     }
+  }
+}
+
+TEST(ParallelForEach, VisitsEveryIndexOnceWhateverEachCosts) {
+  for (int threads : {1, 2, 3}) {
+    std::vector<std::atomic<int>> visits(40);
+    std::vector<double> results(40, 0.0);
+    dc::parallelForEach(threads, 0, 40, [&](int i) {
+      double sum = 0.0;  // uneven work: index i costs i^2 terms
+      for (int k = 0; k < i * i * 50; ++k) sum += 1.0 / (k + 1.0);
+      results[i] = sum;
+      ++visits[i];
+    });
+    for (int i = 0; i < 40; ++i) {
+      EXPECT_EQ(visits[i].load(), 1) << threads << " threads, index " << i;
+      double sum = 0.0;
+      for (int k = 0; k < i * i * 50; ++k) sum += 1.0 / (k + 1.0);
+      EXPECT_EQ(results[i], sum) << threads << " threads, index " << i;  // the same bits
+    }
+    int calls = 0;
+    dc::parallelForEach(threads, 5, 5, [&](int) { ++calls; });
+    EXPECT_EQ(calls, 0);
   }
 }
 
