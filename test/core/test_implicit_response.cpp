@@ -175,3 +175,35 @@ TEST(ImplicitResponse, KeptPointsAnswerAsTheirNodesDo) {
   EXPECT_LT((dv - expected_dv).norm(), 1e-12 * expected_dv.norm());
   EXPECT_EQ(kept.keepSum(both, along, 2), -1);
 }
+
+TEST(ImplicitResponse, ACornersSumIsKeptFromStepToStepWhileItsColumnsAre) {
+  std::unique_ptr<dc::Body> cube = steppedCube();
+  dc::FiniteElementBody& body = *cube->finiteElements();
+  dc::ImplicitResponse response(body);
+  const int nodes[] = {3, 4, 12, 13};
+  const double weights[] = {0.1, 0.2, 0.3, 0.4};
+  const auto expected = [&]() {
+    Eigen::Matrix3d w = Eigen::Matrix3d::Zero();
+    for (int a = 0; a < 4; ++a) {
+      for (int b = 0; b < 4; ++b) w += weights[a] * weights[b] * response.block(nodes[a], nodes[b]);
+    }
+    return w;
+  };
+  response.begin(body);
+  response.clearImpulses();
+  const int corner = response.keepCorner(7, nodes, weights, 4);
+  body.step(kDt);  // the columns stand
+  response.begin(body);
+  response.clearImpulses();
+  EXPECT_EQ(response.keepCorner(7, nodes, weights, 4), corner);
+  EXPECT_EQ(response.solves(), 0);
+  Eigen::Matrix3d w;
+  ASSERT_TRUE(response.keptCompliance(corner, nodes, weights, 4, w));
+  EXPECT_LT((w - expected()).norm(), 1e-12 * w.norm());
+  // A node starts touching: the sum is taken again, over it too.
+  response.block(26, 26);
+  EXPECT_FALSE(response.keptCompliance(corner, nodes, weights, 4, w));
+  const int again = response.keepCorner(7, nodes, weights, 4);
+  ASSERT_TRUE(response.keptCompliance(again, nodes, weights, 4, w));
+  EXPECT_LT((w - expected()).norm(), 1e-12 * w.norm());
+}

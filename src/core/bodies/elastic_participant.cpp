@@ -70,6 +70,11 @@ int ElasticParticipant::keep(const SurfacePoint& point) {
   return response_.keepPoint(point.nodes.data(), point.weights.data(), point.count);
 }
 
+int ElasticParticipant::keepCorner(int id, const SurfacePoint& point) {
+  if (point.count <= kFewNodes) return -1;
+  return response_.keepCorner(id, point.nodes.data(), point.weights.data(), point.count);
+}
+
 void ElasticParticipant::push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool local,
                               int kept) {
   if (local) {

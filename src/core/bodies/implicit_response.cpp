@@ -31,6 +31,9 @@ void ImplicitResponse::forget() {
   for (int i : used_) slot_of_[i] = -1;
   used_.clear();
   slots_ = 0;
+  for (int id : corner_ids_) corner_of_id_[id] = -1;
+  corner_ids_.clear();
+  corners_kept_ = 0;
   has_impulses_ = false;
 }
 
@@ -146,38 +149,60 @@ int ImplicitResponse::keepPoint(const int* nodes, const double* weights, int cou
   return p;
 }
 
+int ImplicitResponse::keepCorner(int id, const int* nodes, const double* weights, int count) {
+  for (int k = 0; k < count; ++k) slot(nodes[k]);
+  if (id >= static_cast<int>(corner_of_id_.size())) corner_of_id_.resize(id + 1, -1);  // once
+  int& c = corner_of_id_[id];
+  if (c >= 0 && corner_slots_[c] == slots_) return kCornerHandle + c;  // summed, still good
+  if (c < 0) {
+    c = corners_kept_++;
+    corner_ids_.push_back(id);
+    corner_slots_.resize(std::max<size_t>(corner_slots_.size(), corners_kept_));
+  }
+  if (corner_sums_.rows() < 3 * capacity_ || corner_sums_.cols() < 3 * corners_kept_) {
+    const Eigen::Index cols = std::max<Eigen::Index>(3 * corners_kept_, 2 * corner_sums_.cols());
+    corner_sums_.conservativeResize(3 * capacity_, cols);
+  }
+  auto sum = corner_sums_.block(0, 3 * c, 3 * slots_, 3);
+  sum.setZero();
+  for (int k = 0; k < count; ++k) {
+    sum.noalias() += weights[k] * near_.block(0, 3 * slot_of_[nodes[k]], 3 * slots_, 3);
+  }
+  corner_slots_[c] = slots_;
+  return kCornerHandle + c;
+}
+
 int ImplicitResponse::keepSum(const int* points, const double* weights, int count) {
   for (int k = 0; k < count; ++k) {
-    if (point_slots_[points[k]] != slots_) return -1;
+    if (pointSlots(points[k]) != slots_) return -1;
   }
   const int p = newPoint();
   auto sum = points_.block(0, 3 * p, 3 * slots_, 3);
   sum.setZero();
   for (int k = 0; k < count; ++k) {
-    sum.noalias() += weights[k] * points_.block(0, 3 * points[k], 3 * slots_, 3);
+    sum.noalias() += weights[k] * pointBlock(points[k]);
   }
   return p;
 }
 
 void ImplicitResponse::addPointImpulse(int point, const int* nodes, const double* weights,
                                        int count, const Eigen::Vector3d& impulse) {
-  if (point_slots_[point] != slots_) {  // a node started touching since: node by node
+  if (pointSlots(point) != slots_) {  // a node started touching since: node by node
     for (int k = 0; k < count; ++k) addImpulse(nodes[k], weights[k] * impulse);
     return;
   }
   for (int k = 0; k < count; ++k)
     impulses_.segment<3>(3 * slot_of_[nodes[k]]) += weights[k] * impulse;
-  near_changes_.head(3 * slots_).noalias() += points_.block(0, 3 * point, 3 * slots_, 3) * impulse;
+  near_changes_.head(3 * slots_).noalias() += pointBlock(point) * impulse;
   has_impulses_ = true;
 }
 
 bool ImplicitResponse::keptCompliance(int point, const int* nodes, const double* weights, int count,
                                       Eigen::Matrix3d& w) const {
-  if (point_slots_[point] != slots_) return false;
+  if (pointSlots(point) != slots_) return false;
+  const auto sum = pointBlock(point);
   w.setZero();
-  for (int k = 0; k < count; ++k) {
-    w += weights[k] * points_.block<3, 3>(3 * slot_of_[nodes[k]], 3 * point);
-  }
+  for (int k = 0; k < count; ++k) w += weights[k] * sum.block<3, 3>(3 * slot_of_[nodes[k]], 0);
   return true;
 }
 

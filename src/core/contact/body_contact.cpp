@@ -332,7 +332,7 @@ int BodyContact::keepPoint(int b, const Corners& corners) {
   for (int k = 0; k < corners.count; ++k) {
     int& corner = corner_kept_[b][corners.ids[k]];
     if (corner == kNotKept) {
-      corner = body.keep(surfaces_[b]->corner(corners.ids[k]));
+      corner = body.keepCorner(corners.ids[k], surfaces_[b]->corner(corners.ids[k]));
       kept_corners_[b].push_back(corners.ids[k]);
     }
     if (corner < 0) return -1;

@@ -43,6 +43,9 @@ class ContactParticipant {
   /// compliance(); -1: nothing to ready. A point kept before another point's nodes first touched
   /// is answered as if not kept. Allocates only while a body meets more points than ever before.
   virtual int keep(const SurfacePoint&) { return -1; }
+  /// keep() for a point that is the same from step to step (a corner of the body's surface,
+  /// numbered `id`): what was readied may be kept from one step to the next.
+  virtual int keepCorner(int, const SurfacePoint& point) { return keep(point); }
   /// A point that is the sum of kept points with `weights` (a triangle's of its corners'),
   /// kept as keep() would; -1 when not kept.
   virtual int keepSum(const int*, const double*, int) { return -1; }

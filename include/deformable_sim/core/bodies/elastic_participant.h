@@ -26,6 +26,7 @@ class ElasticParticipant : public ContactParticipant {
   /// a body was made from: 8 or 24).
   int keep(const SurfacePoint& point) override;
   static constexpr int kFewNodes = 4;
+  int keepCorner(int id, const SurfacePoint& point) override;
   int keepSum(const int* kept, const double* weights, int count) override {
     return response_.keepSum(kept, weights, count);
   }

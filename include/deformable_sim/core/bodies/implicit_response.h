@@ -45,6 +45,10 @@ class ImplicitResponse {
   /// Sums the dense block's columns of a point on `count` nodes with `weights` once, for many
   /// addPointImpulse()s; returns its number. Forgotten by clearImpulses().
   int keepPoint(const int* nodes, const double* weights, int count);
+  /// keepPoint() for a point that is the same from step to step (a surface's corner, numbered
+  /// `id` >= 0 by the caller): its sum is kept while the columns are and no node starts touching,
+  /// not only for the round.
+  int keepCorner(int id, const int* nodes, const double* weights, int count);
   /// A point kept as the sum of kept points with `weights` (-1 if one went stale: a node started
   /// touching since).
   int keepSum(const int* points, const double* weights, int count);
@@ -94,6 +98,20 @@ class ImplicitResponse {
   Eigen::MatrixXd points_;
   std::vector<int> point_slots_;
   int kept_points_ = 0;
+  /// The same for kept corners, numbered from kCornerHandle; and each corner's place by its id.
+  static constexpr int kCornerHandle = 1 << 24;
+  Eigen::MatrixXd corner_sums_;
+  std::vector<int> corner_slots_, corner_of_id_, corner_ids_;
+  int corners_kept_ = 0;
+  /// A kept point's or corner's summed columns, over the slots there are now.
+  auto pointBlock(int handle) const {
+    return handle >= kCornerHandle
+               ? corner_sums_.block(0, 3 * (handle - kCornerHandle), 3 * slots_, 3)
+               : points_.block(0, 3 * handle, 3 * slots_, 3);
+  }
+  int pointSlots(int handle) const {
+    return handle >= kCornerHandle ? corner_slots_[handle - kCornerHandle] : point_slots_[handle];
+  }
   Eigen::VectorXd impulses_;      ///< per slot, the impulse gathered (3 each)
   Eigen::VectorXd near_changes_;  ///< per slot, its node's velocity change (3 each)
   bool has_impulses_ = false;
