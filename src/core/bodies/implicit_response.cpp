@@ -138,14 +138,19 @@ int ImplicitResponse::newPoint() {
   return p;
 }
 
-int ImplicitResponse::keepPoint(const int* nodes, const double* weights, int count) {
-  for (int k = 0; k < count; ++k) slot(nodes[k]);  // every slot first: the sum covers them all
-  const int p = newPoint();
-  auto sum = points_.block(0, 3 * p, 3 * slots_, 3);
+void ImplicitResponse::sumColumns(Eigen::MatrixXd& into, int point, const int* nodes,
+                                  const double* weights, int count) const {
+  auto sum = into.block(0, 3 * point, 3 * slots_, 3);
   sum.setZero();
   for (int k = 0; k < count; ++k) {
     sum.noalias() += weights[k] * near_.block(0, 3 * slot_of_[nodes[k]], 3 * slots_, 3);
   }
+}
+
+int ImplicitResponse::keepPoint(const int* nodes, const double* weights, int count) {
+  for (int k = 0; k < count; ++k) slot(nodes[k]);  // every slot first: the sum covers them all
+  const int p = newPoint();
+  sumColumns(points_, p, nodes, weights, count);
   return p;
 }
 
@@ -163,11 +168,7 @@ int ImplicitResponse::keepCorner(int id, const int* nodes, const double* weights
     const Eigen::Index cols = std::max<Eigen::Index>(3 * corners_kept_, 2 * corner_sums_.cols());
     corner_sums_.conservativeResize(3 * capacity_, cols);
   }
-  auto sum = corner_sums_.block(0, 3 * c, 3 * slots_, 3);
-  sum.setZero();
-  for (int k = 0; k < count; ++k) {
-    sum.noalias() += weights[k] * near_.block(0, 3 * slot_of_[nodes[k]], 3 * slots_, 3);
-  }
+  sumColumns(corner_sums_, c, nodes, weights, count);
   corner_slots_[c] = slots_;
   return kCornerHandle + c;
 }

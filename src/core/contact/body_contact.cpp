@@ -123,7 +123,6 @@ void BodyContact::findContact(int a, int i, std::vector<Contact>& found) const {
   }
   if (best_depth == std::numeric_limits<double>::infinity()) return;
   best.node_body = a;
-  best.corner = i;
   best.node_corners = {1, {i, 0, 0}, {1.0, 0.0, 0.0}};
   best.node = mine.corner(i);
   add(best, found);
@@ -303,8 +302,8 @@ void BodyContact::update(Contact& c, double dt) {
 }
 
 void BodyContact::startFromLastStep(Contact& c) {
-  if (c.corner < 0) return;
-  const Warm& last = warm_[c.node_body][c.corner];
+  if (c.node_corners.count != 1) return;  // edges that meet
+  const Warm& last = warm_[c.node_body][c.node_corners.ids[0]];
   if (last.triangle_body != c.triangle_body) return;
   // Last step's impulse on the pair, turned into this step's normal and cone.
   c.impulse = std::max(0.0, c.normal.dot(last.impulse));
@@ -321,8 +320,9 @@ void BodyContact::keepForNextStep() {
     for (Warm& w : warm) w.triangle_body = -1;
   }
   for (const Contact& c : contacts_) {
-    if (c.corner < 0) continue;
-    warm_[c.node_body][c.corner] = {c.triangle_body, c.impulse * c.normal + c.friction};
+    if (c.node_corners.count != 1) continue;
+    warm_[c.node_body][c.node_corners.ids[0]] = {c.triangle_body,
+                                                 c.impulse * c.normal + c.friction};
   }
 }
 

@@ -76,6 +76,10 @@ class ImplicitResponse {
   int slot(int i);
   /// Room for one more kept point, covering the slots there are now; its number.
   int newPoint();
+  /// Columns 3 point .. 3 point + 2 of `into` = the point's weighed sum of its nodes' columns of
+  /// near_ (every node with a slot).
+  void sumColumns(Eigen::MatrixXd& into, int point, const int* nodes, const double* weights,
+                  int count) const;
   /// Whether the kept columns still answer for the body's matrix now.
   bool stillAnswers(const FiniteElementBody& body) const;
   /// What the columns about to be solved depend on: holds, version, rotations.

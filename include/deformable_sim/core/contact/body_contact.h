@@ -89,8 +89,8 @@ class BodyContact {
   };
   struct Contact {
     int node_body = 0, triangle_body = 0;
-    Corners node_corners, triangle_corners;  ///< of node and triangle
-    int corner = -1;                         ///< the node's surface corner; -1: edges that meet
+    /// Of node and triangle; a node's contact is on one corner, edges that meet on two.
+    Corners node_corners, triangle_corners;
     SurfacePoint node, triangle;
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< out of the triangle's body
     double pushed = 0.0;   ///< kg m: the normal shift of the position passes
