@@ -90,7 +90,7 @@ TEST(ObstacleEdges, TheMeterReadsHowDeepAnEdgeIsInAnUndeformedCube) {
 // body's faces, unseen by contact that looks only at the body's points. Here the edge comes down
 // between two columns of nodes, 5 mm from each: the bar feels nothing and its edge ends 3.96 mm
 // inside the cube (the whole 4 mm it was pressed), until contact looks at the obstacle's features.
-TEST(ObstacleEdges, DISABLED_ABoxPressedEdgeFirstStaysOutOfTheFaceBetweenNodes) {
+TEST(ObstacleEdges, ABoxPressedEdgeFirstStaysOutOfTheFaceBetweenNodes) {
   dc::Simulation sim = deformable_sim::test::boxMeshSimulation(cubeUnderABar());
   std::vector<dc::StepReport> reports;
   for (int s = 0; s < 50; ++s) sim.step(reports);

@@ -8,14 +8,8 @@ namespace deformable_sim::core {
 
 namespace {
 
-/// Passes over a body's touching vertices on one obstacle: their cells share nodes, so putting
-/// one back moves its neighbours.
-constexpr int kEmbeddedPasses = 8;
-
 /// Halvings of a point's way in the step that find where it entered an obstacle: 2^-40 of it.
 constexpr int kEntryHalvings = 40;
-/// How far inside an obstacle a point put on its surface may be found again (round-off), m.
-constexpr double kOnTheSurface = 1e-9;
 
 /// The body's mass and the velocity of its centre of mass.
 std::pair<double, Eigen::Vector3d> massAndCentreVelocity(const FiniteElementBody& body) {
@@ -30,21 +24,33 @@ std::pair<double, Eigen::Vector3d> massAndCentreVelocity(const FiniteElementBody
 
 }  // namespace
 
-ContactState::ContactState(int num_nodes)
-    : points_(num_nodes),
-      node_obstacle_(num_nodes, -1),
-      node_place_(num_nodes, Eigen::Vector3d::Zero()),
-      held_flag_(num_nodes, 0),
-      held_weight_(num_nodes, 0.0),
-      on_plane_node_(num_nodes, 0),
-      plane_weight_(num_nodes, 0.0),
-      position_requests_(num_nodes),
-      velocity_requests_(num_nodes) {
+ContactState::ContactState(const Mesh& mesh)
+    : points_(mesh.numNodes()),
+      node_obstacle_(mesh.numNodes(), -1),
+      node_place_(mesh.numNodes(), Eigen::Vector3d::Zero()),
+      held_flag_(mesh.numNodes(), 0),
+      held_weight_(mesh.numNodes(), 0.0),
+      on_plane_node_(mesh.numNodes(), 0),
+      plane_weight_(mesh.numNodes(), 0.0),
+      position_requests_(mesh.numNodes()),
+      velocity_requests_(mesh.numNodes()) {
+  const int num_nodes = mesh.numNodes();
   for (int i = 0; i < num_nodes; ++i) {
     points_[i].nodes[0] = i;
     points_[i].weights[0] = 1.0;
     points_[i].count = 1;
   }
+  for (const Face& f : extractBoundary(mesh)) {
+    faces_.emplace_back(f.nodes[0], f.nodes[1], f.nodes[2]);
+    if (f.size() == 4) faces_.emplace_back(f.nodes[0], f.nodes[2], f.nodes[3]);
+  }
+  face_obstacle_.assign(num_nodes, -1);
+  face_normal_.assign(num_nodes, Eigen::Vector3d::Zero());
+  face_place_.assign(num_nodes, Eigen::Vector3d::Zero());
+  pushed_by_.assign(num_nodes, -1);
+  face_push_.assign(num_nodes, 0.0);
+  face_nodes_.reserve(num_nodes);
+  face_held_.reserve(num_nodes);
   held_.reserve(num_nodes);
   plane_nodes_.reserve(num_nodes);
   resizePoints();
@@ -59,6 +65,7 @@ void ContactState::embed(const EmbeddedSurface& surface) {
     std::copy_n(vertex.nodes.begin(), vertex.count, point.nodes.begin());
     std::copy_n(vertex.weights.begin(), vertex.count, point.weights.begin());
   }
+  faces_ = surface.triangles();
   embedded_ = true;
   resizePoints();
 }
@@ -75,12 +82,20 @@ void ContactState::resizePoints() {
   friction_.assign(n, Eigen::Vector3d::Zero());
   excess_.assign(n, Eigen::Vector3d::Zero());
   point_force_.assign(n, Eigen::Vector3d::Zero());
+  face_pressed_.assign(faces_.size(), 0);
+  face_touches_.clear();
+  face_touches_.reserve(faces_.size());
 }
 
 void ContactState::forget() {
   std::fill(obstacle_.begin(), obstacle_.end(), -1);
   std::fill(holds_.begin(), holds_.end(), 0);
   std::fill(on_plane_.begin(), on_plane_.end(), 0);
+  for (int i : face_nodes_) face_obstacle_[i] = -1;
+  face_nodes_.clear();
+  for (int i : face_held_) pushed_by_[i] = -1;
+  face_held_.clear();
+  face_touches_.clear();
 }
 
 void ContactState::resizeForObstacles(size_t count) {
@@ -165,7 +180,7 @@ void ContactState::hold(FiniteElementBody& body, const std::vector<PlacedShape>&
   // A body that touches one obstacle, and that nothing else holds, takes a slip's correction as
   // a whole.
   int touched = -1;
-  whole_ = numConstrained(body) == 0;
+  whole_ = numConstrained(body) == 0 && face_nodes_.empty();
   for (size_t p = 0; p < points_.size() && whole_; ++p) {
     if (obstacle_[p] < 0) continue;  // held or not: what touches pushes on the body too
     whole_ = touched < 0 || touched == obstacle_[p];
@@ -203,6 +218,7 @@ void ContactState::hold(FiniteElementBody& body, const std::vector<PlacedShape>&
       point_held_[p] = kInPlace;
     }
   }
+  holdFaceNodes(body, obstacles);
 }
 
 void ContactState::holdOnPlane(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
@@ -346,6 +362,7 @@ void ContactState::release(FiniteElementBody& body, const std::vector<PlacedShap
     slip_[p] = patch.sticks ? Eigen::Vector3d::Zero() : Eigen::Vector3d(slip - slip.dot(n) * n);
     point_[p] = obstacles[k].pose.inverse() * x;
   }
+  measureFacePushes(body, obstacles);
   letGo(body);
 }
 
@@ -543,6 +560,13 @@ int ContactState::countTouching(const FiniteElementBody& body,
     const double inside = -signedDistance(obstacle.shape, to_shape_[obstacle_[p]] * x);
     load.depth = std::max(load.depth, inside);
   }
+  for (const FaceTouch& touch : face_touches_) {
+    ++touching;
+    ContactLoad& load = contacts_[touch.obstacle];
+    ++load.points;
+    for (int corner = 0; corner < 3; ++corner)
+      load.centre += faceCorner(body, touch.face, corner) / 3.0;
+  }
   for (ContactLoad& c : contacts_) {
     if (c.points > 0) c.centre /= c.points;
   }
@@ -586,6 +610,7 @@ int ContactState::project(FiniteElementBody& body, const std::vector<PlacedShape
     grant(position_requests_, body.mutablePositions());
     settleEmbedded(body, obstacle, static_cast<int>(k));
   }
+  pushFacesOut(body, obstacles, start_poses, dt);
   recordNodePlaces(body, obstacles);
   const int touching = countTouching(body, obstacles);
   int obstacles_touched = 0;

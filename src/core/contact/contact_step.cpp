@@ -11,7 +11,7 @@ ContactStep::ContactStep(BodyList& bodies, const ContactSettings& settings) : se
   states_.reserve(bodies.size());
   for (const Body& body : bodies) {
     states_.emplace_back();
-    if (body.finiteElements()) states_.back().emplace(body.numNodes());
+    if (body.finiteElements()) states_.back().emplace(body.mesh());
   }
   addBodyContact(bodies);
 }

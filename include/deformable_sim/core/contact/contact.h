@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "deformable_sim/core/bodies/finite_element_body.h"
+#include "deformable_sim/core/elements/mesh.h"
 #include "deformable_sim/core/geometry/shape.h"
 #include "deformable_sim/core/surface_bodies/embedded_surface.h"
 
@@ -54,10 +55,11 @@ struct ContactLoad {
 /// obstacles; allocates nothing while that number stays the same.
 class ContactState {
  public:
-  /// The body's nodes touch the obstacles.
-  explicit ContactState(int num_nodes);
-  /// The vertices of `surface` touch them instead (a body made from a surface): its nodes lie up
-  /// to a cell outside the surface. Allocates.
+  /// The nodes of the body of `mesh` touch the obstacles, and the edges and corners of box
+  /// obstacles touch its boundary faces.
+  explicit ContactState(const Mesh& mesh);
+  /// The vertices and triangles of `surface` touch them instead (a body made from a surface): its
+  /// nodes lie up to a cell outside the surface. Allocates.
   void embed(const EmbeddedSurface& surface);
 
   /// Before a step of `dt` s, with the obstacles where they will be at its end: holds the free
@@ -72,8 +74,9 @@ class ContactState {
                double dt);
   /// Projects the free points out of every obstacle and records them as touching; an obstacle's
   /// velocity is that of its rigid motion from `start_poses[k]` to its pose within the step, and
-  /// the body's nodes at the step's start are its stepStart().
-  /// Returns the number of points touching an obstacle.
+  /// the body's nodes at the step's start are its stepStart(). Then puts the faces that a box's
+  /// edges or corners press into between the points back out of it (see pushFacesOut()).
+  /// Returns the number of points and such faces touching an obstacle.
   int project(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
               const std::vector<Eigen::Isometry3d>& start_poses, const ContactSettings& settings,
               double dt);
@@ -177,12 +180,64 @@ class ContactState {
   /// How far off its obstacle a point on its plane may end a step and touch on (it slid past an
   /// edge otherwise), m.
   static constexpr double kOffItsFace = 1e-4;
+  /// Passes over a body's touching vertices (or faces) on one obstacle: their cells share nodes,
+  /// so putting one back moves its neighbours.
+  static constexpr int kEmbeddedPasses = 8;
+  /// How far inside an obstacle a point put on its surface may be found again (round-off), m.
+  static constexpr double kOnTheSurface = 1e-9;
   /// A landed point slipping slower than this along its obstacle is at rest on it, m/s.
   static constexpr double kAtRest = 1e-6;
 
   /// A vertex lying mostly on held nodes counts as held: moving it by the rest would take shifts
   /// of 1 / free weight times what it needs.
   static constexpr double kMovable = 0.2;
+
+  // Edges and corners of box obstacles against the body's faces (obstacle_features.cpp): a box
+  // pressed edge first into a face between its points is unseen by the points. Such a face is
+  // moved out of the box the least way (core/geometry/box_triangle_separation.h), its way into
+  // it stopped, and its nodes held on planes of that direction, moving with the box, in the next
+  // step: frictionless, let go when their springs pull.
+
+  /// After the points' projection: puts the faces that box obstacles press into back out, and
+  /// records the faces touching them and the nodes to hold next step.
+  void pushFacesOut(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
+                    const std::vector<Eigen::Isometry3d>& start_poses, double dt);
+  /// Moves the faces that box k presses into out of it, in passes (faces share nodes);
+  /// face_pressed_ marks them.
+  void separateFaces(FiniteElementBody& body, const PlacedShape& box, int k);
+  /// Whether face t is one for box k's features: all its points movable, none touching it (the
+  /// points' own contact holds those), and near it.
+  bool faceForFeatures(const FiniteElementBody& body, int t, int k,
+                       const Eigen::AlignedBox3d& near) const;
+  /// Face t touches box k after the step: it was pressed into it, or it was held against it in
+  /// the step, pushed, and is still within kOffItsFace.
+  bool faceTouches(int t, int k, double depth) const;
+  /// Stops face t's way into box k and records its nodes to hold on planes of `direction`.
+  void touchFace(const FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
+                 const std::vector<Eigen::Isometry3d>& start_poses, int t, int k,
+                 const Eigen::Vector3d& direction, double dt);
+  /// Holds the recorded nodes on their planes for the step (those held otherwise excepted).
+  void holdFaceNodes(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles);
+  /// After the step: each held node's push, added to its box's load.
+  void measureFacePushes(const FiniteElementBody& body, const std::vector<PlacedShape>& obstacles);
+  Eigen::Vector3d faceCorner(const FiniteElementBody& body, int t, int corner) const {
+    return weighted(body.positions(), faces_[t][corner]);
+  }
+
+  std::vector<Eigen::Vector3i> faces_;      ///< the body's surface triangles, over its points
+  std::vector<std::uint8_t> face_pressed_;  ///< per face: pressed into a box in this step
+  struct FaceTouch {
+    int face = 0, obstacle = 0;
+  };
+  std::vector<FaceTouch> face_touches_;  ///< faces touching a box after the step; reserved once
+  // Per node.
+  std::vector<int> face_obstacle_;  ///< the box a face holds it against next step, -1: none
+  std::vector<Eigen::Vector3d> face_normal_;  ///< the plane's normal, in the box's frame
+  std::vector<Eigen::Vector3d> face_place_;   ///< a point of the plane, in the box's frame
+  std::vector<int> face_nodes_;               ///< the nodes with a face_obstacle_
+  std::vector<int> face_held_;                ///< those held in the present step
+  std::vector<int> pushed_by_;     ///< after the step: the box it was held against, -1: none
+  std::vector<double> face_push_;  ///< that hold's push, N (negative: it pulled)
 
   std::vector<Point> points_;
   bool embedded_ = false;

@@ -1,0 +1,148 @@
+// ContactState's part for the edges and corners of box obstacles (see contact.h).
+#include <algorithm>
+
+#include "deformable_sim/core/contact/contact.h"
+#include "deformable_sim/core/geometry/box_triangle_separation.h"
+
+namespace deformable_sim::core {
+
+namespace {
+
+/// The box's bounding box in the world, grown by `margin` m.
+Eigen::AlignedBox3d boundsOf(const PlacedShape& box, double margin) {
+  const Eigen::Vector3d reach =
+      box.pose.linear().cwiseAbs() * (0.5 * box.shape.size) + Eigen::Vector3d::Constant(margin);
+  return {box.pose.translation() - reach, box.pose.translation() + reach};
+}
+
+}  // namespace
+
+void ContactState::pushFacesOut(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
+                                const std::vector<Eigen::Isometry3d>& start_poses, double dt) {
+  for (int i : face_nodes_) face_obstacle_[i] = -1;
+  face_nodes_.clear();
+  face_touches_.clear();
+  for (size_t k = 0; k < obstacles.size(); ++k) {
+    const PlacedShape& box = obstacles[k];
+    if (box.shape.kind != Shape::Kind::kBox) continue;
+    const int K = static_cast<int>(k);
+    separateFaces(body, box, K);
+    const Eigen::AlignedBox3d near = boundsOf(box, kOffItsFace);
+    for (int t = 0; t < static_cast<int>(faces_.size()); ++t) {
+      if (!face_pressed_[t] && !faceForFeatures(body, t, K, near)) continue;
+      const BoxTriangleSeparation s =
+          separateFromBox(box.pose, box.shape.size, faceCorner(body, t, 0), faceCorner(body, t, 1),
+                          faceCorner(body, t, 2));
+      if (faceTouches(t, K, s.depth))
+        touchFace(body, obstacles, start_poses, t, K, s.direction, dt);
+      face_pressed_[t] = 0;
+    }
+    grantVelocities(body, K, dt);
+  }
+  // The pushes of the last step's holds have been read.
+  for (int i : face_held_) pushed_by_[i] = -1;
+  face_held_.clear();
+}
+
+void ContactState::separateFaces(FiniteElementBody& body, const PlacedShape& box, int k) {
+  const Eigen::AlignedBox3d near = boundsOf(box, 0.0);
+  for (int pass = 0; pass < kEmbeddedPasses; ++pass) {
+    for (int t = 0; t < static_cast<int>(faces_.size()); ++t) {
+      if (!faceForFeatures(body, t, k, near)) continue;
+      const BoxTriangleSeparation s =
+          separateFromBox(box.pose, box.shape.size, faceCorner(body, t, 0), faceCorner(body, t, 1),
+                          faceCorner(body, t, 2));
+      if (!(s.depth > kOnTheSurface)) continue;
+      contacts_[k].penetration = std::max(contacts_[k].penetration, s.depth);
+      face_pressed_[t] = 1;
+      // The face moved whole, its free nodes alike (ContactState::request()).
+      for (int corner = 0; corner < 3; ++corner) {
+        request(body, faces_[t][corner], s.depth * s.direction, position_requests_);
+      }
+    }
+    if (position_requests_.touched.empty()) return;
+    grant(position_requests_, body.mutablePositions());
+  }
+}
+
+bool ContactState::faceForFeatures(const FiniteElementBody& body, int t, int k,
+                                   const Eigen::AlignedBox3d& near) const {
+  Eigen::AlignedBox3d bounds;
+  for (int corner = 0; corner < 3; ++corner) {
+    const int p = faces_[t][corner];
+    if (obstacle_[p] == k || !movable(body, p)) return false;
+    bounds.extend(weighted(body.positions(), p));
+  }
+  return bounds.intersects(near);
+}
+
+bool ContactState::faceTouches(int t, int k, double depth) const {
+  if (face_pressed_[t]) return true;
+  if (!(depth > -kOffItsFace)) return false;
+  // Held against the box in the step: it touches on while its nodes' springs pushed in all.
+  double push = 0.0;
+  bool held = false;
+  for (int corner = 0; corner < 3; ++corner) {
+    const Point& point = points_[faces_[t][corner]];
+    for (int j = 0; j < point.count; ++j) {
+      const int i = point.nodes[j];
+      if (pushed_by_[i] != k) continue;
+      held = true;
+      push += point.weights[j] * face_push_[i];
+    }
+  }
+  return held && push > 0.0;
+}
+
+void ContactState::touchFace(const FiniteElementBody& body,
+                             const std::vector<PlacedShape>& obstacles,
+                             const std::vector<Eigen::Isometry3d>& start_poses, int t, int k,
+                             const Eigen::Vector3d& direction, double dt) {
+  face_touches_.push_back({t, k});
+  const PlacedShape& box = obstacles[k];
+  const Eigen::Isometry3d to_box = box.pose.inverse();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero();
+  for (int corner = 0; corner < 3; ++corner) {
+    centre += faceCorner(body, t, corner) / 3.0;
+    velocity += weighted(body.velocities(), faces_[t][corner]) / 3.0;
+  }
+  // Its way into the box, relative to the box (moving rigidly within the step), is stopped.
+  const Eigen::Vector3d box_velocity = (centre - start_poses[k] * (to_box * centre)) / dt;
+  const double into = -(velocity - box_velocity).dot(direction);
+  for (int corner = 0; corner < 3; ++corner) {
+    const int p = faces_[t][corner];
+    if (into > 0.0) request(body, p, into * direction, velocity_requests_);
+    const Point& point = points_[p];
+    for (int j = 0; j < point.count; ++j) {
+      const int i = point.nodes[j];
+      if (point.weights[j] == 0.0 || body.isConstrained(i) || face_obstacle_[i] >= 0) continue;
+      face_obstacle_[i] = k;
+      face_normal_[i] = to_box.linear() * direction;
+      face_place_[i] = to_box * body.positions().segment<3>(3 * i);
+      face_nodes_.push_back(i);
+    }
+  }
+}
+
+void ContactState::holdFaceNodes(FiniteElementBody& body,
+                                 const std::vector<PlacedShape>& obstacles) {
+  for (int i : face_nodes_) {
+    if (body.isConstrained(i) || held_flag_[i] || on_plane_node_[i]) continue;
+    const PlacedShape& box = obstacles[face_obstacle_[i]];
+    body.holdNodeOnPlane(i, box.pose.linear() * face_normal_[i], box.pose * face_place_[i]);
+    face_held_.push_back(i);
+  }
+}
+
+void ContactState::measureFacePushes(const FiniteElementBody& body,
+                                     const std::vector<PlacedShape>& obstacles) {
+  for (int i : face_held_) {
+    const int k = face_obstacle_[i];
+    const Eigen::Vector3d n = obstacles[k].pose.linear() * face_normal_[i];
+    pushed_by_[i] = k;
+    face_push_[i] = body.reactionForces().segment<3>(3 * i).dot(n);
+    if (face_push_[i] > 0.0) addForce(k, body.positions().segment<3>(3 * i), face_push_[i] * n);
+  }
+}
+
+}  // namespace deformable_sim::core

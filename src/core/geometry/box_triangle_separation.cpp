@@ -1,0 +1,58 @@
+#include "deformable_sim/core/geometry/box_triangle_separation.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace deformable_sim::core {
+
+namespace {
+
+/// Cross products shorter than this fraction of their factors' lengths are not axes (parallel
+/// edges): the other axes decide.
+constexpr double kParallel = 1e-9;
+
+struct Axes {
+  std::array<Eigen::Vector3d, 13> axis;
+  int count = 0;
+  void add(const Eigen::Vector3d& a, double scale) {
+    const double length = a.norm();
+    if (length > kParallel * scale) axis[count++] = a / length;
+  }
+};
+
+}  // namespace
+
+BoxTriangleSeparation separateFromBox(const Eigen::Isometry3d& pose, const Eigen::Vector3d& size,
+                                      const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                      const Eigen::Vector3d& c) {
+  const Eigen::Matrix3d box_axes = pose.linear();
+  const Eigen::Vector3d centre = pose.translation(), half = 0.5 * size;
+  const std::array<Eigen::Vector3d, 3> edges{b - a, c - b, a - c};
+  Axes axes;
+  for (int j = 0; j < 3; ++j) axes.add(box_axes.col(j), 1.0);
+  axes.add(edges[0].cross(edges[1]), edges[0].norm() * edges[1].norm());
+  for (const Eigen::Vector3d& e : edges) {
+    for (int j = 0; j < 3; ++j) axes.add(e.cross(box_axes.col(j)), e.norm());
+  }
+  BoxTriangleSeparation least;
+  least.depth = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < axes.count; ++k) {
+    const Eigen::Vector3d& u = axes.axis[k];
+    const double pa = u.dot(a), pb = u.dot(b), pc = u.dot(c);
+    const double low = std::min({pa, pb, pc}), high = std::max({pa, pb, pc});
+    const double reach = (box_axes.transpose() * u).cwiseAbs().dot(half);
+    const double middle = u.dot(centre);
+    // Out along +u: the triangle's low end past the box's high end; or along -u.
+    const double up = middle + reach - low, down = high - (middle - reach);
+    const double depth = std::min(up, down);
+    if (depth < least.depth) {
+      least.depth = depth;
+      least.direction = up <= down ? u : Eigen::Vector3d(-u);
+    }
+  }
+  return least;
+}
+
+}  // namespace deformable_sim::core
