@@ -1,5 +1,7 @@
 #include "deformable_sim/core/bodies/elastic_participant.h"
 
+#include <cmath>
+
 namespace deformable_sim::core {
 
 ElasticParticipant::ElasticParticipant(FiniteElementBody& body)
@@ -17,6 +19,8 @@ void ElasticParticipant::begin(double dt, bool new_step) {
 
 void ElasticParticipant::end() {
   response_.velocityChanges(velocity_change_of_nodes_);
+  // At most sqrt(3) times the largest component: a bound, not the norm, for its cheapness.
+  largest_move_ = std::sqrt(3.0) * dt_ * velocity_change_of_nodes_.cwiseAbs().maxCoeff();
   *v_ += velocity_change_of_nodes_;
   *x_ += dt_ * velocity_change_of_nodes_;
   body_->addConstraintForces(velocity_change_of_nodes_);

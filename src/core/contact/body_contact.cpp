@@ -78,6 +78,23 @@ double BodyContact::tolerance(int a, int b) const {
   return 0.01 * std::min(surfaces_[a]->size(), surfaces_[b]->size());
 }
 
+bool BodyContact::couldHaveMovedIn() const {
+  // A node found clear was further than the pair's tolerance in front of every triangle; one
+  // found touching was left within kTarget of it. Moved by less than that by the answers and
+  // the corrections, on both sides, none can be deeper than the position passes leave them.
+  double moved = largest_correction_, tightest = std::numeric_limits<double>::infinity();
+  for (size_t a = 0; a < surfaces_.size(); ++a) {
+    if (!surfaces_[a]) continue;
+    moved = std::max(moved, participants_[a]->largestMove() + largest_correction_);
+    for (size_t b = a; b < surfaces_.size(); ++b) {
+      if (surfaces_[b] && touches(static_cast<int>(a), static_cast<int>(b))) {
+        tightest = std::min(tightest, tolerance(static_cast<int>(a), static_cast<int>(b)));
+      }
+    }
+  }
+  return !(2.0 * moved < kTarget * tightest);
+}
+
 bool BodyContact::touches(int a, int b) const {
   return a == b ? bool(with_self_[a]) : with_bodies_[a] && with_bodies_[b];
 }
@@ -205,11 +222,13 @@ void BodyContact::shift(Contact& c, const Eigen::Vector3d& amount) {
 }
 
 void BodyContact::separate(std::vector<StepReport>& reports) {
+  largest_correction_ = 0.0;
   for (int pass = 0; pass < kPositionPasses; ++pass) {
     bool settled = true;
     for (Contact& c : contacts_) {
       const double depth = -gap(c);
       if (!(depth > 0.0)) continue;
+      largest_correction_ = std::max(largest_correction_, depth);
       if (depth > kTarget * tolerance(c.node_body, c.triangle_body)) settled = false;
       const double w =
           (c.node_moves ? participants_[c.node_body]->nudgeCompliance(c.node, c.normal) : 0.0) +
@@ -399,6 +418,7 @@ void BodyContact::resolve(BodyList& bodies, double dt, int threads,
   // round finds the contacts again and only puts back what is inside, node by node.
   for (int round = 0; round < kRounds; ++round) {
     const bool last = round == kRounds - 1;
+    if (last && !couldHaveMovedIn()) break;
     findContacts(bodies, round == 0, threads);
     if (round == 0) {
       countContacts(reports);

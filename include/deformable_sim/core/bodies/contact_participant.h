@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 
 #include "deformable_sim/core/geometry/surface_point.h"
 
@@ -20,6 +21,8 @@ class ContactParticipant {
   /// Gives the body what the contact changed, and the constraint forces its impulses asked of its
   /// held nodes.
   virtual void end() = 0;
+  /// How far the last end() moved any node, m; infinity where not known.
+  virtual double largestMove() const { return std::numeric_limits<double>::infinity(); }
 
   virtual Eigen::Vector3d position(const SurfacePoint& point) const = 0;
   virtual Eigen::Vector3d velocity(const SurfacePoint& point) const = 0;

@@ -14,6 +14,7 @@ class ElasticParticipant : public ContactParticipant {
 
   void begin(double dt, bool new_step = true) override;
   void end() override;
+  double largestMove() const override { return largest_move_; }
   Eigen::Vector3d position(const SurfacePoint& point) const override;
   Eigen::Vector3d velocity(const SurfacePoint& point) const override;
   double inverseMass(const SurfacePoint& point, const Eigen::Vector3d& normal) const override;
@@ -45,7 +46,8 @@ class ElasticParticipant : public ContactParticipant {
   FiniteElementBody* body_;
   Eigen::VectorXd* x_ = nullptr;  ///< the body's own state, changed in place
   Eigen::VectorXd* v_ = nullptr;
-  double dt_ = 0.0;  ///< of the step
+  double dt_ = 0.0;            ///< of the step
+  double largest_move_ = 0.0;  ///< m, by the last end()
   /// Columns solved lazily, so `mutable`; it gathers the impulses of the whole-body answers.
   mutable ImplicitResponse response_;
   Eigen::VectorXd velocity_change_of_nodes_;  ///< their change of every node, made in end()

@@ -70,7 +70,8 @@ class BodyContact {
   static constexpr int kVelocityPasses = 32;
   /// m/s: the velocity passes stop once no update in a pass moved its pair by more.
   static constexpr double kVelocityTolerance = 1e-4;
-  /// Rounds of finding and resolving contacts a step.
+  /// Rounds of finding and resolving contacts a step (the last only when the first's answers can
+  /// have pressed nodes in elsewhere).
   static constexpr int kRounds = 2;
   /// The most edges one edge meets in a step (two bars laid crosswise: each edge crosses two).
   static constexpr int kEdgeHits = 4;
@@ -110,6 +111,9 @@ class BodyContact {
   };
 
   bool touches(int a, int b) const;
+  /// After the first round: whether its answers and corrections can have moved a node into a
+  /// surface deeper than the position passes leave it (else the last round finds nothing new).
+  bool couldHaveMovedIn() const;
   /// Room for a contact per surface corner and kEdgeHits per edge.
   void reserveContacts();
   /// Sweeps the surfaces from the step's start to the bodies' positions now and finds every
@@ -175,8 +179,9 @@ class BodyContact {
   std::vector<std::vector<int>> corner_kept_;
   std::vector<std::vector<int>> kept_corners_;
   static constexpr int kNotKept = -2;
-  double largest_change_ = 0.0;  ///< m/s, in the current velocity pass
-  int passes_ = 0;               ///< velocity passes in the last step
+  double largest_change_ = 0.0;      ///< m/s, in the current velocity pass
+  double largest_correction_ = 0.0;  ///< m: the deepest a position pass put back, last round
+  int passes_ = 0;                   ///< velocity passes in the last step
 };
 
 }  // namespace deformable_sim::core
