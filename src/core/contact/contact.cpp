@@ -83,6 +83,7 @@ void ContactState::resizePoints() {
   excess_.assign(n, Eigen::Vector3d::Zero());
   point_force_.assign(n, Eigen::Vector3d::Zero());
   face_pressed_.assign(faces_.size(), 0);
+  point_x_.assign(n, Eigen::Vector3d::Zero());
   face_touches_.clear();
   face_touches_.reserve(faces_.size());
 }

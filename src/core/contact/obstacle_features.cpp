@@ -22,17 +22,20 @@ void ContactState::pushFacesOut(FiniteElementBody& body, const std::vector<Place
   for (int i : face_nodes_) face_obstacle_[i] = -1;
   face_nodes_.clear();
   face_touches_.clear();
+  bool placed = false;
   for (size_t k = 0; k < obstacles.size(); ++k) {
     const PlacedShape& box = obstacles[k];
     if (box.shape.kind != Shape::Kind::kBox) continue;
     const int K = static_cast<int>(k);
+    if (!placed) placePoints(body);
+    placed = true;
     separateFaces(body, box, K);
     const Eigen::AlignedBox3d near = boundsOf(box, kOffItsFace);
     for (int t = 0; t < static_cast<int>(faces_.size()); ++t) {
       if (!face_pressed_[t] && !faceForFeatures(body, t, K, near)) continue;
       const BoxTriangleSeparation s =
-          separateFromBox(box.pose, box.shape.size, faceCorner(body, t, 0), faceCorner(body, t, 1),
-                          faceCorner(body, t, 2));
+          separateFromBox(box.pose, box.shape.size, point_x_[faces_[t][0]], point_x_[faces_[t][1]],
+                          point_x_[faces_[t][2]]);
       if (faceTouches(t, K, s.depth))
         touchFace(body, obstacles, start_poses, t, K, s.direction, dt);
       face_pressed_[t] = 0;
@@ -50,8 +53,8 @@ void ContactState::separateFaces(FiniteElementBody& body, const PlacedShape& box
     for (int t = 0; t < static_cast<int>(faces_.size()); ++t) {
       if (!faceForFeatures(body, t, k, near)) continue;
       const BoxTriangleSeparation s =
-          separateFromBox(box.pose, box.shape.size, faceCorner(body, t, 0), faceCorner(body, t, 1),
-                          faceCorner(body, t, 2));
+          separateFromBox(box.pose, box.shape.size, point_x_[faces_[t][0]], point_x_[faces_[t][1]],
+                          point_x_[faces_[t][2]]);
       if (!(s.depth > kOnTheSurface)) continue;
       contacts_[k].penetration = std::max(contacts_[k].penetration, s.depth);
       face_pressed_[t] = 1;
@@ -62,6 +65,13 @@ void ContactState::separateFaces(FiniteElementBody& body, const PlacedShape& box
     }
     if (position_requests_.touched.empty()) return;
     grant(position_requests_, body.mutablePositions());
+    placePoints(body);
+  }
+}
+
+void ContactState::placePoints(const FiniteElementBody& body) {
+  for (size_t p = 0; p < points_.size(); ++p) {
+    point_x_[p] = weighted(body.positions(), static_cast<int>(p));
   }
 }
 
@@ -70,10 +80,14 @@ bool ContactState::faceForFeatures(const FiniteElementBody& body, int t, int k,
   Eigen::AlignedBox3d bounds;
   for (int corner = 0; corner < 3; ++corner) {
     const int p = faces_[t][corner];
-    if (obstacle_[p] == k || !movable(body, p)) return false;
-    bounds.extend(weighted(body.positions(), p));
+    if (obstacle_[p] == k) return false;
+    bounds.extend(point_x_[p]);
   }
-  return bounds.intersects(near);
+  if (!bounds.intersects(near)) return false;
+  for (int corner = 0; corner < 3; ++corner) {
+    if (!movable(body, faces_[t][corner])) return false;
+  }
+  return true;
 }
 
 bool ContactState::faceTouches(int t, int k, double depth) const {

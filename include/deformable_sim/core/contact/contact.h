@@ -224,6 +224,9 @@ class ContactState {
     return weighted(body.positions(), faces_[t][corner]);
   }
 
+  /// Where each point is now, into point_x_ (after each correction).
+  void placePoints(const FiniteElementBody& body);
+  std::vector<Eigen::Vector3d> point_x_;    ///< per point: where it is, for the faces
   std::vector<Eigen::Vector3i> faces_;      ///< the body's surface triangles, over its points
   std::vector<std::uint8_t> face_pressed_;  ///< per face: pressed into a box in this step
   struct FaceTouch {
