@@ -140,11 +140,12 @@ int ImplicitResponse::newPoint() {
 
 void ImplicitResponse::sumColumns(Eigen::MatrixXd& into, int point, const int* nodes,
                                   const double* weights, int count) const {
+  // The first term assigned, not added to zeros: a pass over the sum less.
   auto sum = into.block(0, 3 * point, 3 * slots_, 3);
-  sum.setZero();
-  for (int k = 0; k < count; ++k) {
-    sum.noalias() += weights[k] * near_.block(0, 3 * slot_of_[nodes[k]], 3 * slots_, 3);
-  }
+  const auto column = [&](int k) { return near_.block(0, 3 * slot_of_[nodes[k]], 3 * slots_, 3); };
+  if (count == 0) sum.setZero();
+  if (count > 0) sum.noalias() = weights[0] * column(0);
+  for (int k = 1; k < count; ++k) sum.noalias() += weights[k] * column(k);
 }
 
 int ImplicitResponse::keepPoint(const int* nodes, const double* weights, int count) {
@@ -179,10 +180,13 @@ int ImplicitResponse::keepSum(const int* points, const double* weights, int coun
   }
   const int p = newPoint();
   auto sum = points_.block(0, 3 * p, 3 * slots_, 3);
-  sum.setZero();
-  for (int k = 0; k < count; ++k) {
-    sum.noalias() += weights[k] * pointBlock(points[k]);
+  if (count == 3) {  // a triangle's point: its corners' sums in one pass
+    sum.noalias() = weights[0] * pointBlock(points[0]) + weights[1] * pointBlock(points[1]) +
+                    weights[2] * pointBlock(points[2]);
+    return p;
   }
+  sum.setZero();
+  for (int k = 0; k < count; ++k) sum.noalias() += weights[k] * pointBlock(points[k]);
   return p;
 }
 
