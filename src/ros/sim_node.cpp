@@ -33,6 +33,7 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
       [this](double rate) {
         params_.rate_hz = rate;
         if (timer_.isValid()) timer_.setPeriod(ros::Duration(1.0 / rate));
+        pacer_.restart(1.0 / rate);
       });
   subscribers_ = {private_node.subscribe("wrench", 100, &SimNode::onWrench, this),
                   private_node.subscribe("node_wrench", 100, &SimNode::onNodeWrench, this),
@@ -43,6 +44,7 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
                private_node.advertiseService("pause", &SimNode::onPause, this),
                private_node.advertiseService("resume", &SimNode::onResume, this),
                private_node.advertiseService("step", &SimNode::onStep, this)};
+  pacer_.restart(1.0 / params_.rate_hz);
   timer_ = node.createTimer(ros::Duration(1.0 / params_.rate_hz), &SimNode::onTimer, this);
   logStart();
 }
@@ -114,8 +116,13 @@ void SimNode::onTimer(const ros::TimerEvent&) {
   // A body must not fall through an obstacle that tf has not delivered yet: wait for them all.
   if (sim().contact() && !obstacles_->update(now)) {
     ROS_INFO_THROTTLE(2.0, "waiting for tf to place the obstacle links before stepping");
-  } else if (!status_.paused) {
-    advance(params_.substeps);
+    pacer_.restart(1.0 / params_.rate_hz);
+  } else if (status_.paused) {
+    pacer_.restart(1.0 / params_.rate_hz);
+  } else {
+    // The ticks a late callback missed too (core/driver/tick_pacer.h).
+    const int ticks = pacer_.ticksDue(now.toSec());
+    if (ticks > 0) advance(params_.substeps * ticks);
     stepped = true;
   }
   real_time_factor_.sample(now.toSec(), sim().time());

@@ -23,6 +23,7 @@
 #include "deformable_sim/core/driver/real_time_factor.h"
 #include "deformable_sim/core/driver/refusal_log.h"
 #include "deformable_sim/core/driver/slow_tick_watch.h"
+#include "deformable_sim/core/driver/tick_pacer.h"
 #include "deformable_sim/core/driver/wrench_timeouts.h"
 #include "deformable_sim/core/session/session.h"
 #include "deformable_sim/ros/contact_outputs.h"
@@ -76,6 +77,7 @@ class SimNode {
   core::MeshCatalogue obstacle_meshes_;  ///< meshes recorded in ~scene and ~applied, by id
   TickStatus status_;
   core::RealTimeFactor real_time_factor_;
+  core::TickPacer pacer_{1.0};  ///< restarted with the node's period before the first tick
   core::SlowTickWatch slow_ticks_;
   core::WrenchTimeouts wrench_timeouts_;
   core::RefusalLog refusals_;
