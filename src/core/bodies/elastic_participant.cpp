@@ -7,7 +7,8 @@ namespace deformable_sim::core {
 ElasticParticipant::ElasticParticipant(FiniteElementBody& body)
     : body_(&body),
       response_(body),
-      velocity_change_of_nodes_(Eigen::VectorXd::Zero(3 * body.numNodes())) {}
+      velocity_change_of_nodes_(Eigen::VectorXd::Zero(3 * body.numNodes())),
+      round_start_(Eigen::VectorXd::Zero(3 * body.numNodes())) {}
 
 void ElasticParticipant::begin(double dt, bool new_step) {
   dt_ = dt;
@@ -15,14 +16,15 @@ void ElasticParticipant::begin(double dt, bool new_step) {
   v_ = &body_->mutableVelocities();
   if (new_step) response_.begin(*body_);
   response_.clearImpulses();
+  round_start_ = *x_;
 }
 
 void ElasticParticipant::end() {
   response_.velocityChanges(velocity_change_of_nodes_);
-  // At most sqrt(3) times the largest component: a bound, not the norm, for its cheapness.
-  largest_move_ = std::sqrt(3.0) * dt_ * velocity_change_of_nodes_.cwiseAbs().maxCoeff();
   *v_ += velocity_change_of_nodes_;
   *x_ += dt_ * velocity_change_of_nodes_;
+  // At most sqrt(3) times the largest component: a bound, not the norm, for its cheapness.
+  largest_move_ = std::sqrt(3.0) * (*x_ - round_start_).cwiseAbs().maxCoeff();
   body_->addConstraintForces(velocity_change_of_nodes_);
 }
 

@@ -80,12 +80,12 @@ double BodyContact::tolerance(int a, int b) const {
 
 bool BodyContact::couldHaveMovedIn() const {
   // A node found clear was further than the pair's tolerance in front of every triangle; one
-  // found touching was left within kTarget of it. Moved by less than that by the answers and
-  // the corrections, on both sides, none can be deeper than the position passes leave them.
-  double moved = largest_correction_, tightest = std::numeric_limits<double>::infinity();
+  // found touching was left within kTarget of it. Moved by less than half of that in the round,
+  // on both sides, none can be deeper than the position passes leave them.
+  double moved = 0.0, tightest = std::numeric_limits<double>::infinity();
   for (size_t a = 0; a < surfaces_.size(); ++a) {
     if (!surfaces_[a]) continue;
-    moved = std::max(moved, participants_[a]->largestMove() + largest_correction_);
+    moved = std::max(moved, participants_[a]->largestMove());
     for (size_t b = a; b < surfaces_.size(); ++b) {
       if (surfaces_[b] && touches(static_cast<int>(a), static_cast<int>(b))) {
         tightest = std::min(tightest, tolerance(static_cast<int>(a), static_cast<int>(b)));
@@ -222,13 +222,11 @@ void BodyContact::shift(Contact& c, const Eigen::Vector3d& amount) {
 }
 
 void BodyContact::separate(std::vector<StepReport>& reports) {
-  largest_correction_ = 0.0;
   for (int pass = 0; pass < kPositionPasses; ++pass) {
     bool settled = true;
     for (Contact& c : contacts_) {
       const double depth = -gap(c);
       if (!(depth > 0.0)) continue;
-      largest_correction_ = std::max(largest_correction_, depth);
       if (depth > kTarget * tolerance(c.node_body, c.triangle_body)) settled = false;
       const double w =
           (c.node_moves ? participants_[c.node_body]->nudgeCompliance(c.node, c.normal) : 0.0) +

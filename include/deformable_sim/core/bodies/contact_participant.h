@@ -21,7 +21,8 @@ class ContactParticipant {
   /// Gives the body what the contact changed, and the constraint forces its impulses asked of its
   /// held nodes.
   virtual void end() = 0;
-  /// How far the last end() moved any node, m; infinity where not known.
+  /// After end(): the most any node moved in the round (the whole-body answers, and the local
+  /// pushes and nudges), m, an upper bound; infinity where not known.
   virtual double largestMove() const { return std::numeric_limits<double>::infinity(); }
 
   virtual Eigen::Vector3d position(const SurfacePoint& point) const = 0;

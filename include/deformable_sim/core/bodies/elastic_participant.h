@@ -47,10 +47,11 @@ class ElasticParticipant : public ContactParticipant {
   Eigen::VectorXd* x_ = nullptr;  ///< the body's own state, changed in place
   Eigen::VectorXd* v_ = nullptr;
   double dt_ = 0.0;            ///< of the step
-  double largest_move_ = 0.0;  ///< m, by the last end()
+  double largest_move_ = 0.0;  ///< m: see largestMove()
   /// Columns solved lazily, so `mutable`; it gathers the impulses of the whole-body answers.
   mutable ImplicitResponse response_;
   Eigen::VectorXd velocity_change_of_nodes_;  ///< their change of every node, made in end()
+  Eigen::VectorXd round_start_;  ///< the positions at begin(), to measure largestMove()
 };
 
 }  // namespace deformable_sim::core

@@ -179,9 +179,8 @@ class BodyContact {
   std::vector<std::vector<int>> corner_kept_;
   std::vector<std::vector<int>> kept_corners_;
   static constexpr int kNotKept = -2;
-  double largest_change_ = 0.0;      ///< m/s, in the current velocity pass
-  double largest_correction_ = 0.0;  ///< m: the deepest a position pass put back, last round
-  int passes_ = 0;                   ///< velocity passes in the last step
+  double largest_change_ = 0.0;  ///< m/s, in the current velocity pass
+  int passes_ = 0;               ///< velocity passes in the last step
 };
 
 }  // namespace deformable_sim::core
