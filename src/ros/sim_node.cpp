@@ -120,9 +120,11 @@ void SimNode::onTimer(const ros::TimerEvent&) {
   } else if (status_.paused) {
     pacer_.restart(1.0 / params_.rate_hz);
   } else {
-    // The ticks a late callback missed too (core/driver/tick_pacer.h).
+    // The ticks a late callback missed too (core/driver/tick_pacer.h); none owed, nothing new
+    // to publish either (a state twice with one step would be recorded twice).
     const int ticks = pacer_.ticksDue(now.toSec());
-    if (ticks > 0) advance(params_.substeps * ticks);
+    if (ticks == 0) return;
+    advance(params_.substeps * ticks);
     stepped = true;
   }
   real_time_factor_.sample(now.toSec(), sim().time());

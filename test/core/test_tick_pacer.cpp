@@ -51,6 +51,23 @@ TEST(TickPacer, ADebtLongerThanKForgiveAfterIsDropped) {
 TEST(TickPacer, AClockThatGoesBackOrARestartStartsAgain) {
   TickPacer pacer(kPeriod);
   EXPECT_EQ(ticksAt(pacer, {5.0, 5.01, 1.0, 1.01}), (std::vector<int>{1, 1, 1, 1}));
+  // Set back to a time after the schedule began (a test's clock started again): from there.
+  EXPECT_EQ(ticksAt(pacer, {1.02, 1.03, 1.04, 1.011, 1.021}), (std::vector<int>{1, 1, 1, 1, 1}));
   pacer.restart(0.02);  // paused for a while, and now at 50 Hz
   EXPECT_EQ(ticksAt(pacer, {9.0, 9.02, 9.04, 9.08}), (std::vector<int>{1, 1, 1, 2}));
+}
+
+TEST(TickPacer, ACoarseClockFiresTheTimerSeveralTimesAndStepsOnlyItsTime) {
+  TickPacer pacer(kPeriod);
+  // A clock of 50 ms ticks: the timer called five times at each; five steps in all each time.
+  EXPECT_EQ(ticksAt(pacer, {2.0, 2.05, 2.05, 2.05, 2.05, 2.05, 2.1, 2.1, 2.1, 2.1, 2.1}),
+            (std::vector<int>{1, 2, 2, 1, 0, 0, 2, 2, 1, 0, 0}));
+}
+
+TEST(TickPacer, ACallbackAheadOfTheScheduleMovesIt) {
+  TickPacer pacer(kPeriod);
+  // After a late callback (35.1 ms) the timer's schedule is half a period off: a callback that
+  // comes a little early owes nothing, and the schedule moves to it: one a tick from there.
+  EXPECT_EQ(ticksAt(pacer, {0.0, 0.01, 0.0351, 0.0451, 0.0549, 0.0651, 0.0749, 0.0852}),
+            (std::vector<int>{1, 1, 2, 2, 0, 1, 1, 1}));
 }

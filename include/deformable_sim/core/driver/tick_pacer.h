@@ -23,14 +23,17 @@ class TickPacer {
 
   /// The ticks to step at a callback at clock time `now` s: the periods since the first
   /// callback, to the nearest (a callback's jitter is not a missed tick), less those stepped.
-  /// The first callback, and the first after restart() or a clock that went back (a looped bag),
-  /// takes one.
+  /// The first callback, and the first after restart() or a clock that went back (a looped bag,
+  /// a test's clock set again), takes one. A callback with nothing owed (a clock coarser than
+  /// the timer fires it several times at one time; a timer whose schedule started again half a
+  /// period off) takes none, and the schedule moves to it: the next on time takes one.
   int ticksDue(double now) {
-    if (!started_ || now < origin_) {
+    if (!started_ || now < last_) {
       started_ = true;
       origin_ = now;
       stepped_ = 0;
     }
+    last_ = now;
     long owed = std::lround((now - origin_) / period_) + 1 - stepped_;
     const long forgive = std::lround(kForgiveAfter / period_);
     if (owed > forgive) {  // long behind: start again from here
@@ -38,7 +41,11 @@ class TickPacer {
       stepped_ = 0;
       owed = 1;
     }
-    const int ticks = static_cast<int>(std::clamp<long>(owed, 0, kMostTicks));
+    if (owed <= 0) {
+      origin_ = now - static_cast<double>(stepped_ - 1) * period_;
+      return 0;
+    }
+    const int ticks = static_cast<int>(std::min<long>(owed, kMostTicks));
     stepped_ += ticks;
     return ticks;
   }
@@ -52,6 +59,7 @@ class TickPacer {
   double period_;
   bool started_ = false;
   double origin_ = 0.0;  ///< clock time of the schedule's first tick, s
+  double last_ = 0.0;    ///< of the last callback, s
   long stepped_ = 0;     ///< ticks stepped since then
 };
 
