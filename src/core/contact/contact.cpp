@@ -566,7 +566,7 @@ int ContactState::countTouching(const FiniteElementBody& body,
     ContactLoad& load = contacts_[touch.obstacle];
     ++load.points;
     for (int corner = 0; corner < 3; ++corner)
-      load.centre += faceCorner(body, touch.face, corner) / 3.0;
+      load.centre += point_x_[faces_[touch.face][corner]] / 3.0;
   }
   for (ContactLoad& c : contacts_) {
     if (c.points > 0) c.centre /= c.points;

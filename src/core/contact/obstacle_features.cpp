@@ -117,7 +117,7 @@ void ContactState::touchFace(const FiniteElementBody& body,
   const Eigen::Isometry3d to_box = box.pose.inverse();
   Eigen::Vector3d centre = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero();
   for (int corner = 0; corner < 3; ++corner) {
-    centre += faceCorner(body, t, corner) / 3.0;
+    centre += point_x_[faces_[t][corner]] / 3.0;
     velocity += weighted(body.velocities(), faces_[t][corner]) / 3.0;
   }
   // Its way into the box, relative to the box (moving rigidly within the step), is stopped.

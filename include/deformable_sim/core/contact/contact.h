@@ -220,9 +220,6 @@ class ContactState {
   void holdFaceNodes(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles);
   /// After the step: each held node's push, added to its box's load.
   void measureFacePushes(const FiniteElementBody& body, const std::vector<PlacedShape>& obstacles);
-  Eigen::Vector3d faceCorner(const FiniteElementBody& body, int t, int corner) const {
-    return weighted(body.positions(), faces_[t][corner]);
-  }
 
   /// Where each point is now, into point_x_ (after each correction).
   void placePoints(const FiniteElementBody& body);
