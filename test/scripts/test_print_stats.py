@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """scripts/print_stats's line, from stand-ins for deformable_sim/Stats and deformable_sim/Contacts
-(no ROS): the real-time factor, and per body how many pairs touch it and at how many points."""
+(no ROS): the real-time factor, and per body how many pairs touch it and at how many points; and
+its summary of whether a node kept real time over a span of messages."""
 import importlib.machinery
 import importlib.util
 import os
@@ -82,5 +83,35 @@ class PrintStatsLine(unittest.TestCase):
         self.assertIn('dropped 2 (last: ~wrench: force 1e3 N above 49 N)', line)
 
 
+class PrintStatsSummary(unittest.TestCase):
+    @staticmethod
+    def run_span(samples):
+        """samples: (stamp, sim_time, step_time[, paused]) per message."""
+        keeping = print_stats.KeepingTime()
+        for sample in samples:
+            paused = sample[3] if len(sample) > 3 else False
+            keeping.add(sample[0], stats(sim_time=sample[1], step_time=sample[2], paused=paused))
+        return keeping
+
+    def test_simulated_time_per_second_over_the_span_and_tick_times(self):
+        # 11 messages 0.1 s apart; the simulation falls 0.02 s behind over the second.
+        samples = [(10.0 + 0.1 * k, 3.0 + 0.098 * k, 0.001 * (k + 1)) for k in range(11)]
+        text = self.run_span(samples).text()
+        self.assertIn('over 1.0 s: simulated 0.980 s, real-time factor 0.9800', text)
+        self.assertIn('6.00 ms (median of 11), 10.00 ms (90th percentile), 11.00 ms (longest)',
+                      text)
+
+    def test_a_reset_or_a_pause_starts_the_span_again(self):
+        before = [(1.0, 5.0, 0.1), (2.0, 6.0, 0.1)]
+        reset = [(3.0, 0.0, 0.002), (4.0, 0.5, 0.002)]  # sim time back to 0: counted from here
+        self.assertIn('real-time factor 0.5000', self.run_span(before + reset).text())
+        paused = [(3.0, 7.0, 0.0, True), (4.0, 7.0, 0.004), (5.0, 8.0, 0.004)]
+        self.assertIn('over 1.0 s: simulated 1.000 s', self.run_span(before + paused).text())
+
+    def test_no_span_yet(self):
+        self.assertIn('no span yet', print_stats.KeepingTime().text())
+        self.assertIn('no span yet', self.run_span([(1.0, 1.0, 0.01)]).text())
+
+
 if __name__ == '__main__':
-    rosunit.unitrun('deformable_sim', 'test_print_stats', PrintStatsLine, sysargs=sys.argv)
+    rosunit.unitrun('deformable_sim', 'test_print_stats', __name__, sysargs=sys.argv)
