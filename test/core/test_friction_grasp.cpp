@@ -9,12 +9,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "body_meters.h"
 #include "deformable_sim/core/contact/contact.h"
 #include "deformable_sim/core/geometry/shape.h"
+#include "deformable_sim/core/geometry/triangle_mesh.h"
+#include "deformable_sim/core/geometry/triangle_mesh_shape.h"
 #include "deformable_sim/core/session/simulation.h"
 #include "deformable_sim/core/surface_bodies/surface_body.h"
+#include "deformable_sim/io/triangle_mesh_reader.h"
 #include "scene_builder.h"
 #include "simulation_test_helpers.h"
 #include "surface_test_helpers.h"
@@ -29,12 +33,26 @@ constexpr double kGravity = 9.81;
 constexpr double kHalfWidth = 0.03;  // the block: a 6 cm cube on the table, centred on the z axis
 constexpr double kLift = 0.1;        // m
 
-dc::PlacedShape box(const std::string& name, const Eigen::Vector3d& size,
-                    const Eigen::Vector3d& centre) {
+enum class Fingers {
+  kBoxes,         // primitive boxes
+  kBoxMeshes,     // the same boxes as closed meshes of twelve triangles
+  kShippedMeshes  // config/meshes/finger.stl, 3 x 1 x 8 cm with chamfered edges
+};
+
+// A finger of `size` centred on `centre`.
+dc::PlacedShape finger(const std::string& name, const Eigen::Vector3d& size,
+                       const Eigen::Vector3d& centre, Fingers fingers) {
   dc::PlacedShape shape;
   shape.name = name;
-  shape.shape.kind = dc::Shape::Kind::kBox;
-  shape.shape.size = size;
+  shape.shape.kind = fingers == Fingers::kBoxes ? dc::Shape::Kind::kBox : dc::Shape::Kind::kMesh;
+  if (fingers == Fingers::kBoxes) shape.shape.size = size;
+  if (fingers == Fingers::kBoxMeshes)
+    shape.shape.mesh =
+        std::make_shared<const dc::TriangleMeshShape>(dc::boxSurface(-0.5 * size, 0.5 * size));
+  if (fingers == Fingers::kShippedMeshes)
+    shape.shape.mesh =
+        std::make_shared<const dc::TriangleMeshShape>(deformable_sim::io::readTriangleMesh(
+            std::string(DEFORMABLE_SIM_SOURCE_DIR) + "/config/meshes/finger.stl"));
   shape.pose.translation() = centre;
   return shape;
 }
@@ -47,6 +65,9 @@ struct Grasp {
   double weight = 0.0;                                     ///< N
   int finger_points = 0;
   double lowest = 0.0;  ///< m, the lowest node at the end
+  /// Set down again, let go and left by the fingers (let_go): how far its centre of mass ends
+  /// above where it started, m.
+  double left_at = 0.0;
 };
 
 enum class Object { kBlock, kSurfaceBall };
@@ -73,7 +94,8 @@ dc::Simulation withObject(dc::SceneSpec spec, Object object) {
 // are taller than the block: shorter ones leave its unsqueezed top wider than the gap between
 // them, a ledge that rests on them and carries the block whatever the friction (as it would a
 // foam block).
-Grasp squeezeAndLift(double squeeze, double friction, Object object = Object::kBlock) {
+Grasp squeezeAndLift(double squeeze, double friction, Object object = Object::kBlock,
+                     Fingers fingers = Fingers::kBoxes, bool let_go = false) {
   dc::SceneSpec spec = deformable_sim::test::SceneBuilder()
                            .dt(0.01)
                            .gravity(kGravity)
@@ -84,7 +106,8 @@ Grasp squeezeAndLift(double squeeze, double friction, Object object = Object::kB
   const Eigen::Vector3d finger_size(0.03, 0.01, 0.07);
   const double open = kHalfWidth + 0.005 + 0.002;  // finger centres 2 mm off the block
   for (int side : {-1, 1}) {
-    spec.obstacles.push_back(box(side < 0 ? "left" : "right", finger_size, {0, side * open, 0.03}));
+    spec.obstacles.push_back(
+        finger(side < 0 ? "left" : "right", finger_size, {0, side * open, 0.03}, fingers));
   }
   dc::Simulation sim = withObject(spec, object);
   std::vector<dc::StepReport> reports;
@@ -134,6 +157,14 @@ Grasp squeezeAndLift(double squeeze, double friction, Object object = Object::kB
   for (int i = 0; i < sim.bodies()[0].numNodes(); ++i)
     grasp.lowest = std::min(grasp.lowest, x[3 * i + 2]);
   for (double m : sim.bodies()[0].nodalMasses()) grasp.weight += m * kGravity;
+  if (!let_go) return grasp;
+  // Down again in 1 s, open in 0.5 s, up and away 10 cm in 1 s, and 1 s more.
+  const double closed = 0.002 + squeeze;
+  for (int s = 1; s <= 100; ++s)
+    place(closed, kLift * (0.5 + 0.5 * std::cos(M_PI * s / 100.0))), sim.step(reports);
+  for (int s = 1; s <= 50; ++s) place(closed * (1.0 - s / 50.0), 0.0), sim.step(reports);
+  for (int s = 1; s <= 200; ++s) place(0.0, 0.1 * std::min(1.0, s / 100.0)), sim.step(reports);
+  grasp.left_at = centreOfMass(sim.bodies()[0]).z() - start;
   return grasp;
 }
 
@@ -153,6 +184,17 @@ TEST(FrictionGrasp, ASqueezedBlockRisesWithTheFingersAndTheyCarryItsWeight) {
   // It rises with the fingers, less only the little it sags and slips while it starts to hang.
   EXPECT_NEAR(grasp.rise, kLift, 0.001);
   expectHangingFromTheFingers(grasp);
+}
+
+// The same with fingers that are meshes, a box's twelve triangles and the demo's chamfered finger;
+// then the block is set down and let go, and stays on the table as the fingers leave.
+TEST(FrictionGrasp, MeshFingersLiftTheBlockAsBoxesDoAndLetItGo) {
+  for (Fingers fingers : {Fingers::kBoxes, Fingers::kBoxMeshes, Fingers::kShippedMeshes}) {
+    const Grasp grasp = squeezeAndLift(0.002, 0.5, Object::kBlock, fingers, true);
+    EXPECT_NEAR(grasp.rise, kLift, 0.001) << int(fingers);
+    expectHangingFromTheFingers(grasp);
+    EXPECT_NEAR(grasp.left_at, 0.0, 0.002) << int(fingers);
+  }
 }
 
 TEST(FrictionGrasp, TooLightASqueezeLetsTheBlockSlipOut) {

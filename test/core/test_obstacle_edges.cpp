@@ -1,15 +1,18 @@
 // An obstacle's edges stay out of a body's faces, as the body's points stay out of obstacles:
 // a box turned to press one edge into a soft cube's top face between its nodes sinks into it by
-// no more than the contact tolerance.
+// no more than the contact tolerance, a primitive box or a box of triangles alike.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "deformable_sim/core/elements/mesh.h"
 #include "deformable_sim/core/geometry/triangle_aabb_tree.h"
+#include "deformable_sim/core/geometry/triangle_mesh.h"
+#include "deformable_sim/core/geometry/triangle_mesh_shape.h"
 #include "deformable_sim/core/geometry/winding_number.h"
 #include "deformable_sim/core/session/simulation.h"
 #include "scene_builder.h"
@@ -51,11 +54,16 @@ double edgeDepth(const dc::Body& body, const dc::PlacedShape& bar) {
   return deepest;
 }
 
-dc::PlacedShape edgeFirstBar() {
+// The bar as a primitive box, or as a closed mesh of the same box's twelve triangles.
+dc::PlacedShape edgeFirstBar(dc::Shape::Kind kind = dc::Shape::Kind::kBox) {
   dc::PlacedShape bar;
   bar.name = "bar";
-  bar.shape.kind = dc::Shape::Kind::kBox;
-  bar.shape.size = Eigen::Vector3d(kBar, 0.08, kBar);
+  const Eigen::Vector3d size(kBar, 0.08, kBar);
+  bar.shape.kind = kind;
+  if (kind == dc::Shape::Kind::kBox) bar.shape.size = size;
+  if (kind == dc::Shape::Kind::kMesh)
+    bar.shape.mesh =
+        std::make_shared<const dc::TriangleMeshShape>(dc::boxSurface(-0.5 * size, 0.5 * size));
   bar.pose.linear() = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitY()).toRotationMatrix();
   return bar;
 }
@@ -67,9 +75,9 @@ dc::PlacedShape barAt(dc::PlacedShape bar, double edge_height) {
   return bar;
 }
 
-dc::SceneSpec cubeUnderABar() {
+dc::SceneSpec cubeUnderABar(dc::Shape::Kind kind = dc::Shape::Kind::kBox) {
   dc::SceneSpec spec = deformable_sim::test::dampedTable(0.5, {0.4, 0.4, 0.04});
-  spec.obstacles.push_back(barAt(edgeFirstBar(), kSide + 0.01));
+  spec.obstacles.push_back(barAt(edgeFirstBar(kind), kSide + 0.01));
   spec.bodies.push_back(deformable_sim::test::boxBody("cube", {-0.5 * kSide, -0.5 * kSide, 0.0},
                                                       {0.5 * kSide, 0.5 * kSide, kSide}, {4, 4, 4},
                                                       {3.0e4, 0.3, 150.0}));
@@ -86,19 +94,69 @@ TEST(ObstacleEdges, TheMeterReadsHowDeepAnEdgeIsInAnUndeformedCube) {
   EXPECT_EQ(edgeDepth(sim.bodies()[0], barAt(edgeFirstBar(), kSide + 0.001)), 0.0);
 }
 
+// The bar comes down to 4 mm below the cube's top in 0.5 s and stays: how deep its edge ends up,
+// and how hard it presses down.
+// Then it rises 2 cm above the top in 0.2 s and stays there for 0.5 s: where the cube ends.
+struct Pressed {
+  double depth = 0.0, force = 0.0;
+  double lowest_after = 0.0;   ///< m, the cube's lowest node after the bar rose
+  double highest_after = 0.0;  ///< m, its highest
+  double force_after = 0.0;    ///< N, the bar's push down after it rose
+};
+
+Pressed pressEdgeFirst(dc::Shape::Kind kind) {
+  dc::Simulation sim = deformable_sim::test::boxMeshSimulation(cubeUnderABar(kind));
+  std::vector<dc::StepReport> reports;
+  for (int s = 0; s < 50; ++s) sim.step(reports);
+  for (int s = 1; s <= 50; ++s) {
+    sim.obstacles()[1] = barAt(edgeFirstBar(kind), kSide + 0.01 - 0.014 * s / 50.0);
+    sim.step(reports);
+  }
+  for (int s = 0; s < 20; ++s) sim.step(reports);
+  Pressed pressed{edgeDepth(sim.bodies()[0], sim.obstacles()[1]),
+                  -sim.obstacleContacts(0)[1].force.z()};
+  for (int s = 1; s <= 20; ++s) {
+    sim.obstacles()[1] = barAt(edgeFirstBar(kind), kSide - 0.004 + 0.024 * s / 20.0);
+    sim.step(reports);
+  }
+  for (int s = 0; s < 50; ++s) sim.step(reports);
+  const Eigen::VectorXd& x = sim.bodies()[0].positions();
+  pressed.lowest_after = pressed.highest_after = x[2];
+  for (int i = 0; i < sim.bodies()[0].numNodes(); ++i) {
+    pressed.lowest_after = std::min(pressed.lowest_after, x[3 * i + 2]);
+    pressed.highest_after = std::max(pressed.highest_after, x[3 * i + 2]);
+  }
+  pressed.force_after = -sim.obstacleContacts(0)[1].force.z();
+  return pressed;
+}
+
+// Lifted away, the bar lets the cube go: it stands on the table at its own height again (within
+// 1 mm), and the bar pushes on nothing. A face held against an obstacle's edge is held only while
+// it pushes.
+void expectLetGo(const Pressed& pressed) {
+  EXPECT_NEAR(pressed.lowest_after, 0.0, 1e-3) << "the cube left the table with the bar";
+  EXPECT_NEAR(pressed.highest_after, kSide, 1e-3);
+  EXPECT_EQ(pressed.force_after, 0.0);
+}
+
 // [contact-space] reports that the edges and corners of box obstacles sink about 1 mm into a
 // body's faces, unseen by contact that looks only at the body's points. Here the edge comes down
 // between two columns of nodes, 5 mm from each: the bar feels nothing and its edge ends 3.96 mm
 // inside the cube (the whole 4 mm it was pressed), until contact looks at the obstacle's features.
 TEST(ObstacleEdges, ABoxPressedEdgeFirstStaysOutOfTheFaceBetweenNodes) {
-  dc::Simulation sim = deformable_sim::test::boxMeshSimulation(cubeUnderABar());
-  std::vector<dc::StepReport> reports;
-  for (int s = 0; s < 50; ++s) sim.step(reports);
-  for (int s = 1; s <= 50; ++s) {  // the edge comes down to 4 mm below the top in 0.5 s
-    sim.obstacles()[1] = barAt(edgeFirstBar(), kSide + 0.01 - 0.014 * s / 50.0);
-    sim.step(reports);
-  }
-  for (int s = 0; s < 20; ++s) sim.step(reports);
-  EXPECT_GT(-sim.obstacleContacts(0)[1].force.z(), 0.1) << "the bar did not press";
-  EXPECT_LE(edgeDepth(sim.bodies()[0], sim.obstacles()[1]), kTolerance);
+  const Pressed pressed = pressEdgeFirst(dc::Shape::Kind::kBox);
+  EXPECT_GT(pressed.force, 0.1) << "the bar did not press";
+  EXPECT_LE(pressed.depth, kTolerance);
+  expectLetGo(pressed);
+}
+
+// The same bar as a mesh obstacle (a URDF link's collision mesh, a scene's `mesh:` obstacle): its
+// edge, between two of its triangles, stays out of the face as the primitive's does, and presses
+// as hard.
+TEST(ObstacleEdges, AMeshBoxPressedEdgeFirstStaysOutOfTheFaceBetweenNodes) {
+  const Pressed mesh = pressEdgeFirst(dc::Shape::Kind::kMesh);
+  EXPECT_GT(mesh.force, 0.1) << "the bar did not press";
+  EXPECT_LE(mesh.depth, kTolerance);
+  EXPECT_NEAR(mesh.force, pressEdgeFirst(dc::Shape::Kind::kBox).force, 0.05 * mesh.force);
+  expectLetGo(mesh);
 }

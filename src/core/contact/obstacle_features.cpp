@@ -1,18 +1,35 @@
-// ContactState's part for the edges and corners of box obstacles (see contact.h).
+// ContactState's part for the edges and corners of box and mesh obstacles (see contact.h).
 #include <algorithm>
+#include <limits>
 
 #include "deformable_sim/core/contact/contact.h"
-#include "deformable_sim/core/geometry/box_triangle_separation.h"
+#include "deformable_sim/core/geometry/triangle_separation.h"
 
 namespace deformable_sim::core {
 
 namespace {
 
-/// The box's bounding box in the world, grown by `margin` m.
-Eigen::AlignedBox3d boundsOf(const PlacedShape& box, double margin) {
+/// The cosine of the widest angle between a face's inward normal and the way a mesh's triangle
+/// pushes it for that push to count as a dent.
+constexpr double kDentAngle = 0.9;
+
+/// Whether the obstacle has edges and corners: a box or a mesh.
+bool hasFeatures(const Shape& shape) {
+  return shape.kind == Shape::Kind::kBox || shape.kind == Shape::Kind::kMesh;
+}
+
+/// The box's or mesh's bounding box in the world, grown by `margin` m.
+Eigen::AlignedBox3d boundsOf(const PlacedShape& obstacle, double margin) {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero(), half = 0.5 * obstacle.shape.size;
+  if (obstacle.shape.kind == Shape::Kind::kMesh) {
+    const Eigen::AlignedBox3d& local = obstacle.shape.mesh->bounds();
+    centre = local.center();
+    half = 0.5 * local.sizes();
+  }
+  const Eigen::Vector3d middle = obstacle.pose * centre;
   const Eigen::Vector3d reach =
-      box.pose.linear().cwiseAbs() * (0.5 * box.shape.size) + Eigen::Vector3d::Constant(margin);
-  return {box.pose.translation() - reach, box.pose.translation() + reach};
+      obstacle.pose.linear().cwiseAbs() * half + Eigen::Vector3d::Constant(margin);
+  return {middle - reach, middle + reach};
 }
 
 }  // namespace
@@ -24,18 +41,20 @@ void ContactState::pushFacesOut(FiniteElementBody& body, const std::vector<Place
   face_touches_.clear();
   bool placed = false;
   for (size_t k = 0; k < obstacles.size(); ++k) {
-    const PlacedShape& box = obstacles[k];
-    if (box.shape.kind != Shape::Kind::kBox) continue;
+    const PlacedShape& obstacle = obstacles[k];
+    if (!hasFeatures(obstacle.shape)) continue;
     const int K = static_cast<int>(k);
+    // A mesh that the body's points touch is left to them: its triangles' ridges there are a
+    // curved surface's facets or a finger's chamfers beside the pad, and faces held against
+    // those as well let a squeezed block turn in the grip (rostest friction_grasp).
+    if (obstacle.shape.kind == Shape::Kind::kMesh && pointsTouch(K)) continue;
     if (!placed) placePoints(body);
     placed = true;
-    separateFaces(body, box, K);
-    const Eigen::AlignedBox3d near = boundsOf(box, kOffItsFace);
+    separateFaces(body, obstacle, K);
+    const Eigen::AlignedBox3d near = boundsOf(obstacle, kOffItsFace);
     for (int t = 0; t < static_cast<int>(faces_.size()); ++t) {
       if (!face_pressed_[t] && !faceForFeatures(body, t, K, near)) continue;
-      const BoxTriangleSeparation s =
-          separateFromBox(box.pose, box.shape.size, point_x_[faces_[t][0]], point_x_[faces_[t][1]],
-                          point_x_[faces_[t][2]]);
+      const TriangleSeparation s = separateFace(obstacle, t);
       if (faceTouches(t, K, s.depth))
         touchFace(body, obstacles, start_poses, t, K, s.direction, dt);
       face_pressed_[t] = 0;
@@ -47,14 +66,37 @@ void ContactState::pushFacesOut(FiniteElementBody& body, const std::vector<Place
   face_held_.clear();
 }
 
-void ContactState::separateFaces(FiniteElementBody& body, const PlacedShape& box, int k) {
-  const Eigen::AlignedBox3d near = boundsOf(box, 0.0);
+TriangleSeparation ContactState::separateFace(const PlacedShape& obstacle, int t) {
+  const Eigen::Vector3d& a = point_x_[faces_[t][0]];
+  const Eigen::Vector3d& b = point_x_[faces_[t][1]];
+  const Eigen::Vector3d& c = point_x_[faces_[t][2]];
+  if (obstacle.shape.kind == Shape::Kind::kBox)
+    return separateFromBox(obstacle.pose, obstacle.shape.size, a, b, c);
+  // Room for every triangle of the mesh, once: none is looked at twice for a face.
+  const size_t triangles = obstacle.shape.mesh->mesh().triangles.size();
+  if (near_triangles_.capacity() < triangles) near_triangles_.reserve(triangles);
+  const Eigen::Isometry3d to_mesh = obstacle.pose.inverse();
+  TriangleSeparation s = obstacle.shape.mesh->separation(to_mesh * a, to_mesh * b, to_mesh * c,
+                                                         kOffItsFace, near_triangles_);
+  s.direction = obstacle.pose.linear() * s.direction;
+  // The least way out of one of the mesh's triangles is the way out of the mesh only where that
+  // triangle's edge or corner dents the face: along the face's own normal, inwards. Another way
+  // (a finger's chamfer met by the side of the block it squeezes, a table's top by a side face
+  // reaching below it) would slide the face along itself; the points' contact answers there.
+  // Held against the mesh, the face is held along that normal too.
+  const Eigen::Vector3d inward = (c - a).cross(b - a).normalized();
+  if (s.depth > -kOffItsFace && !(s.direction.dot(inward) >= kDentAngle))
+    s.depth = -std::numeric_limits<double>::infinity();
+  s.direction = inward;
+  return s;
+}
+
+void ContactState::separateFaces(FiniteElementBody& body, const PlacedShape& obstacle, int k) {
+  const Eigen::AlignedBox3d near = boundsOf(obstacle, 0.0);
   for (int pass = 0; pass < kEmbeddedPasses; ++pass) {
     for (int t = 0; t < static_cast<int>(faces_.size()); ++t) {
       if (!faceForFeatures(body, t, k, near)) continue;
-      const BoxTriangleSeparation s =
-          separateFromBox(box.pose, box.shape.size, point_x_[faces_[t][0]], point_x_[faces_[t][1]],
-                          point_x_[faces_[t][2]]);
+      const TriangleSeparation s = separateFace(obstacle, t);
       if (!(s.depth > kOnTheSurface)) continue;
       contacts_[k].penetration = std::max(contacts_[k].penetration, s.depth);
       face_pressed_[t] = 1;
@@ -73,6 +115,10 @@ void ContactState::placePoints(const FiniteElementBody& body) {
   for (size_t p = 0; p < points_.size(); ++p) {
     point_x_[p] = weighted(body.positions(), static_cast<int>(p));
   }
+}
+
+bool ContactState::pointsTouch(int k) const {
+  return std::find(obstacle_.begin(), obstacle_.end(), k) != obstacle_.end();
 }
 
 bool ContactState::faceForFeatures(const FiniteElementBody& body, int t, int k,

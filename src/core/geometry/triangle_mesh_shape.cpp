@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -62,6 +63,25 @@ TriangleMeshShape::TriangleMeshShape(TriangleMesh mesh, double open_depth)
   // Built over the mesh as it is kept, so that a shape made again from mesh() (a replay) has
   // the same tree and answers bit for bit the same.
   tree_ = TriangleAabbTree(mesh_);
+  for (const Eigen::Vector3d& v : mesh_.vertices) bounds_.extend(v);
+}
+
+TriangleSeparation TriangleMeshShape::separation(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                                 const Eigen::Vector3d& c, double margin,
+                                                 std::vector<int>& near) const {
+  const Eigen::Vector3d reach = Eigen::Vector3d::Constant(margin);
+  near.clear();
+  tree_.trianglesNear(a.cwiseMin(b).cwiseMin(c) - reach, a.cwiseMax(b).cwiseMax(c) + reach, near);
+  TriangleSeparation deepest;
+  deepest.depth = -std::numeric_limits<double>::infinity();
+  for (int t : near) {
+    const Eigen::Vector3i& corners = mesh_.triangles[t];
+    const TriangleSeparation s =
+        separateFromTriangle(mesh_.vertices[corners[0]], mesh_.vertices[corners[1]],
+                             mesh_.vertices[corners[2]], a, b, c);
+    if (s.depth > deepest.depth) deepest = s;
+  }
+  return deepest;
 }
 
 // Pairs each directed edge with its reverse. Closed: every edge has one.

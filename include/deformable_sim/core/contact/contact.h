@@ -26,6 +26,7 @@
 #include "deformable_sim/core/bodies/finite_element_body.h"
 #include "deformable_sim/core/elements/mesh.h"
 #include "deformable_sim/core/geometry/shape.h"
+#include "deformable_sim/core/geometry/triangle_separation.h"
 #include "deformable_sim/core/surface_bodies/embedded_surface.h"
 
 namespace deformable_sim::core {
@@ -55,7 +56,7 @@ struct ContactLoad {
 /// obstacles; allocates nothing while that number stays the same.
 class ContactState {
  public:
-  /// The nodes of the body of `mesh` touch the obstacles, and the edges and corners of box
+  /// The nodes of the body of `mesh` touch the obstacles, and the edges and corners of box and mesh
   /// obstacles touch its boundary faces.
   explicit ContactState(const Mesh& mesh);
   /// The vertices and triangles of `surface` touch them instead (a body made from a surface): its
@@ -74,8 +75,8 @@ class ContactState {
                double dt);
   /// Projects the free points out of every obstacle and records them as touching; an obstacle's
   /// velocity is that of its rigid motion from `start_poses[k]` to its pose within the step, and
-  /// the body's nodes at the step's start are its stepStart(). Then puts the faces that a box's
-  /// edges or corners press into between the points back out of it (see pushFacesOut()).
+  /// the body's nodes at the step's start are its stepStart(). Then puts the faces that an
+  /// obstacle's edges or corners press into between the points back out of it (see pushFacesOut()).
   /// Returns the number of points and such faces touching an obstacle.
   int project(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
               const std::vector<Eigen::Isometry3d>& start_poses, const ContactSettings& settings,
@@ -192,52 +193,61 @@ class ContactState {
   /// of 1 / free weight times what it needs.
   static constexpr double kMovable = 0.2;
 
-  // Edges and corners of box obstacles against the body's faces (obstacle_features.cpp): a box
-  // pressed edge first into a face between its points is unseen by the points. Such a face is
-  // moved out of the box the least way (core/geometry/box_triangle_separation.h), its way into
-  // it stopped, and its nodes held on planes of that direction, moving with the box, in the next
-  // step: frictionless, let go when their springs pull.
+  // Edges and corners of box and mesh obstacles against the body's faces (obstacle_features.cpp):
+  // an obstacle pressed edge first into a face between its points is unseen by the points. Such a
+  // face is moved out of the box the least way, or out of the mesh's triangle it overlaps most
+  // along its own normal (core/geometry/triangle_separation.h; a mesh only while none of the
+  // body's points touches it), its way into it stopped, and its nodes held on planes of that
+  // direction, moving with the obstacle, in the next step: frictionless, let go when their
+  // springs pull.
 
-  /// After the points' projection: puts the faces that box obstacles press into back out, and
-  /// records the faces touching them and the nodes to hold next step.
+  /// After the points' projection: puts the faces that box and mesh obstacles press into back
+  /// out, and records the faces touching them and the nodes to hold next step.
   void pushFacesOut(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
                     const std::vector<Eigen::Isometry3d>& start_poses, double dt);
-  /// Moves the faces that box k presses into out of it, in passes (faces share nodes);
+  /// Moves the faces that obstacle k presses into out of it, in passes (faces share nodes);
   /// face_pressed_ marks them.
-  void separateFaces(FiniteElementBody& body, const PlacedShape& box, int k);
-  /// Whether face t is one for box k's features: all its points movable, none touching it (the
-  /// points' own contact holds those), and near it.
+  void separateFaces(FiniteElementBody& body, const PlacedShape& obstacle, int k);
+  /// How far face t must move to leave the obstacle (a box or a mesh), and which way, from where
+  /// its points are now.
+  TriangleSeparation separateFace(const PlacedShape& obstacle, int t);
+  /// Whether any of the body's points touches obstacle k.
+  bool pointsTouch(int k) const;
+  /// Whether face t is one for obstacle k's features: all its points movable, none touching it
+  /// (the points' own contact holds those), and near it.
   bool faceForFeatures(const FiniteElementBody& body, int t, int k,
                        const Eigen::AlignedBox3d& near) const;
-  /// Face t touches box k after the step: it was pressed into it, or it was held against it in
+  /// Face t touches obstacle k after the step: it was pressed into it, or it was held against it in
   /// the step, pushed, and is still within kOffItsFace.
   bool faceTouches(int t, int k, double depth) const;
-  /// Stops face t's way into box k and records its nodes to hold on planes of `direction`.
+  /// Stops face t's way into obstacle k and records its nodes to hold on planes of `direction`.
   void touchFace(const FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
                  const std::vector<Eigen::Isometry3d>& start_poses, int t, int k,
                  const Eigen::Vector3d& direction, double dt);
   /// Holds the recorded nodes on their planes for the step (those held otherwise excepted).
   void holdFaceNodes(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles);
-  /// After the step: each held node's push, added to its box's load.
+  /// After the step: each held node's push, added to its obstacle's load.
   void measureFacePushes(const FiniteElementBody& body, const std::vector<PlacedShape>& obstacles);
 
   /// Where each point is now, into point_x_ (after each correction).
   void placePoints(const FiniteElementBody& body);
   std::vector<Eigen::Vector3d> point_x_;    ///< per point: where it is, for the faces
   std::vector<Eigen::Vector3i> faces_;      ///< the body's surface triangles, over its points
-  std::vector<std::uint8_t> face_pressed_;  ///< per face: pressed into a box in this step
+  std::vector<std::uint8_t> face_pressed_;  ///< per face: pressed into an obstacle in this step
   struct FaceTouch {
     int face = 0, obstacle = 0;
   };
-  std::vector<FaceTouch> face_touches_;  ///< faces touching a box after the step; reserved once
+  std::vector<FaceTouch>
+      face_touches_;  ///< faces touching an obstacle after the step; reserved once
   // Per node.
-  std::vector<int> face_obstacle_;  ///< the box a face holds it against next step, -1: none
-  std::vector<Eigen::Vector3d> face_normal_;  ///< the plane's normal, in the box's frame
-  std::vector<Eigen::Vector3d> face_place_;   ///< a point of the plane, in the box's frame
+  std::vector<int> face_obstacle_;  ///< the obstacle a face holds it against next step, -1: none
+  std::vector<Eigen::Vector3d> face_normal_;  ///< the plane's normal, in the obstacle's frame
+  std::vector<Eigen::Vector3d> face_place_;   ///< a point of the plane, in the obstacle's frame
   std::vector<int> face_nodes_;               ///< the nodes with a face_obstacle_
   std::vector<int> face_held_;                ///< those held in the present step
-  std::vector<int> pushed_by_;     ///< after the step: the box it was held against, -1: none
-  std::vector<double> face_push_;  ///< that hold's push, N (negative: it pulled)
+  std::vector<int> pushed_by_;       ///< after the step: the obstacle it was held against, -1: none
+  std::vector<double> face_push_;    ///< that hold's push, N (negative: it pulled)
+  std::vector<int> near_triangles_;  ///< a mesh's triangles near a face, looked at; room reused
 
   std::vector<Point> points_;
   bool embedded_ = false;

@@ -13,12 +13,13 @@
 // behind the mesh stays open.
 #pragma once
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <vector>
 
 #include "deformable_sim/core/geometry/triangle_aabb_tree.h"
 #include "deformable_sim/core/geometry/triangle_mesh.h"
+#include "deformable_sim/core/geometry/triangle_separation.h"
 
 namespace deformable_sim::core {
 
@@ -39,6 +40,15 @@ class TriangleMeshShape {
   /// normal there, in the mesh's frame. Allocates nothing.
   double signedDistance(const Eigen::Vector3d& p, Eigen::Vector3d* surface = nullptr,
                         Eigen::Vector3d* normal = nullptr) const;
+  /// The mesh's bounding box, in its frame.
+  const Eigen::AlignedBox3d& bounds() const { return bounds_; }
+  /// How far the triangle a, b, c (the mesh's frame) must move to leave the triangle of the mesh
+  /// it overlaps most (core/geometry/triangle_separation.h), of those within `margin` of it:
+  /// where the mesh's edges and corners press into it. A depth of -infinity when none is that
+  /// near. `near` is room for the triangles looked at; allocates only as it grows.
+  TriangleSeparation separation(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                const Eigen::Vector3d& c, double margin,
+                                std::vector<int>& near) const;
 
  private:
   void findNeighbours();
@@ -53,6 +63,7 @@ class TriangleMeshShape {
   std::vector<std::array<Eigen::Vector3d, 3>> edge_normals_;  ///< zero on a free edge
   std::vector<Eigen::Vector3d> vertex_normals_;  ///< angle-weighted; zero on a free edge's corner
   TriangleAabbTree tree_;
+  Eigen::AlignedBox3d bounds_;
 };
 
 }  // namespace deformable_sim::core
