@@ -98,8 +98,8 @@ class PrintStatsSummary(unittest.TestCase):
         samples = [(10.0 + 0.1 * k, 3.0 + 0.098 * k, 0.001 * (k + 1)) for k in range(11)]
         text = self.run_span(samples).text()
         self.assertIn('over 1.0 s: simulated 0.980 s, real-time factor 0.9800', text)
-        self.assertIn('6.00 ms (median of 11), 10.00 ms (90th percentile), 11.00 ms (longest)',
-                      text)
+        self.assertIn('6.00 ms (median of 11 sampled), 10.00 ms (90th percentile), '
+                      '11.00 ms (longest sampled)', text)
 
     def test_a_reset_or_a_pause_starts_the_span_again(self):
         before = [(1.0, 5.0, 0.1), (2.0, 6.0, 0.1)]
@@ -107,6 +107,11 @@ class PrintStatsSummary(unittest.TestCase):
         self.assertIn('real-time factor 0.5000', self.run_span(before + reset).text())
         paused = [(3.0, 7.0, 0.0, True), (4.0, 7.0, 0.004), (5.0, 8.0, 0.004)]
         self.assertIn('over 1.0 s: simulated 1.000 s', self.run_span(before + paused).text())
+
+    def test_a_span_must_be_positive(self):
+        self.assertEqual(print_stats.parse_arguments(['--summary', '30']).summary, 30.0)
+        with self.assertRaises(SystemExit):
+            print_stats.parse_arguments(['--summary', '0'])
 
     def test_no_span_yet(self):
         self.assertIn('no span yet', print_stats.KeepingTime().text())
