@@ -39,7 +39,8 @@ enum class Fingers {
   kShippedMeshes  // config/meshes/finger.stl, 3 x 1 x 8 cm with chamfered edges
 };
 
-// A finger of `size` centred on `centre`.
+// A finger centred on `centre`: a box of `size`, or the shipped mesh (3 x 1 x 8 cm whatever
+// `size` says).
 dc::PlacedShape finger(const std::string& name, const Eigen::Vector3d& size,
                        const Eigen::Vector3d& centre, Fingers fingers) {
   dc::PlacedShape shape;
@@ -89,6 +90,29 @@ dc::Simulation withObject(dc::SceneSpec spec, Object object) {
   return deformable_sim::test::surfaceSimulation(spec, {std::move(ball)});
 }
 
+// The fingers' centres `apart` off the middle, `height` above where they start.
+void placeFingers(dc::Simulation& sim, double apart, double height) {
+  for (int f = 1; f <= 2; ++f) {
+    const double side = f == 1 ? -1.0 : 1.0;
+    sim.obstacles()[f].pose.translation() = Eigen::Vector3d(0, side * apart, 0.03 + height);
+  }
+}
+
+// From hanging still, kLift up and closed by `closed` from `open`: down again in 1 s, open in
+// 0.5 s, up and away 10 cm in 1 s, and 1 s more. Where the object's centre of mass ends, m.
+double setDownAndLetGo(dc::Simulation& sim, double open, double closed) {
+  std::vector<dc::StepReport> reports;
+  for (int s = 1; s <= 100; ++s) {
+    placeFingers(sim, open - closed, kLift * (0.5 + 0.5 * std::cos(M_PI * s / 100.0)));
+    sim.step(reports);
+  }
+  for (int s = 1; s <= 50; ++s)
+    placeFingers(sim, open - closed * (1.0 - s / 50.0), 0.0), sim.step(reports);
+  for (int s = 1; s <= 200; ++s)
+    placeFingers(sim, open, 0.1 * std::min(1.0, s / 100.0)), sim.step(reports);
+  return centreOfMass(sim.bodies()[0]).z();
+}
+
 // Fingers 1 cm thick close on the object's sides by `squeeze` each in 0.5 s, rise kLift in 1 s,
 // swing it out (0.5 rad about x, 8 cm along x) and back in 3 s, and hold still for 1.5 s. They
 // are taller than the block: shorter ones leave its unsqueezed top wider than the gap between
@@ -113,11 +137,7 @@ Grasp squeezeAndLift(double squeeze, double friction, Object object = Object::kB
   std::vector<dc::StepReport> reports;
   const double start = centreOfMass(sim.bodies()[0]).z();
   const auto place = [&](double closing, double height) {
-    for (int f = 1; f <= 2; ++f) {
-      const double side = f == 1 ? -1.0 : 1.0;
-      sim.obstacles()[f].pose.translation() =
-          Eigen::Vector3d(0, side * (open - closing), 0.03 + height);
-    }
+    placeFingers(sim, open - closing, height);
   };
   for (int s = 1; s <= 50; ++s) place((0.002 + squeeze) * s / 50.0, 0.0), sim.step(reports);
   Grasp grasp;
@@ -157,14 +177,7 @@ Grasp squeezeAndLift(double squeeze, double friction, Object object = Object::kB
   for (int i = 0; i < sim.bodies()[0].numNodes(); ++i)
     grasp.lowest = std::min(grasp.lowest, x[3 * i + 2]);
   for (double m : sim.bodies()[0].nodalMasses()) grasp.weight += m * kGravity;
-  if (!let_go) return grasp;
-  // Down again in 1 s, open in 0.5 s, up and away 10 cm in 1 s, and 1 s more.
-  const double closed = 0.002 + squeeze;
-  for (int s = 1; s <= 100; ++s)
-    place(closed, kLift * (0.5 + 0.5 * std::cos(M_PI * s / 100.0))), sim.step(reports);
-  for (int s = 1; s <= 50; ++s) place(closed * (1.0 - s / 50.0), 0.0), sim.step(reports);
-  for (int s = 1; s <= 200; ++s) place(0.0, 0.1 * std::min(1.0, s / 100.0)), sim.step(reports);
-  grasp.left_at = centreOfMass(sim.bodies()[0]).z() - start;
+  if (let_go) grasp.left_at = setDownAndLetGo(sim, open, 0.002 + squeeze) - start;
   return grasp;
 }
 

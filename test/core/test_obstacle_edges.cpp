@@ -160,3 +160,17 @@ TEST(ObstacleEdges, AMeshBoxPressedEdgeFirstStaysOutOfTheFaceBetweenNodes) {
   EXPECT_NEAR(mesh.force, pressEdgeFirst(dc::Shape::Kind::kBox).force, 0.05 * mesh.force);
   expectLetGo(mesh);
 }
+
+// The edge comes down 13 mm in one step, to 3 mm below the top, as deep as a face is half wide:
+// put out of the faces all the same, by the box and by the mesh.
+TEST(ObstacleEdges, AnEdgeThreeMillimetresDeepWithinOneStepIsPutOut) {
+  for (dc::Shape::Kind kind : {dc::Shape::Kind::kBox, dc::Shape::Kind::kMesh}) {
+    dc::Simulation sim = deformable_sim::test::boxMeshSimulation(cubeUnderABar(kind));
+    std::vector<dc::StepReport> reports;
+    for (int s = 0; s < 50; ++s) sim.step(reports);
+    sim.obstacles()[1] = barAt(edgeFirstBar(kind), kSide - 0.003);
+    for (int s = 0; s < 20; ++s) sim.step(reports);
+    EXPECT_GT(-sim.obstacleContacts(0)[1].force.z(), 0.1) << int(kind);
+    EXPECT_LE(edgeDepth(sim.bodies()[0], sim.obstacles()[1]), kTolerance) << int(kind);
+  }
+}

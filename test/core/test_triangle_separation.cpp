@@ -79,46 +79,51 @@ TEST(TriangleSeparation, ATriangleThroughTheMiddleLeavesTheShortestWay) {
   EXPECT_NEAR(s.direction.x(), 1.0, 1e-12);
 }
 
-TEST(TriangleSeparation, TrianglesInParallelPlanesAreAGapAlongTheirNormal) {
-  const dc::TriangleSeparation s = dc::separateFromTriangle(
-      {-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, {-1, -1, 0.25}, {1, -1, 0.25}, {0, 1, 0.25});
-  EXPECT_NEAR(s.depth, -0.25, 1e-12);
-  EXPECT_NEAR(s.direction.z(), 1.0, 1e-12);
+TEST(TriangleSeparation, ACornerThroughAFaceDentsItAsDeepAsItReaches) {
+  // An upright triangle whose lower corner pokes 0.05 m down through a level face (outward +z).
+  const Eigen::Vector3d a(-1, -1, 0), b(1, -1, 0), c(0, 1, 0), down(0, 0, -1);
+  EXPECT_NEAR(dc::dentDepth(a, b, c, down, {0, 0, -0.05}, {-0.5, 0, 1}, {0.5, 0, 1}), 0.05, 1e-15);
+  // Lifted 0.2 m clear of it: 0.15 m in front.
+  EXPECT_NEAR(dc::dentDepth(a, b, c, down, {0, 0, 0.15}, {-0.5, 0, 1.2}, {0.5, 0, 1.2}), -0.15,
+              1e-15);
+  // Beside its outline: no dent, however deep.
+  EXPECT_EQ(dc::dentDepth(a, b, c, down, {3, 0, -0.5}, {2.5, 0, 1}, {3.5, 0, 1}),
+            -std::numeric_limits<double>::infinity());
 }
 
-TEST(TriangleSeparation, ACornerThroughAFaceBetweenItsCornersPushesTheFaceAway) {
-  // An upright obstacle triangle whose lower corner pokes 0.05 m down through a level face: the
-  // face leaves downwards by 0.05, not sideways by half its width.
-  const dc::TriangleSeparation s = dc::separateFromTriangle(
-      {0, 0, -0.05}, {-0.5, 0, 1}, {0.5, 0, 1}, {-1, -1, 0}, {1, -1, 0}, {0, 1, 0});
-  EXPECT_NEAR(s.depth, 0.05, 1e-12);
-  EXPECT_NEAR(s.direction.z(), -1.0, 1e-12);
+TEST(TriangleSeparation, OnlyThePartWithinTheFacesOutlineDents) {
+  // A long sloping triangle that reaches 1 m below the face's plane far beyond its outline, and
+  // 0.1 m below it at the outline's far edge (x = 1): the dent is 0.1 m.
+  const Eigen::Vector3d a(-1, -1, 0), b(1, -1, 0), c(1, 1, 0), down(0, 0, -1);
+  EXPECT_NEAR(dc::dentDepth(a, b, c, down, {-1, -5, 0.1}, {-1, 5, 0.1}, {10, 0, -1}), 0.1, 1e-12);
 }
 
-TEST(TriangleSeparation, TrianglesSideBySideInOnePlaneAreApart) {
-  // In the plane z = 0, 0.5 m apart along x: every cross product of their edges lies along z, so
-  // only the edges' normals within the plane part them.
-  const dc::TriangleSeparation s = dc::separateFromTriangle(
-      {-1, -1, 0}, {0, -1, 0}, {0, 1, 0}, {0.5, -1, 0}, {1.5, -1, 0}, {0.5, 1, 0});
-  EXPECT_NEAR(s.depth, -0.5, 1e-12);
-  EXPECT_NEAR(s.direction.x(), 1.0, 1e-12);
-}
-
-TEST(TriangleSeparation, AMeshAnswersForItsTriangleThatPressesDeepest) {
+TEST(TriangleSeparation, AMeshDentsAFaceAsDeepAsItsEdgeReachesAlongTheFacesNormal) {
   // The cube of the box case above as a mesh of twelve triangles: its lowest edge, shared by two
-  // of them, presses the level triangle 0.05 m down, as the primitive box does; far off, no
-  // triangle is near.
+  // of them, dents the level triangle 0.05 m, as deep as the primitive box presses it. Far off,
+  // no triangle is near.
   const dc::TriangleMeshShape cube(dc::boxSurface(-0.5 * kCube, 0.5 * kCube));
   const Eigen::Isometry3d pose = turnedAboutY(M_PI / 4, {0.0, 0.0, std::sqrt(2.0) - 0.05});
   const Eigen::Isometry3d to_cube = pose.inverse();
-  const Eigen::Vector3d a(-0.5, -3, 0), b(0.5, -3, 0), c(0, 3, 0);
+  const Eigen::Vector3d a(-0.5, -3, 0), b(0.5, -3, 0), c(0, 3, 0), down(0, 0, -1);
   std::vector<int> near;
-  const dc::TriangleSeparation s =
-      cube.separation(to_cube * a, to_cube * b, to_cube * c, 0.0, near);
-  const dc::TriangleSeparation box = dc::separateFromBox(pose, kCube, a, b, c);
-  EXPECT_NEAR(s.depth, box.depth, 1e-12);
-  EXPECT_NEAR((pose.linear() * s.direction).z(), -1.0, 1e-12);
+  EXPECT_NEAR(cube.dent(to_cube * a, to_cube * b, to_cube * c, to_cube.linear() * down, 0.0, near),
+              dc::separateFromBox(pose, kCube, a, b, c).depth, 1e-12);
   const Eigen::Vector3d far(10, 0, 0);
-  EXPECT_EQ(cube.separation(a + far, b + far, c + far, 0.1, near).depth,
+  EXPECT_EQ(cube.dent(a + far, b + far, c + far, down, 0.1, near),
             -std::numeric_limits<double>::infinity());
+}
+
+TEST(TriangleSeparation, AMeshDentsASmallFaceDeeperThanHalfItsWidth) {
+  // A bar 20 m long, turned 45 degrees about its length, its edge 0.3 m into a face 1 m wide: a
+  // thin triangle of its sides is left soonest sideways past its plane, but the bar dents the
+  // face 0.3 m along its normal.
+  const Eigen::Vector3d size(2.0, 20.0, 2.0);
+  const dc::TriangleMeshShape bar(dc::boxSurface(-0.5 * size, 0.5 * size));
+  const Eigen::Isometry3d pose = turnedAboutY(M_PI / 4, {0.0, 0.0, std::sqrt(2.0) - 0.3});
+  const Eigen::Isometry3d to_bar = pose.inverse();
+  const Eigen::Vector3d a(-0.5, -0.5, 0), b(0.5, -0.5, 0), c(0, 0.5, 0), down(0, 0, -1);
+  std::vector<int> near;
+  EXPECT_NEAR(bar.dent(to_bar * a, to_bar * b, to_bar * c, to_bar.linear() * down, 0.0, near), 0.3,
+              1e-12);
 }

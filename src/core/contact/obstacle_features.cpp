@@ -9,10 +9,6 @@ namespace deformable_sim::core {
 
 namespace {
 
-/// The cosine of the widest angle between a face's inward normal and the way a mesh's triangle
-/// pushes it for that push to count as a dent.
-constexpr double kDentAngle = 0.9;
-
 /// Whether the obstacle has edges and corners: a box or a mesh.
 bool hasFeatures(const Shape& shape) {
   return shape.kind == Shape::Kind::kBox || shape.kind == Shape::Kind::kMesh;
@@ -76,18 +72,20 @@ TriangleSeparation ContactState::separateFace(const PlacedShape& obstacle, int t
   const size_t triangles = obstacle.shape.mesh->mesh().triangles.size();
   if (near_triangles_.capacity() < triangles) near_triangles_.reserve(triangles);
   const Eigen::Isometry3d to_mesh = obstacle.pose.inverse();
-  TriangleSeparation s = obstacle.shape.mesh->separation(to_mesh * a, to_mesh * b, to_mesh * c,
-                                                         kOffItsFace, near_triangles_);
-  s.direction = obstacle.pose.linear() * s.direction;
-  // The least way out of one of the mesh's triangles is the way out of the mesh only where that
-  // triangle's edge or corner dents the face: along the face's own normal, inwards. Another way
-  // (a finger's chamfer met by the side of the block it squeezes, a table's top by a side face
-  // reaching below it) would slide the face along itself; the points' contact answers there.
-  // Held against the mesh, the face is held along that normal too.
-  const Eigen::Vector3d inward = (c - a).cross(b - a).normalized();
-  if (s.depth > -kOffItsFace && !(s.direction.dot(inward) >= kDentAngle))
-    s.depth = -std::numeric_limits<double>::infinity();
+  // A mesh dents the face along its own normal, inwards: the least way out of one of its
+  // triangles is no way out of the solid they bound (through a bar's side, past its edge).
+  const Eigen::Vector3d across = (c - a).cross(b - a);
+  TriangleSeparation s;
+  s.depth = -std::numeric_limits<double>::infinity();
+  if (!(across.norm() > 0.0)) return s;  // a face crushed flat has no side to dent
+  const Eigen::Vector3d inward = across.normalized();
+  s.depth = obstacle.shape.mesh->dent(to_mesh * a, to_mesh * b, to_mesh * c,
+                                      to_mesh.linear() * inward, kOffItsFace, near_triangles_);
   s.direction = inward;
+  // Deeper than the face is wide, it is no dent of this face but a triangle reaching across it
+  // (a table's top under a side face that hangs below it): the points answer there.
+  const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  if (s.depth > longest) s.depth = -std::numeric_limits<double>::infinity();
   return s;
 }
 
@@ -139,7 +137,7 @@ bool ContactState::faceForFeatures(const FiniteElementBody& body, int t, int k,
 bool ContactState::faceTouches(int t, int k, double depth) const {
   if (face_pressed_[t]) return true;
   if (!(depth > -kOffItsFace)) return false;
-  // Held against the box in the step: it touches on while its nodes' springs pushed in all.
+  // Held against the obstacle in the step: it touches on while its nodes' springs pushed in all.
   double push = 0.0;
   bool held = false;
   for (int corner = 0; corner < 3; ++corner) {
@@ -159,16 +157,16 @@ void ContactState::touchFace(const FiniteElementBody& body,
                              const std::vector<Eigen::Isometry3d>& start_poses, int t, int k,
                              const Eigen::Vector3d& direction, double dt) {
   face_touches_.push_back({t, k});
-  const PlacedShape& box = obstacles[k];
-  const Eigen::Isometry3d to_box = box.pose.inverse();
+  const PlacedShape& obstacle = obstacles[k];
+  const Eigen::Isometry3d to_obstacle = obstacle.pose.inverse();
   Eigen::Vector3d centre = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero();
   for (int corner = 0; corner < 3; ++corner) {
     centre += point_x_[faces_[t][corner]] / 3.0;
     velocity += weighted(body.velocities(), faces_[t][corner]) / 3.0;
   }
-  // Its way into the box, relative to the box (moving rigidly within the step), is stopped.
-  const Eigen::Vector3d box_velocity = (centre - start_poses[k] * (to_box * centre)) / dt;
-  const double into = -(velocity - box_velocity).dot(direction);
+  // Its way into the obstacle, relative to it (moving rigidly within the step), is stopped.
+  const Eigen::Vector3d obstacle_velocity = (centre - start_poses[k] * (to_obstacle * centre)) / dt;
+  const double into = -(velocity - obstacle_velocity).dot(direction);
   for (int corner = 0; corner < 3; ++corner) {
     const int p = faces_[t][corner];
     if (into > 0.0) request(body, p, into * direction, velocity_requests_);
@@ -177,8 +175,8 @@ void ContactState::touchFace(const FiniteElementBody& body,
       const int i = point.nodes[j];
       if (point.weights[j] == 0.0 || body.isConstrained(i) || face_obstacle_[i] >= 0) continue;
       face_obstacle_[i] = k;
-      face_normal_[i] = to_box.linear() * direction;
-      face_place_[i] = to_box * body.positions().segment<3>(3 * i);
+      face_normal_[i] = to_obstacle.linear() * direction;
+      face_place_[i] = to_obstacle * body.positions().segment<3>(3 * i);
       face_nodes_.push_back(i);
     }
   }
@@ -188,8 +186,9 @@ void ContactState::holdFaceNodes(FiniteElementBody& body,
                                  const std::vector<PlacedShape>& obstacles) {
   for (int i : face_nodes_) {
     if (body.isConstrained(i) || held_flag_[i] || on_plane_node_[i]) continue;
-    const PlacedShape& box = obstacles[face_obstacle_[i]];
-    body.holdNodeOnPlane(i, box.pose.linear() * face_normal_[i], box.pose * face_place_[i]);
+    const PlacedShape& obstacle = obstacles[face_obstacle_[i]];
+    body.holdNodeOnPlane(i, obstacle.pose.linear() * face_normal_[i],
+                         obstacle.pose * face_place_[i]);
     face_held_.push_back(i);
   }
 }

@@ -1,12 +1,15 @@
 #include "deformable_sim/core/geometry/triangle_mesh_shape.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
 #include <utility>
+
+#include "deformable_sim/core/geometry/triangle_separation.h"
 
 namespace deformable_sim::core {
 
@@ -66,20 +69,17 @@ TriangleMeshShape::TriangleMeshShape(TriangleMesh mesh, double open_depth)
   for (const Eigen::Vector3d& v : mesh_.vertices) bounds_.extend(v);
 }
 
-TriangleSeparation TriangleMeshShape::separation(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                                 const Eigen::Vector3d& c, double margin,
-                                                 std::vector<int>& near) const {
+double TriangleMeshShape::dent(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                               const Eigen::Vector3d& c, const Eigen::Vector3d& inward,
+                               double margin, std::vector<int>& near) const {
   const Eigen::Vector3d reach = Eigen::Vector3d::Constant(margin);
   near.clear();
   tree_.trianglesNear(a.cwiseMin(b).cwiseMin(c) - reach, a.cwiseMax(b).cwiseMax(c) + reach, near);
-  TriangleSeparation deepest;
-  deepest.depth = -std::numeric_limits<double>::infinity();
+  double deepest = -std::numeric_limits<double>::infinity();
   for (int t : near) {
     const Eigen::Vector3i& corners = mesh_.triangles[t];
-    const TriangleSeparation s =
-        separateFromTriangle(mesh_.vertices[corners[0]], mesh_.vertices[corners[1]],
-                             mesh_.vertices[corners[2]], a, b, c);
-    if (s.depth > deepest.depth) deepest = s;
+    deepest = std::max(deepest, dentDepth(a, b, c, inward, mesh_.vertices[corners[0]],
+                                          mesh_.vertices[corners[1]], mesh_.vertices[corners[2]]));
   }
   return deepest;
 }

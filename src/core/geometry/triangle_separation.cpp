@@ -14,7 +14,7 @@ namespace {
 constexpr double kParallel = 1e-9;
 
 struct Axes {
-  std::array<Eigen::Vector3d, 17> axis;
+  std::array<Eigen::Vector3d, 13> axis;
   int count = 0;
   void add(const Eigen::Vector3d& a, double scale) {
     const double length = a.norm();
@@ -67,27 +67,32 @@ TriangleSeparation separateFromBox(const Eigen::Isometry3d& pose, const Eigen::V
   return leastOverlap(axes, extent, a, b, c);
 }
 
-TriangleSeparation separateFromTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
-                                        const Eigen::Vector3d& r, const Eigen::Vector3d& a,
-                                        const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const std::array<Eigen::Vector3d, 3> mine{b - a, c - b, a - c}, theirs{q - p, r - q, p - r};
-  const Eigen::Vector3d my_normal = mine[0].cross(mine[1]);
-  const Eigen::Vector3d their_normal = theirs[0].cross(theirs[1]);
-  Axes axes;
-  axes.add(their_normal, theirs[0].norm() * theirs[1].norm());
-  axes.add(my_normal, mine[0].norm() * mine[1].norm());
-  for (const Eigen::Vector3d& e : mine) {
-    for (const Eigen::Vector3d& f : theirs) axes.add(e.cross(f), e.norm() * f.norm());
+double dentDepth(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                 const Eigen::Vector3d& inward, const Eigen::Vector3d& p, const Eigen::Vector3d& q,
+                 const Eigen::Vector3d& r) {
+  // The triangle clipped by the face's three side planes (Sutherland-Hodgman): each plane cuts
+  // a corner off at most, so three cuts leave at most six corners.
+  std::array<Eigen::Vector3d, 9> polygon{p, q, r}, clipped;
+  int count = 3;
+  const std::array<Eigen::Vector3d, 3> face{a, b, c};
+  for (int e = 0; e < 3 && count > 0; ++e) {
+    const Eigen::Vector3d& from = face[e];
+    Eigen::Vector3d side = inward.cross(face[(e + 1) % 3] - from);
+    if (side.dot(face[(e + 2) % 3] - from) < 0.0) side = -side;  // towards the face's inside
+    int kept = 0;
+    for (int k = 0; k < count; ++k) {
+      const Eigen::Vector3d& u = polygon[k];
+      const Eigen::Vector3d& v = polygon[(k + 1) % count];
+      const double du = side.dot(u - from), dv = side.dot(v - from);
+      if (du >= 0.0) clipped[kept++] = u;
+      if ((du < 0.0) != (dv < 0.0)) clipped[kept++] = u + du / (du - dv) * (v - u);
+    }
+    polygon = clipped;
+    count = kept;
   }
-  // In one plane the crosses all lie along its normal: the edges' normals within it part them.
-  for (const Eigen::Vector3d& f : theirs)
-    axes.add(their_normal.cross(f), their_normal.norm() * f.norm());
-  for (const Eigen::Vector3d& e : mine) axes.add(my_normal.cross(e), my_normal.norm() * e.norm());
-  const auto extent = [&](const Eigen::Vector3d& u) {
-    const double pp = u.dot(p), pq = u.dot(q), pr = u.dot(r);
-    return Eigen::Vector2d(std::min({pp, pq, pr}), std::max({pp, pq, pr}));
-  };
-  return leastOverlap(axes, extent, a, b, c);
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (int k = 0; k < count; ++k) deepest = std::max(deepest, inward.dot(polygon[k] - a));
+  return deepest;
 }
 
 }  // namespace deformable_sim::core

@@ -195,11 +195,11 @@ class ContactState {
 
   // Edges and corners of box and mesh obstacles against the body's faces (obstacle_features.cpp):
   // an obstacle pressed edge first into a face between its points is unseen by the points. Such a
-  // face is moved out of the box the least way, or out of the mesh's triangle it overlaps most
-  // along its own normal (core/geometry/triangle_separation.h; a mesh only while none of the
-  // body's points touches it), its way into it stopped, and its nodes held on planes of that
-  // direction, moving with the obstacle, in the next step: frictionless, let go when their
-  // springs pull.
+  // face is moved out of the box the least way, or out of a mesh along its own normal as deep as
+  // the mesh's triangles reach behind it within its outline (core/geometry/triangle_separation.h;
+  // a mesh only while none of the body's points touches it), its way into it stopped, and its
+  // nodes held on planes of that direction, moving with the obstacle, in the next step:
+  // frictionless, let go when their springs pull.
 
   /// After the points' projection: puts the faces that box and mesh obstacles press into back
   /// out, and records the faces touching them and the nodes to hold next step.

@@ -19,7 +19,6 @@
 
 #include "deformable_sim/core/geometry/triangle_aabb_tree.h"
 #include "deformable_sim/core/geometry/triangle_mesh.h"
-#include "deformable_sim/core/geometry/triangle_separation.h"
 
 namespace deformable_sim::core {
 
@@ -42,13 +41,13 @@ class TriangleMeshShape {
                         Eigen::Vector3d* normal = nullptr) const;
   /// The mesh's bounding box, in its frame.
   const Eigen::AlignedBox3d& bounds() const { return bounds_; }
-  /// How far the triangle a, b, c (the mesh's frame) must move to leave the triangle of the mesh
-  /// it overlaps most (core/geometry/triangle_separation.h), of those within `margin` of it:
-  /// where the mesh's edges and corners press into it. A depth of -infinity when none is that
-  /// near. `near` is room for the triangles looked at; allocates only as it grows.
-  TriangleSeparation separation(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                const Eigen::Vector3d& c, double margin,
-                                std::vector<int>& near) const;
+  /// How deep the mesh's edges and corners dent the triangle a, b, c (the mesh's frame) along
+  /// `inward`, its unit normal into the body: the deepest dentDepth()
+  /// (core/geometry/triangle_separation.h) of the mesh's triangles within `margin` of it;
+  /// negative, the gap to the nearest; -infinity when none is near. `near` is room for the
+  /// triangles looked at; allocates only as it grows.
+  double dent(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+              const Eigen::Vector3d& inward, double margin, std::vector<int>& near) const;
 
  private:
   void findNeighbours();

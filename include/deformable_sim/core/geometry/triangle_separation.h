@@ -1,10 +1,10 @@
-// How far a triangle must move to leave a box or another triangle, by the separating axis
-// theorem: of the face normals of both, the cross products of their edges (and, for triangles
-// that lie in one plane, the normals of each one's edges within it), the axis along which their
-// projections overlap least. That overlap is the least translation that parts them, exact for two
-// convex shapes; a negative one is a gap (at least that wide). Contact uses it to find where the
-// edges and corners of a box, or of a mesh's triangles, press into a body's faces between its
-// nodes.
+// How a body's face, a triangle, meets an obstacle's edges and corners: the least translation
+// that takes it out of a box, by the separating axis theorem (of the box's three face normals,
+// the triangle's normal and the nine cross products of their edges, the axis along which their
+// projections overlap least; exact for two convex shapes, and a negative overlap is a gap at least
+// that wide); and how far one of a mesh's triangles reaches behind it within its outline, along
+// its normal (the dent that triangle's edge or corner makes). Contact uses both to find where
+// obstacles press into a body's faces between its nodes.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -24,10 +24,12 @@ TriangleSeparation separateFromBox(const Eigen::Isometry3d& pose, const Eigen::V
                                    const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                    const Eigen::Vector3d& c);
 
-/// The obstacle's triangle p, q, r and the moving triangle a, b, c, in one frame. A degenerate
-/// triangle is tested along the axes it still has.
-TriangleSeparation separateFromTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
-                                        const Eigen::Vector3d& r, const Eigen::Vector3d& a,
-                                        const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+/// How far the triangle p, q, r reaches behind the face a, b, c along `inward` (the face's unit
+/// normal into the body), counting only its part within the face's outline seen along that
+/// normal: negative when that part is all in front (the gap), -infinity when no part is within
+/// the outline. Allocates nothing.
+double dentDepth(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                 const Eigen::Vector3d& inward, const Eigen::Vector3d& p, const Eigen::Vector3d& q,
+                 const Eigen::Vector3d& r);
 
 }  // namespace deformable_sim::core
