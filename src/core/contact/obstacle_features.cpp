@@ -46,11 +46,17 @@ void ContactState::pushFacesOut(FiniteElementBody& body, const std::vector<Place
     if (obstacle.shape.kind == Shape::Kind::kMesh && pointsTouch(K)) continue;
     if (!placed) placePoints(body);
     placed = true;
-    separateFaces(body, obstacle, K);
+    const Eigen::Isometry3d to_obstacle = obstacle.pose.inverse();
+    if (obstacle.shape.kind == Shape::Kind::kMesh) {
+      // Room for every triangle of the mesh, once: none is looked at twice for a face.
+      const size_t triangles = obstacle.shape.mesh->mesh().triangles.size();
+      if (near_triangles_.capacity() < triangles) near_triangles_.reserve(triangles);
+    }
+    separateFaces(body, obstacle, to_obstacle, K);
     const Eigen::AlignedBox3d near = boundsOf(obstacle, kOffItsFace);
     for (int t = 0; t < static_cast<int>(faces_.size()); ++t) {
       if (!face_pressed_[t] && !faceForFeatures(body, t, K, near)) continue;
-      const TriangleSeparation s = separateFace(obstacle, t);
+      const TriangleSeparation s = separateFace(obstacle, to_obstacle, t);
       if (faceTouches(t, K, s.depth))
         touchFace(body, obstacles, start_poses, t, K, s.direction, dt);
       face_pressed_[t] = 0;
@@ -62,16 +68,13 @@ void ContactState::pushFacesOut(FiniteElementBody& body, const std::vector<Place
   face_held_.clear();
 }
 
-TriangleSeparation ContactState::separateFace(const PlacedShape& obstacle, int t) {
+TriangleSeparation ContactState::separateFace(const PlacedShape& obstacle,
+                                              const Eigen::Isometry3d& to_obstacle, int t) {
   const Eigen::Vector3d& a = point_x_[faces_[t][0]];
   const Eigen::Vector3d& b = point_x_[faces_[t][1]];
   const Eigen::Vector3d& c = point_x_[faces_[t][2]];
   if (obstacle.shape.kind == Shape::Kind::kBox)
     return separateFromBox(obstacle.pose, obstacle.shape.size, a, b, c);
-  // Room for every triangle of the mesh, once: none is looked at twice for a face.
-  const size_t triangles = obstacle.shape.mesh->mesh().triangles.size();
-  if (near_triangles_.capacity() < triangles) near_triangles_.reserve(triangles);
-  const Eigen::Isometry3d to_mesh = obstacle.pose.inverse();
   // A mesh dents the face along its own normal, inwards: the least way out of one of its
   // triangles is no way out of the solid they bound (through a bar's side, past its edge).
   const Eigen::Vector3d across = (c - a).cross(b - a);
@@ -79,8 +82,8 @@ TriangleSeparation ContactState::separateFace(const PlacedShape& obstacle, int t
   s.depth = -std::numeric_limits<double>::infinity();
   if (!(across.norm() > 0.0)) return s;  // a face crushed flat has no side to dent
   const Eigen::Vector3d inward = across.normalized();
-  s.depth = obstacle.shape.mesh->dent(to_mesh * a, to_mesh * b, to_mesh * c,
-                                      to_mesh.linear() * inward, kOffItsFace, near_triangles_);
+  s.depth = obstacle.shape.mesh->dent(to_obstacle * a, to_obstacle * b, to_obstacle * c,
+                                      to_obstacle.linear() * inward, kOffItsFace, near_triangles_);
   s.direction = inward;
   // Deeper than the face is wide, it is no dent of this face but a triangle reaching across it
   // (a table's top under a side face that hangs below it): the points answer there.
@@ -89,12 +92,13 @@ TriangleSeparation ContactState::separateFace(const PlacedShape& obstacle, int t
   return s;
 }
 
-void ContactState::separateFaces(FiniteElementBody& body, const PlacedShape& obstacle, int k) {
+void ContactState::separateFaces(FiniteElementBody& body, const PlacedShape& obstacle,
+                                 const Eigen::Isometry3d& to_obstacle, int k) {
   const Eigen::AlignedBox3d near = boundsOf(obstacle, 0.0);
   for (int pass = 0; pass < kEmbeddedPasses; ++pass) {
     for (int t = 0; t < static_cast<int>(faces_.size()); ++t) {
       if (!faceForFeatures(body, t, k, near)) continue;
-      const TriangleSeparation s = separateFace(obstacle, t);
+      const TriangleSeparation s = separateFace(obstacle, to_obstacle, t);
       if (!(s.depth > kOnTheSurface)) continue;
       contacts_[k].penetration = std::max(contacts_[k].penetration, s.depth);
       face_pressed_[t] = 1;

@@ -22,29 +22,6 @@ struct Axes {
   }
 };
 
-/// Of `axes`, the one along which the triangle a, b, c and the obstacle overlap least, and by
-/// how much; `extent(u)` is the obstacle's interval along u (low, high).
-template <typename Extent>
-TriangleSeparation leastOverlap(const Axes& axes, const Extent& extent, const Eigen::Vector3d& a,
-                                const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  TriangleSeparation least;
-  least.depth = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < axes.count; ++k) {
-    const Eigen::Vector3d& u = axes.axis[k];
-    const double pa = u.dot(a), pb = u.dot(b), pc = u.dot(c);
-    const double low = std::min({pa, pb, pc}), high = std::max({pa, pb, pc});
-    const Eigen::Vector2d obstacle = extent(u);
-    // Out along +u: the triangle's low end past the obstacle's high end; or along -u.
-    const double up = obstacle[1] - low, down = high - obstacle[0];
-    const double depth = std::min(up, down);
-    if (depth < least.depth) {
-      least.depth = depth;
-      least.direction = up <= down ? u : Eigen::Vector3d(-u);
-    }
-  }
-  return least;
-}
-
 }  // namespace
 
 TriangleSeparation separateFromBox(const Eigen::Isometry3d& pose, const Eigen::Vector3d& size,
@@ -59,12 +36,23 @@ TriangleSeparation separateFromBox(const Eigen::Isometry3d& pose, const Eigen::V
   for (const Eigen::Vector3d& e : edges) {
     for (int j = 0; j < 3; ++j) axes.add(e.cross(box_axes.col(j)), e.norm());
   }
-  const auto extent = [&](const Eigen::Vector3d& u) {
+  TriangleSeparation least;
+  least.depth = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < axes.count; ++k) {
+    const Eigen::Vector3d& u = axes.axis[k];
+    const double pa = u.dot(a), pb = u.dot(b), pc = u.dot(c);
+    const double low = std::min({pa, pb, pc}), high = std::max({pa, pb, pc});
     const double reach = (box_axes.transpose() * u).cwiseAbs().dot(half);
     const double middle = u.dot(centre);
-    return Eigen::Vector2d(middle - reach, middle + reach);
-  };
-  return leastOverlap(axes, extent, a, b, c);
+    // Out along +u: the triangle's low end past the box's high end; or along -u.
+    const double up = middle + reach - low, down = high - (middle - reach);
+    const double depth = std::min(up, down);
+    if (depth < least.depth) {
+      least.depth = depth;
+      least.direction = up <= down ? u : Eigen::Vector3d(-u);
+    }
+  }
+  return least;
 }
 
 double dentDepth(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,

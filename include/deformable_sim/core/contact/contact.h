@@ -207,10 +207,12 @@ class ContactState {
                     const std::vector<Eigen::Isometry3d>& start_poses, double dt);
   /// Moves the faces that obstacle k presses into out of it, in passes (faces share nodes);
   /// face_pressed_ marks them.
-  void separateFaces(FiniteElementBody& body, const PlacedShape& obstacle, int k);
-  /// How far face t must move to leave the obstacle (a box or a mesh), and which way, from where
-  /// its points are now.
-  TriangleSeparation separateFace(const PlacedShape& obstacle, int t);
+  void separateFaces(FiniteElementBody& body, const PlacedShape& obstacle,
+                     const Eigen::Isometry3d& to_obstacle, int k);
+  /// How far face t must move to leave the obstacle (a box or a mesh; `to_obstacle` the inverse
+  /// of its pose), and which way, from where its points are now.
+  TriangleSeparation separateFace(const PlacedShape& obstacle, const Eigen::Isometry3d& to_obstacle,
+                                  int t);
   /// Whether any of the body's points touches obstacle k.
   bool pointsTouch(int k) const;
   /// Whether face t is one for obstacle k's features: all its points movable, none touching it

@@ -14,7 +14,7 @@ namespace deformable_sim::core {
 struct TriangleSeparation {
   /// m: how far they overlap along `direction` (negative: the gap between them along it).
   double depth = 0.0;
-  /// Unit: the way the triangle moves to leave the box.
+  /// Unit: the way the triangle moves to leave the obstacle.
   Eigen::Vector3d direction = Eigen::Vector3d::Zero();
 };
 
