@@ -49,6 +49,10 @@ ContactState::ContactState(const Mesh& mesh)
   face_place_.assign(num_nodes, Eigen::Vector3d::Zero());
   pushed_by_.assign(num_nodes, -1);
   face_push_.assign(num_nodes, 0.0);
+  face_slides_.assign(num_nodes, 1);
+  face_in_place_.assign(num_nodes, 0);
+  face_friction_.assign(num_nodes, Eigen::Vector3d::Zero());
+  face_excess_.assign(num_nodes, Eigen::Vector3d::Zero());
   face_nodes_.reserve(num_nodes);
   face_held_.reserve(num_nodes);
   held_.reserve(num_nodes);
@@ -94,7 +98,7 @@ void ContactState::forget() {
   std::fill(on_plane_.begin(), on_plane_.end(), 0);
   for (int i : face_nodes_) face_obstacle_[i] = -1;
   face_nodes_.clear();
-  for (int i : face_held_) pushed_by_[i] = -1;
+  for (int i : face_held_) pushed_by_[i] = -1, face_in_place_[i] = 0;
   face_held_.clear();
   face_touches_.clear();
 }
@@ -275,6 +279,7 @@ void ContactState::judgePatches(const FiniteElementBody& body,
     if (whole_) patch.momentum += mass * slip_[p];  // otherwise it was held where it was
     patch.mass += mass;
   }
+  addFaceNodesToPatches(body, obstacles);
   decideSlides(body, settings, dt);
 }
 
@@ -363,7 +368,7 @@ void ContactState::release(FiniteElementBody& body, const std::vector<PlacedShap
     slip_[p] = patch.sticks ? Eigen::Vector3d::Zero() : Eigen::Vector3d(slip - slip.dot(n) * n);
     point_[p] = obstacles[k].pose.inverse() * x;
   }
-  measureFacePushes(body, obstacles);
+  judgeFaceNodes(body, obstacles, start_poses, settings, dt);
   letGo(body);
 }
 
@@ -373,6 +378,10 @@ void ContactState::letGo(FiniteElementBody& body) {
     held_flag_[i] = 0;
   }
   held_.clear();
+  for (int i : face_held_) {
+    if (face_in_place_[i]) body.releaseNode(i);
+    face_in_place_[i] = 0;
+  }
   for (int i : plane_nodes_) on_plane_node_[i] = 0;
   plane_nodes_.clear();
   body.releasePlaneHolds();

@@ -182,6 +182,13 @@ void ContactState::touchFace(const FiniteElementBody& body,
       face_normal_[i] = to_obstacle.linear() * direction;
       face_place_[i] = to_obstacle * body.positions().segment<3>(3 * i);
       face_nodes_.push_back(i);
+      // Held on, it goes on as judged; new, it slides on its plane for a step and lands (held in
+      // place at once, a node pressed in again each step and let go each step for pulling carried
+      // tangential forces in every other step beyond its patch's judgement).
+      if (pushed_by_[i] == k && face_push_[i] > 0.0) continue;
+      face_slides_[i] = 1;
+      face_friction_[i].setZero();
+      face_excess_[i].setZero();
     }
   }
 }
@@ -191,21 +198,91 @@ void ContactState::holdFaceNodes(FiniteElementBody& body,
   for (int i : face_nodes_) {
     if (body.isConstrained(i) || held_flag_[i] || on_plane_node_[i]) continue;
     const PlacedShape& obstacle = obstacles[face_obstacle_[i]];
+    face_held_.push_back(i);
+    if (!face_slides_[i]) {  // at its place on the obstacle, moving with it
+      body.holdNodeAt(i, obstacle.pose * face_place_[i]);
+      face_in_place_[i] = 1;
+      continue;
+    }
     body.holdNodeOnPlane(i, obstacle.pose.linear() * face_normal_[i],
                          obstacle.pose * face_place_[i]);
-    face_held_.push_back(i);
+    const Eigen::Vector3d force = face_friction_[i] - face_excess_[i];
+    if (!force.isZero(0.0)) body.addStepForce(i, force);
   }
 }
 
-void ContactState::measureFacePushes(const FiniteElementBody& body,
-                                     const std::vector<PlacedShape>& obstacles) {
+void ContactState::addFaceNodesToPatches(const FiniteElementBody& body,
+                                         const std::vector<PlacedShape>& obstacles) {
+  for (int i : face_held_) {
+    if (!face_in_place_[i]) continue;
+    const int k = face_obstacle_[i];
+    const Eigen::Vector3d n = obstacles[k].pose.linear() * face_normal_[i];
+    const Eigen::Vector3d r = body.reactionForces().segment<3>(3 * i);
+    const double pushing = r.dot(n);
+    if (!(pushing > 0.0)) continue;
+    Patch& patch = patches_[k];
+    patch.pushing += pushing;
+    patch.normal += pushing * n;
+    patch.sliding += r - pushing * n;
+    patch.mass += body.nodalMasses()[i];
+  }
+}
+
+void ContactState::judgeFaceNodes(const FiniteElementBody& body,
+                                  const std::vector<PlacedShape>& obstacles,
+                                  const std::vector<Eigen::Isometry3d>& start_poses,
+                                  const ContactSettings& settings, double dt) {
   for (int i : face_held_) {
     const int k = face_obstacle_[i];
     const Eigen::Vector3d n = obstacles[k].pose.linear() * face_normal_[i];
+    const Eigen::Vector3d r = body.reactionForces().segment<3>(3 * i);
     pushed_by_[i] = k;
-    face_push_[i] = body.reactionForces().segment<3>(3 * i).dot(n);
-    if (face_push_[i] > 0.0) addForce(k, body.positions().segment<3>(3 * i), face_push_[i] * n);
+    face_push_[i] = r.dot(n);
+    if (!(face_push_[i] > 0.0)) continue;  // it pulled: let go
+    if (!face_in_place_[i]) {
+      judgeFaceNodeOnPlane(body, obstacles, start_poses, settings, dt, i);
+      continue;
+    }
+    const Eigen::Vector3d x = body.positions().segment<3>(3 * i);
+    const Patch& patch = patches_[k];
+    if (!patch.slides) {
+      addForce(k, x, r);
+      continue;
+    }
+    // Its share of the patch's friction and of what the patch held beyond it, by its push; it
+    // slides on its plane from where the step took it.
+    const double share = face_push_[i] / patch.pushing;
+    face_slides_[i] = 1;
+    face_friction_[i] = share * patch.friction;
+    face_excess_[i] = share * (patch.sliding - patch.friction);
+    addForce(k, x, face_push_[i] * n + face_friction_[i]);
   }
+}
+
+void ContactState::judgeFaceNodeOnPlane(const FiniteElementBody& body,
+                                        const std::vector<PlacedShape>& obstacles,
+                                        const std::vector<Eigen::Isometry3d>& start_poses,
+                                        const ContactSettings& settings, double dt, int i) {
+  const int k = face_obstacle_[i];
+  const Eigen::Vector3d n = obstacles[k].pose.linear() * face_normal_[i];
+  const Eigen::Vector3d x = body.positions().segment<3>(3 * i);
+  addForce(k, x, face_push_[i] * n + face_friction_[i] - face_excess_[i]);
+  face_excess_[i].setZero();
+  // Its slip relative to the obstacle (moving rigidly) at its place.
+  const Eigen::Vector3d was_at = start_poses[k] * (obstacles[k].pose.inverse() * x);
+  Eigen::Vector3d slip = body.velocities().segment<3>(3 * i) - (x - was_at) / dt;
+  slip -= slip.dot(n) * n;
+  // Friction that stopped or turned its slip leaves it at rest: in place from the next step.
+  const bool stopped =
+      face_friction_[i].isZero(0.0) ? slip.norm() <= kAtRest : slip.dot(face_friction_[i]) >= 0.0;
+  if (settings.friction > 0.0 && stopped) {
+    face_slides_[i] = 0;
+    face_friction_[i].setZero();
+    return;
+  }
+  face_friction_[i] = slip.isZero(0.0)
+                          ? Eigen::Vector3d::Zero()
+                          : Eigen::Vector3d(-settings.friction * face_push_[i] * slip.normalized());
 }
 
 }  // namespace deformable_sim::core

@@ -198,8 +198,11 @@ class ContactState {
   // face is moved out of the box the least way, or out of a mesh along its own normal as deep as
   // the mesh's triangles reach behind it within its outline (core/geometry/triangle_separation.h;
   // a mesh only while none of the body's points touches it), its way into it stopped, and its
-  // nodes held on planes of that direction, moving with the obstacle, in the next step:
-  // frictionless, let go when their springs pull.
+  // nodes held on planes of that direction, moving with the obstacle, in the next step. With
+  // friction, a node that slid on its plane and stopped is held in its place on the obstacle; the
+  // forces of such holds join the patch of the body's points on that obstacle (judgePatches()),
+  // which sticks or slides as one; sliding, the nodes go on their planes with their shares of
+  // friction, as the points do. Let go when their springs pull.
 
   /// After the points' projection: puts the faces that box and mesh obstacles press into back
   /// out, and records the faces touching them and the nodes to hold next step.
@@ -222,14 +225,28 @@ class ContactState {
   /// Face t touches obstacle k after the step: it was pressed into it, or it was held against it in
   /// the step, pushed, and is still within kOffItsFace.
   bool faceTouches(int t, int k, double depth) const;
-  /// Stops face t's way into obstacle k and records its nodes to hold on planes of `direction`.
+  /// Stops face t's way into obstacle k and records its nodes to hold against it, pushing along
+  /// `direction`: a node new to it starts on its plane, without friction for the step.
   void touchFace(const FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
                  const std::vector<Eigen::Isometry3d>& start_poses, int t, int k,
                  const Eigen::Vector3d& direction, double dt);
-  /// Holds the recorded nodes on their planes for the step (those held otherwise excepted).
+  /// Holds the recorded nodes for the step, in place or on their planes with friction (those held
+  /// otherwise excepted).
   void holdFaceNodes(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles);
-  /// After the step: each held node's push, added to its obstacle's load.
-  void measureFacePushes(const FiniteElementBody& body, const std::vector<PlacedShape>& obstacles);
+  /// Adds the pushes and tangential forces of the face nodes held in place to their patches.
+  void addFaceNodesToPatches(const FiniteElementBody& body,
+                             const std::vector<PlacedShape>& obstacles);
+  /// After the patches are judged: each held node's push and friction, added to its obstacle's
+  /// load, and whether it sticks or slides in the next step.
+  void judgeFaceNodes(const FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
+                      const std::vector<Eigen::Isometry3d>& start_poses,
+                      const ContactSettings& settings, double dt);
+  /// Face node i, held on its plane in the step: sticks again when friction stopped or turned its
+  /// slip, else slides on against it.
+  void judgeFaceNodeOnPlane(const FiniteElementBody& body,
+                            const std::vector<PlacedShape>& obstacles,
+                            const std::vector<Eigen::Isometry3d>& start_poses,
+                            const ContactSettings& settings, double dt, int i);
 
   /// Where each point is now, into point_x_ (after each correction).
   void placePoints(const FiniteElementBody& body);
@@ -243,10 +260,15 @@ class ContactState {
       face_touches_;  ///< faces touching an obstacle after the step; reserved once
   // Per node.
   std::vector<int> face_obstacle_;  ///< the obstacle a face holds it against next step, -1: none
-  std::vector<Eigen::Vector3d> face_normal_;  ///< the plane's normal, in the obstacle's frame
-  std::vector<Eigen::Vector3d> face_place_;   ///< a point of the plane, in the obstacle's frame
-  std::vector<int> face_nodes_;               ///< the nodes with a face_obstacle_
-  std::vector<int> face_held_;                ///< those held in the present step
+  std::vector<Eigen::Vector3d> face_normal_;    ///< the plane's normal, in the obstacle's frame
+  std::vector<Eigen::Vector3d> face_place_;     ///< a point of the plane, in the obstacle's frame
+  std::vector<int> face_nodes_;                 ///< the nodes with a face_obstacle_
+  std::vector<int> face_held_;                  ///< those held in the present step
+  std::vector<std::uint8_t> face_slides_;       ///< next step on its plane (1) or in place (0)
+  std::vector<std::uint8_t> face_in_place_;     ///< held in place in the present step
+  std::vector<Eigen::Vector3d> face_friction_;  ///< sliding: friction's force on it, N
+  /// Found sliding while held in place: what it held beyond friction, taken back in the next step.
+  std::vector<Eigen::Vector3d> face_excess_;
   std::vector<int> pushed_by_;       ///< after the step: the obstacle it was held against, -1: none
   std::vector<double> face_push_;    ///< that hold's push, N (negative: it pulled)
   std::vector<int> near_triangles_;  ///< a mesh's triangles near a face, looked at; room reused
