@@ -49,8 +49,8 @@ ContactState::ContactState(const Mesh& mesh)
   face_place_.assign(num_nodes, Eigen::Vector3d::Zero());
   pushed_by_.assign(num_nodes, -1);
   face_push_.assign(num_nodes, 0.0);
-  face_slides_.assign(num_nodes, 1);
-  face_in_place_.assign(num_nodes, 0);
+  face_sticks_.assign(num_nodes, 0);
+  face_held_in_place_.assign(num_nodes, 0);
   face_friction_.assign(num_nodes, Eigen::Vector3d::Zero());
   face_excess_.assign(num_nodes, Eigen::Vector3d::Zero());
   face_nodes_.reserve(num_nodes);
@@ -96,9 +96,13 @@ void ContactState::forget() {
   std::fill(obstacle_.begin(), obstacle_.end(), -1);
   std::fill(holds_.begin(), holds_.end(), 0);
   std::fill(on_plane_.begin(), on_plane_.end(), 0);
-  for (int i : face_nodes_) face_obstacle_[i] = -1;
+  // Between steps: no face node is held now (letGo() released them).
+  for (int i : face_nodes_) {
+    face_obstacle_[i] = -1, face_sticks_[i] = 0;
+    face_friction_[i].setZero(), face_excess_[i].setZero();
+  }
   face_nodes_.clear();
-  for (int i : face_held_) pushed_by_[i] = -1, face_in_place_[i] = 0;
+  for (int i : face_held_) pushed_by_[i] = -1;
   face_held_.clear();
   face_touches_.clear();
 }
@@ -379,8 +383,8 @@ void ContactState::letGo(FiniteElementBody& body) {
   }
   held_.clear();
   for (int i : face_held_) {
-    if (face_in_place_[i]) body.releaseNode(i);
-    face_in_place_[i] = 0;
+    if (face_held_in_place_[i]) body.releaseNode(i);
+    face_held_in_place_[i] = 0;
   }
   for (int i : plane_nodes_) on_plane_node_[i] = 0;
   plane_nodes_.clear();

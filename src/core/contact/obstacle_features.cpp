@@ -63,6 +63,11 @@ void ContactState::pushFacesOut(FiniteElementBody& body, const std::vector<Place
     }
     grantVelocities(body, K, dt);
   }
+  // Held where they end: a later obstacle may have moved a face recorded for an earlier one.
+  for (int i : face_nodes_) {
+    face_place_[i] =
+        obstacles[face_obstacle_[i]].pose.inverse() * body.positions().segment<3>(3 * i);
+  }
   // The pushes of the last step's holds have been read.
   for (int i : face_held_) pushed_by_[i] = -1;
   face_held_.clear();
@@ -180,13 +185,11 @@ void ContactState::touchFace(const FiniteElementBody& body,
       if (point.weights[j] == 0.0 || body.isConstrained(i) || face_obstacle_[i] >= 0) continue;
       face_obstacle_[i] = k;
       face_normal_[i] = to_obstacle.linear() * direction;
-      face_place_[i] = to_obstacle * body.positions().segment<3>(3 * i);
       face_nodes_.push_back(i);
-      // Held on, it goes on as judged; new, it slides on its plane for a step and lands (held in
-      // place at once, a node pressed in again each step and let go each step for pulling carried
-      // tangential forces in every other step beyond its patch's judgement).
+      // Held on, it goes on as judged. New, it has no judged force yet: a step on its plane gives
+      // it a push to judge its friction by, as a landing point's impulse does.
       if (pushed_by_[i] == k && face_push_[i] > 0.0) continue;
-      face_slides_[i] = 1;
+      face_sticks_[i] = 0;
       face_friction_[i].setZero();
       face_excess_[i].setZero();
     }
@@ -199,9 +202,9 @@ void ContactState::holdFaceNodes(FiniteElementBody& body,
     if (body.isConstrained(i) || held_flag_[i] || on_plane_node_[i]) continue;
     const PlacedShape& obstacle = obstacles[face_obstacle_[i]];
     face_held_.push_back(i);
-    if (!face_slides_[i]) {  // at its place on the obstacle, moving with it
+    if (face_sticks_[i]) {  // at its place on the obstacle, moving with it
       body.holdNodeAt(i, obstacle.pose * face_place_[i]);
-      face_in_place_[i] = 1;
+      face_held_in_place_[i] = 1;
       continue;
     }
     body.holdNodeOnPlane(i, obstacle.pose.linear() * face_normal_[i],
@@ -214,7 +217,7 @@ void ContactState::holdFaceNodes(FiniteElementBody& body,
 void ContactState::addFaceNodesToPatches(const FiniteElementBody& body,
                                          const std::vector<PlacedShape>& obstacles) {
   for (int i : face_held_) {
-    if (!face_in_place_[i]) continue;
+    if (!face_held_in_place_[i]) continue;
     const int k = face_obstacle_[i];
     const Eigen::Vector3d n = obstacles[k].pose.linear() * face_normal_[i];
     const Eigen::Vector3d r = body.reactionForces().segment<3>(3 * i);
@@ -239,7 +242,7 @@ void ContactState::judgeFaceNodes(const FiniteElementBody& body,
     pushed_by_[i] = k;
     face_push_[i] = r.dot(n);
     if (!(face_push_[i] > 0.0)) continue;  // it pulled: let go
-    if (!face_in_place_[i]) {
+    if (!face_held_in_place_[i]) {
       judgeFaceNodeOnPlane(body, obstacles, start_poses, settings, dt, i);
       continue;
     }
@@ -249,10 +252,11 @@ void ContactState::judgeFaceNodes(const FiniteElementBody& body,
       addForce(k, x, r);
       continue;
     }
-    // Its share of the patch's friction and of what the patch held beyond it, by its push; it
-    // slides on its plane from where the step took it.
+    // Its share of the patch's friction and of what the patch held beyond it, by its push (its
+    // push is part of patch.pushing: addFaceNodesToPatches()); it slides on its plane from where
+    // the step took it.
     const double share = face_push_[i] / patch.pushing;
-    face_slides_[i] = 1;
+    face_sticks_[i] = 0;
     face_friction_[i] = share * patch.friction;
     face_excess_[i] = share * (patch.sliding - patch.friction);
     addForce(k, x, face_push_[i] * n + face_friction_[i]);
@@ -273,10 +277,11 @@ void ContactState::judgeFaceNodeOnPlane(const FiniteElementBody& body,
   Eigen::Vector3d slip = body.velocities().segment<3>(3 * i) - (x - was_at) / dt;
   slip -= slip.dot(n) * n;
   // Friction that stopped or turned its slip leaves it at rest: in place from the next step.
+  // Without friction it never sticks (points at rest do: faces keep their frictionless holds).
   const bool stopped =
       face_friction_[i].isZero(0.0) ? slip.norm() <= kAtRest : slip.dot(face_friction_[i]) >= 0.0;
   if (settings.friction > 0.0 && stopped) {
-    face_slides_[i] = 0;
+    face_sticks_[i] = 1;
     face_friction_[i].setZero();
     return;
   }

@@ -199,10 +199,11 @@ class ContactState {
   // the mesh's triangles reach behind it within its outline (core/geometry/triangle_separation.h;
   // a mesh only while none of the body's points touches it), its way into it stopped, and its
   // nodes held on planes of that direction, moving with the obstacle, in the next step. With
-  // friction, a node that slid on its plane and stopped is held in its place on the obstacle; the
-  // forces of such holds join the patch of the body's points on that obstacle (judgePatches()),
-  // which sticks or slides as one; sliding, the nodes go on their planes with their shares of
-  // friction, as the points do. Let go when their springs pull.
+  // friction, a node whose slip on its plane friction stopped or turned is held in its place on
+  // the obstacle; the forces of such holds join the obstacle's patch (judgePatches(): with the
+  // body's points on a box; a mesh that points touch is left to them), which sticks or slides as
+  // one; sliding, the nodes go on their planes with their shares of friction, as the points do.
+  // Let go when their springs pull.
 
   /// After the points' projection: puts the faces that box and mesh obstacles press into back
   /// out, and records the faces touching them and the nodes to hold next step.
@@ -260,13 +261,13 @@ class ContactState {
       face_touches_;  ///< faces touching an obstacle after the step; reserved once
   // Per node.
   std::vector<int> face_obstacle_;  ///< the obstacle a face holds it against next step, -1: none
-  std::vector<Eigen::Vector3d> face_normal_;    ///< the plane's normal, in the obstacle's frame
-  std::vector<Eigen::Vector3d> face_place_;     ///< a point of the plane, in the obstacle's frame
-  std::vector<int> face_nodes_;                 ///< the nodes with a face_obstacle_
-  std::vector<int> face_held_;                  ///< those held in the present step
-  std::vector<std::uint8_t> face_slides_;       ///< next step on its plane (1) or in place (0)
-  std::vector<std::uint8_t> face_in_place_;     ///< held in place in the present step
-  std::vector<Eigen::Vector3d> face_friction_;  ///< sliding: friction's force on it, N
+  std::vector<Eigen::Vector3d> face_normal_;      ///< the plane's normal, in the obstacle's frame
+  std::vector<Eigen::Vector3d> face_place_;       ///< a point of the plane, in the obstacle's frame
+  std::vector<int> face_nodes_;                   ///< the nodes with a face_obstacle_
+  std::vector<int> face_held_;                    ///< those held in the present step
+  std::vector<std::uint8_t> face_sticks_;         ///< held in place next step (else on its plane)
+  std::vector<std::uint8_t> face_held_in_place_;  ///< held in place in the present step
+  std::vector<Eigen::Vector3d> face_friction_;    ///< sliding: friction's force on it, N
   /// Found sliding while held in place: what it held beyond friction, taken back in the next step.
   std::vector<Eigen::Vector3d> face_excess_;
   std::vector<int> pushed_by_;       ///< after the step: the obstacle it was held against, -1: none
