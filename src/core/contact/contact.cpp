@@ -186,15 +186,7 @@ void ContactState::grant(Requests& requests, Eigen::VectorXd& state) const {
 
 void ContactState::hold(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
                         double dt) {
-  // A body that touches one obstacle, and that nothing else holds, takes a slip's correction as
-  // a whole.
-  int touched = -1;
-  whole_ = numConstrained(body) == 0 && face_nodes_.empty();
-  for (size_t p = 0; p < points_.size() && whole_; ++p) {
-    if (obstacle_[p] < 0) continue;  // held or not: what touches pushes on the body too
-    whole_ = touched < 0 || touched == obstacle_[p];
-    touched = obstacle_[p];
-  }
+  whole_ = takenWhole(body);
   held_.clear();
   for (size_t p = 0; p < points_.size(); ++p) {
     point_held_[p] = 0;
@@ -228,6 +220,22 @@ void ContactState::hold(FiniteElementBody& body, const std::vector<PlacedShape>&
     }
   }
   holdFaceNodes(body, obstacles);
+}
+
+bool ContactState::takenWhole(const FiniteElementBody& body) const {
+  // Its change is along the face it touches: on several faces (wrapped round a plate pressed
+  // into it, hanging on an edge) its points slide on their own planes instead.
+  if (numConstrained(body) > 0 || !face_nodes_.empty()) return false;
+  int first = -1;
+  for (size_t p = 0; p < points_.size(); ++p) {
+    if (obstacle_[p] < 0) continue;  // held or not: what touches pushes on the body too
+    if (first < 0) {
+      first = static_cast<int>(p);
+      continue;
+    }
+    if (obstacle_[p] != obstacle_[first] || normal_[p].dot(normal_[first]) < kOneFace) return false;
+  }
+  return true;
 }
 
 void ContactState::holdOnPlane(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles,
@@ -627,11 +635,9 @@ int ContactState::project(FiniteElementBody& body, const std::vector<PlacedShape
   pushFacesOut(body, obstacles, start_poses, dt);
   recordNodePlaces(body, obstacles);
   const int touching = countTouching(body, obstacles);
-  int obstacles_touched = 0;
-  for (const ContactLoad& c : contacts_) obstacles_touched += c.points > 0;
-  // Touching several, or held otherwise, a body is not moved whole: what slides on them slides
-  // on their planes in the next solve.
-  if (obstacles_touched > 1 || numConstrained(body) > 0) {
+  // Touching several obstacles or faces, or held otherwise, a body is not moved whole: what
+  // slides on them slides on their planes in the next solve.
+  if (!takenWhole(body)) {
     for (size_t p = 0; p < points_.size(); ++p) {
       if (!holds_[p] || slip_[p].isZero(0.0)) continue;
       slideOnPlane(static_cast<int>(p), Eigen::Vector3d::Zero());

@@ -12,10 +12,10 @@
 // on one obstacle together (a patch): while their tangential force stays within μ times their
 // normal force they stick; otherwise the obstacle exerts μ times the normal force against the
 // slip, and what it exerted beyond that in the solve is given back to the body as a whole (or,
-// for a body that touches several obstacles or is held otherwise, through its next solve: the
-// patch's points slide on the obstacle's plane, held along its normal only, with friction and
-// that excess as forces). Stable at any stiffness and step; costs nothing when the scene does
-// not enable it.
+// for a body that touches several obstacles or faces or is held otherwise, through its next
+// solve: the patch's points slide on the obstacle's plane, held along its normal only, with
+// friction and that excess as forces). Stable at any stiffness and step; costs nothing when the
+// scene does not enable it.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -161,6 +161,9 @@ class ContactState {
 
   /// Sliding points go on planes: a body that touches several obstacles or is held otherwise.
   bool slidesOnPlanes() const { return !whole_; }
+  /// Whether the body touches one face of one obstacle alone (its points' normals on it agree),
+  /// nothing else holding it: a slip's correction then moves it whole.
+  bool takenWhole(const FiniteElementBody& body) const;
   /// Holds sliding point p's free nodes on its obstacle's plane for the next step, with its
   /// friction (and excess) spread over them by its weights.
   void holdOnPlane(FiniteElementBody& body, const std::vector<PlacedShape>& obstacles, int p);
@@ -188,6 +191,8 @@ class ContactState {
   static constexpr double kOnTheSurface = 1e-9;
   /// A landed point slipping slower than this along its obstacle is at rest on it, m/s.
   static constexpr double kAtRest = 1e-6;
+  /// Points whose normals on an obstacle agree to this cosine touch one face of it.
+  static constexpr double kOneFace = 0.99;
 
   /// A vertex lying mostly on held nodes counts as held: moving it by the rest would take shifts
   /// of 1 / free weight times what it needs.
@@ -307,8 +312,8 @@ class ContactState {
   Eigen::Vector3d kick_ = Eigen::Vector3d::Zero();  ///< velocity the whole body gains, m/s
   /// The body's centre, after the solve, when a patch of a body taken whole slides, m/s
   Eigen::Vector3d centre_velocity_ = Eigen::Vector3d::Zero();
-  /// One obstacle alone touches the body, and nothing else holds it: a slip's correction moves
-  /// it whole.
+  /// One face of one obstacle alone touches the body, and nothing else holds it: a slip's
+  /// correction moves it whole.
   bool whole_ = true;
   Requests position_requests_, velocity_requests_;
 };
