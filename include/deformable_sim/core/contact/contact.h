@@ -159,7 +159,8 @@ class ContactState {
   void addForce(int k, const Eigen::Vector3d& at, const Eigen::Vector3d& force);
   Eigen::Vector3d worldNormal(const std::vector<PlacedShape>& obstacles, int p) const;
 
-  /// Sliding points go on planes: a body that touches several obstacles or is held otherwise.
+  /// Sliding points go on planes: a body that touches several obstacles or faces, or is held
+  /// otherwise.
   bool slidesOnPlanes() const { return !whole_; }
   /// Whether the body touches one face of one obstacle alone (its points' normals on it agree),
   /// nothing else holding it: a slip's correction then moves it whole.
