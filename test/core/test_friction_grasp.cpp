@@ -1,8 +1,8 @@
-// Grasping by friction: two finger obstacles squeeze a soft block (or a ball made from its
-// surface) on a table and lift it. Held by friction alone it rises with them, and what the
-// fingers feel, summed, carries its weight; it does so exactly where Coulomb's law says μ times
-// the squeeze carries the weight, and otherwise slips out onto the table. Obstacles that move
-// carry the nodes that stick to them.
+// Grasping by friction: two (or four) finger obstacles squeeze a soft block (or a ball made from
+// its surface) on a table and lift it. Held by friction alone it rises with them, and what the
+// fingers feel, summed, carries its weight; it does so where Coulomb's law says μ times their
+// pushes carries the weight, and otherwise slips out onto the table. Obstacles that move carry
+// the nodes that stick to them.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -61,7 +61,7 @@ dc::PlacedShape finger(const std::string& name, const Eigen::Vector3d& size,
 struct Grasp {
   double squeeze_force = 0.0;  ///< N, each finger's push on the block once it is squeezed
   /// N, each finger's push as they lift it, 2.4 mm up: less than the squeeze's, by up to 30 %
-  /// (four fingers at 0.2 mm), once the block leaves the table.
+  /// (four fingers at 0.2 mm: 1.12 N squeezed, 0.98 N carrying it, 0.80 N slipping at μ = 0.1).
   double lifting_force = 0.0;
   double rise = 0.0;  ///< m the block's centre of mass rose while the fingers rose kLift
   Eigen::Vector3d finger_force = Eigen::Vector3d::Zero();  ///< on the block, all fingers, N
@@ -105,6 +105,24 @@ void placeFingers(dc::Simulation& sim, double apart, double height) {
   for (int f = 1; f < static_cast<int>(sim.obstacles().size()); ++f) {
     sim.obstacles()[f].pose.translation() =
         fingerOffset(f, apart) + Eigen::Vector3d(0, 0, 0.03 + height);
+  }
+}
+
+// From kLift up, the fingers' centres `apart` off the middle: swung out (0.5 rad about x, about a
+// palm 6 cm above them, and 8 cm along x) and back in 3 s.
+void swingOutAndBack(dc::Simulation& sim, double apart) {
+  std::vector<dc::StepReport> reports;
+  const Eigen::Vector3d pivot(0, 0, 0.03 + kLift + 0.06);
+  for (int s = 1; s <= 300; ++s) {
+    const double phase = 0.5 - 0.5 * std::cos(2.0 * M_PI * s / 300.0);  // out and back
+    const Eigen::AngleAxisd turn(0.5 * phase, Eigen::Vector3d::UnitX());
+    for (int f = 1; f < static_cast<int>(sim.obstacles().size()); ++f) {
+      const Eigen::Vector3d held = fingerOffset(f, apart) + Eigen::Vector3d(0, 0, 0.03 + kLift);
+      Eigen::Isometry3d& pose = sim.obstacles()[f].pose;
+      pose.linear() = turn.toRotationMatrix();
+      pose.translation() = Eigen::Vector3d(0.08 * phase, 0, 0) + pivot + turn * (held - pivot);
+    }
+    sim.step(reports);
   }
 }
 
@@ -167,23 +185,7 @@ Grasp squeezeAndLift(double squeeze, double friction, Object object = Object::kB
     sim.step(reports);
     if (s == 10) grasp.lifting_force = push();
   }
-  const auto swing = [&](double angle, double shift) {  // about a palm 6 cm above the fingers
-    const Eigen::Vector3d pivot(0, 0, 0.03 + kLift + 0.06);
-    for (int f = 1; f <= count; ++f) {
-      Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-      const Eigen::Vector3d held =
-          fingerOffset(f, open - 0.002 - squeeze) + Eigen::Vector3d(0, 0, 0.03 + kLift);
-      pose.translation() = Eigen::Vector3d(shift, 0, 0) + pivot +
-                           Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitX()) * (held - pivot);
-      pose.linear() = Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitX()).toRotationMatrix();
-      sim.obstacles()[f].pose = pose;
-    }
-  };
-  for (int s = 1; s <= 300; ++s) {
-    const double phase = 0.5 - 0.5 * std::cos(2.0 * M_PI * s / 300.0);  // out and back
-    swing(0.5 * phase, 0.08 * phase);
-    sim.step(reports);
-  }
+  swingOutAndBack(sim, open - 0.002 - squeeze);
   for (int s = 0; s < 150; ++s) sim.step(reports);
   grasp.rise = centreOfMass(sim.bodies()[0]).z() - start;
   for (int f = 1; f <= count; ++f) {
@@ -238,28 +240,31 @@ TEST(FrictionGrasp, TooLightASqueezeLetsTheBlockSlipOut) {
   EXPECT_GT(grasp.lowest, -1e-9);  // the table's top is z = 0
 }
 
-// Coulomb's law for the grasp: the fingers carry the block when μ times their pushes as they lift
-// it exceeds its weight, and it slips out when they fall short. Light to firm squeezes, low to
-// high friction; cells within 20 % of the threshold are left out. None ends under the table.
+// Coulomb's law for the grasp: the fingers carry the block when μ times their pushes exceeds its
+// weight, and it slips out when they fall short. Light to firm squeezes, low to high friction.
+// The push changes as the fingers start to lift, and differs as the block is carried or slips:
+// a cell is judged where μ times the pushes read after the squeeze and 2.4 mm into the lift are
+// both more than 20 % off the threshold, on the same side. None ends under the table.
 void expectCoulombsLaw(int count) {
   int held = 0, slipped = 0;
   for (const double squeeze : {0.0002, 0.0005, 0.001, 0.002}) {
     for (const double mu : {0.01, 0.02, 0.05, 0.1, 0.2, 0.5}) {
       const Grasp grasp =
           squeezeAndLift(squeeze, mu, Object::kBlock, Fingers::kBoxes, false, count);
-      const double carries = mu * count * grasp.lifting_force / grasp.weight;
+      const double squeezed = mu * count * grasp.squeeze_force / grasp.weight;
+      const double lifting = mu * count * grasp.lifting_force / grasp.weight;
       EXPECT_GT(grasp.lowest, -1e-9) << squeeze << " m, mu " << mu;
-      if (carries > 1.2) {
+      if (std::min(squeezed, lifting) > 1.2) {
         EXPECT_NEAR(grasp.rise, kLift, 0.002) << squeeze << " m, mu " << mu;
         ++held;
-      } else if (carries < 1.0 / 1.2) {
+      } else if (std::max(squeezed, lifting) < 1.0 / 1.2) {
         EXPECT_LT(grasp.rise, 0.01 * kLift) << squeeze << " m, mu " << mu;
         ++slipped;
       }
     }
   }
   EXPECT_GE(held, 6);  // the sweep does span the threshold
-  EXPECT_GE(slipped, 6);
+  EXPECT_GE(slipped, 5);
 }
 
 TEST(FrictionGrasp, HoldsOrSlipsAsCoulombsLawSays) { expectCoulombsLaw(2); }
@@ -309,11 +314,12 @@ TEST(FrictionGrasp, ABallMadeFromItsSurfaceHoldsOrSlipsAsCoulombsLawSays) {
   for (const double squeeze : {0.001, 0.004}) {
     for (const double mu : {0.02, 0.05, 0.1, 0.5}) {
       const Grasp grasp = squeezeAndLift(squeeze, mu, Object::kSurfaceBall);
-      const double carries = mu * 2.0 * grasp.lifting_force / grasp.weight;
-      if (carries > 1.2) {
+      const double squeezed = mu * 2.0 * grasp.squeeze_force / grasp.weight;
+      const double lifting = mu * 2.0 * grasp.lifting_force / grasp.weight;
+      if (std::min(squeezed, lifting) > 1.2) {
         EXPECT_NEAR(grasp.rise, kLift, 0.002) << squeeze << " m, mu " << mu;
         ++held;
-      } else if (carries < 1.0 / 1.2) {
+      } else if (std::max(squeezed, lifting) < 1.0 / 1.2) {
         EXPECT_LT(grasp.rise, 0.01 * kLift) << squeeze << " m, mu " << mu;
         EXPECT_NEAR(grasp.table_force.z(), grasp.weight, 0.05 * grasp.weight);
         ++slipped;

@@ -1,5 +1,6 @@
 // Contact only pushes: a plate that presses a foam cube on a table and lifts away leaves the cube
-// where it was, and while it rises the force it exerts on the cube never pulls it up.
+// where it was; while it rises the force it exerts on the cube never pulls it up, but for the
+// friction of a dent's walls that it slides out of, and none once it is clear of the cube.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -114,6 +114,28 @@ TEST(MeshShape, ClosedBoxMatchesTheAnalyticBox) {
   }
 }
 
+// Points on the diagonal edge between a box top's two triangles, brought back from a posed frame
+// (inside or outside by rounding only, as a point held on a mesh is found): their normal is the
+// top's, not the way of a rounding error. Contact takes a body whose points' normals differ for
+// one on several faces.
+TEST(MeshShape, APointOnAnEdgeToRoundingHasTheSurfacesNormal) {
+  const dc::Shape mesh = meshShape(boxMesh({0.4, 0.6, 0.1}));
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(0.123, -0.456, 0.789);
+  const Eigen::Vector3d from(-0.2, -0.3, 0.05), to(0.2, 0.3, 0.05);  // the top's two corners
+  int on_edge = 0;
+  for (int k = 1; k < 400; ++k) {
+    const Eigen::Vector3d p = pose.inverse() * (pose * (from + (to - from) * (k / 400.0)));
+    Eigen::Vector3d surface, normal;
+    const double distance = dc::signedDistance(mesh, p, &surface, &normal);
+    ASSERT_LT(std::abs(distance), 1e-15) << k;
+    on_edge += (surface - p).norm() > 0.0;
+    EXPECT_NEAR(normal.z(), 1.0, 1e-12) << k << ": " << normal.transpose();
+  }
+  EXPECT_GT(on_edge, 0);  // some are off the surface by rounding, not all on it exactly
+}
+
 TEST(MeshShape, AnInsideOutClosedMeshIsTurnedOutward) {
   dc::TriangleMesh inside_out = boxMesh({1.0, 1.0, 1.0});
   for (Eigen::Vector3i& t : inside_out.triangles) std::swap(t[1], t[2]);

@@ -225,7 +225,7 @@ void ContactState::hold(FiniteElementBody& body, const std::vector<PlacedShape>&
 bool ContactState::takenWhole(const FiniteElementBody& body) const {
   // Its change is along the face it touches: on several faces (wrapped round a plate pressed
   // into it, hanging on an edge) its points slide on their own planes instead.
-  if (numConstrained(body) > 0 || !face_nodes_.empty()) return false;
+  if (!face_nodes_.empty() || numConstrained(body) > 0) return false;
   int first = -1;
   for (size_t p = 0; p < points_.size(); ++p) {
     if (obstacle_[p] < 0) continue;  // held or not: what touches pushes on the body too
@@ -299,12 +299,12 @@ void ContactState::decideSlides(const FiniteElementBody& body, const ContactSett
                                 double dt) {
   // Sliding, an obstacle resists with μ times the push, against the slip (or, starting, the
   // tangential force it would have taken to hold it). What it resisted beyond that in the solve
-  // goes back to the body: to a body on one obstacle, held by nothing else, as a whole, the
-  // patch sliding on with it (kicked alone, a patch's few nodes had the body stick and slip in
-  // turn); to a body that touches several or is held otherwise (clamped, grasped), at the
-  // patch's own nodes, which are let go and land again: a kick of the whole by each patch takes
-  // their forces on one another (a block squeezed between fingers bulging against them) for a
-  // push, and threw a squeezed block off its table.
+  // goes back to the body: to a body on one face of one obstacle, held by nothing else, as a
+  // whole, the patch sliding on with it (kicked alone, a patch's few nodes had the body stick and
+  // slip in turn); to a body that touches several obstacles or faces or is held otherwise
+  // (clamped, grasped), at the patch's own nodes, which slide on their planes: a kick of the
+  // whole by each patch takes their forces on one another (a block squeezed between fingers
+  // bulging against them) for a push, and threw a squeezed block off its table.
   // (A body taken whole touches one obstacle, hold() saw to it: one patch at most.)
   kick_.setZero();
   for (Patch& patch : patches_) {
@@ -321,8 +321,8 @@ void ContactState::decideSlides(const FiniteElementBody& body, const ContactSett
     double mass;
     std::tie(mass, centre_velocity_) = massAndCentreVelocity(body);
     kick_ = impulse / mass;
-    // Along the obstacle only: points on an edge or a corner push along other normals, and a
-    // kick into the obstacle sank the body into it.
+    // Along the obstacle only: a kick into it sank the body into it. (Points' normals on the
+    // face a body taken whole touches agree within kOneFace.)
     const Eigen::Vector3d n = patch.normal.normalized();
     kick_ -= kick_.dot(n) * n;
     // Friction that would turn its slip back stops it instead, within the step.

@@ -15,6 +15,11 @@ namespace deformable_sim::core {
 
 namespace {
 
+/// A point this near an edge or corner is on it, m: the way from the edge to it is rounding's and
+/// says nothing of the surface's normal there (points held on a mesh are found inside by 1e-19 to
+/// 1e-16 m).
+constexpr double kRoundOff = 1e-12;
+
 double signedVolume(const TriangleMesh& mesh) {
   double six_volume = 0.0;
   for (const Eigen::Vector3i& t : mesh.triangles) {
@@ -167,9 +172,9 @@ double TriangleMeshShape::signedDistance(const Eigen::Vector3d& p, Eigen::Vector
   if (normal) {
     if (closest.feature == TriangleClosestPoint::Feature::kFace) {
       *normal = behind && !inside ? Eigen::Vector3d(-face_normal) : face_normal;
-    } else if (distance > 0.0) {
+    } else if (distance > kRoundOff) {
       *normal = (inside ? -offset : offset) / distance;
-    } else {
+    } else {  // on the edge or corner to round-off: the offset's way is noise
       *normal =
           pseudo_normal.isZero(0.0) ? face_normal : Eigen::Vector3d(pseudo_normal.normalized());
     }
