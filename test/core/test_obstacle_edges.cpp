@@ -176,8 +176,6 @@ TEST(ObstacleEdges, AnEdgeThreeMillimetresDeepWithinOneStepIsPutOut) {
   }
 }
 
-// Pressed 4 mm in, the bar is drawn 2 cm along its edge in 1 s over the cube, whose base is held.
-// The force along the edge over the push, summed over the middle of the draw.
 // The least distance of the cube's nodes from the bar, m: above zero, the nodes do not touch it
 // and the bar holds the cube by its faces alone.
 double nodesClearOf(const dc::Body& body, const dc::PlacedShape& bar) {
@@ -195,6 +193,8 @@ struct Drag {
   double clearance = 0.0;  ///< m, the least distance of a node from the bar in the window
 };
 
+// Pressed 4 mm in, the bar is drawn 2 cm along its edge in 1 s over the cube, whose base is held:
+// the force along the edge over the push, and the nodes' clearance, over the middle of the draw.
 Drag dragAlongTheEdge(dc::Shape::Kind kind, double friction) {
   dc::SceneSpec spec = cubeUnderABar(kind, friction);
   spec.bodies[0].fixed.push_back(
