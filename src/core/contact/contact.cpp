@@ -281,15 +281,9 @@ void ContactState::judgePatches(const FiniteElementBody& body,
       r += part * reactions.segment<3>(3 * i);
       mass += part * body.nodalMasses()[i];
     }
-    const Eigen::Vector3d n = worldNormal(obstacles, static_cast<int>(p));
-    const double pushing = r.dot(n);
-    if (!(pushing > 0.0)) continue;
     Patch& patch = patches_[obstacle_[p]];
-    patch.pushing += pushing;
-    patch.normal += pushing * n;
-    patch.sliding += r - pushing * n;
+    if (!patch.add(r, worldNormal(obstacles, static_cast<int>(p)), mass)) continue;
     if (whole_) patch.momentum += mass * slip_[p];  // otherwise it was held where it was
-    patch.mass += mass;
   }
   addFaceNodesToPatches(body, obstacles);
   decideSlides(body, settings, dt);
@@ -434,21 +428,34 @@ void ContactState::judgeOnPlane(const FiniteElementBody& body,
   }
   addForce(k, x, pushing * n + friction_[p] - excess_[p]);
   excess_[p].setZero();
-  // Its slip relative to the obstacle (moving rigidly) at its place.
-  const Eigen::Vector3d was_at = start_poses[k] * (obstacles[k].pose.inverse() * x);
-  const Eigen::Vector3d relative = weighted(body.velocities(), p) - (x - was_at) / dt;
-  const Eigen::Vector3d slip = relative - relative.dot(n) * n;
-  // Friction that stopped or turned its slip leaves it at rest: held where it is from now on.
-  const bool stopped =
-      friction_[p].isZero(0.0) ? slip.norm() <= kAtRest : slip.dot(friction_[p]) >= 0.0;
+  const Eigen::Vector3d slip =
+      slipOn(obstacles[k], start_poses[k], x, weighted(body.velocities(), p), n, dt);
   point_[p] = obstacles[k].pose.inverse() * x;
   holds_[p] = 1;
-  if (stopped) {
+  if (frictionStopped(friction_[p], slip)) {  // at rest: held where it is from now on
     on_plane_[p] = 0;
     slip_[p].setZero();
     return;
   }
   friction_[p] = -settings.friction * pushing * slip.normalized();
+}
+
+Eigen::Vector3d ContactState::obstacleVelocity(const PlacedShape& obstacle,
+                                               const Eigen::Isometry3d& start_pose,
+                                               const Eigen::Vector3d& x, double dt) {
+  return (x - start_pose * (obstacle.pose.inverse() * x)) / dt;
+}
+
+Eigen::Vector3d ContactState::slipOn(const PlacedShape& obstacle,
+                                     const Eigen::Isometry3d& start_pose, const Eigen::Vector3d& x,
+                                     const Eigen::Vector3d& velocity, const Eigen::Vector3d& n,
+                                     double dt) {
+  const Eigen::Vector3d relative = velocity - obstacleVelocity(obstacle, start_pose, x, dt);
+  return relative - relative.dot(n) * n;
+}
+
+bool ContactState::frictionStopped(const Eigen::Vector3d& friction, const Eigen::Vector3d& slip) {
+  return friction.isZero(0.0) ? slip.norm() <= kAtRest : slip.dot(friction) >= 0.0;
 }
 
 Eigen::Vector3d ContactState::landingChange(const FiniteElementBody& body, int p,

@@ -174,8 +174,8 @@ void ContactState::touchFace(const FiniteElementBody& body,
     velocity += weighted(body.velocities(), faces_[t][corner]) / 3.0;
   }
   // Its way into the obstacle, relative to it (moving rigidly within the step), is stopped.
-  const Eigen::Vector3d obstacle_velocity = (centre - start_poses[k] * (to_obstacle * centre)) / dt;
-  const double into = -(velocity - obstacle_velocity).dot(direction);
+  const double into =
+      -(velocity - obstacleVelocity(obstacle, start_poses[k], centre, dt)).dot(direction);
   for (int corner = 0; corner < 3; ++corner) {
     const int p = faces_[t][corner];
     if (into > 0.0) request(body, p, into * direction, velocity_requests_);
@@ -219,15 +219,8 @@ void ContactState::addFaceNodesToPatches(const FiniteElementBody& body,
   for (int i : face_held_) {
     if (!face_held_in_place_[i]) continue;
     const int k = face_obstacle_[i];
-    const Eigen::Vector3d n = obstacles[k].pose.linear() * face_normal_[i];
-    const Eigen::Vector3d r = body.reactionForces().segment<3>(3 * i);
-    const double pushing = r.dot(n);
-    if (!(pushing > 0.0)) continue;
-    Patch& patch = patches_[k];
-    patch.pushing += pushing;
-    patch.normal += pushing * n;
-    patch.sliding += r - pushing * n;
-    patch.mass += body.nodalMasses()[i];
+    patches_[k].add(body.reactionForces().segment<3>(3 * i),
+                    obstacles[k].pose.linear() * face_normal_[i], body.nodalMasses()[i]);
   }
 }
 
@@ -272,15 +265,11 @@ void ContactState::judgeFaceNodeOnPlane(const FiniteElementBody& body,
   const Eigen::Vector3d x = body.positions().segment<3>(3 * i);
   addForce(k, x, face_push_[i] * n + face_friction_[i] - face_excess_[i]);
   face_excess_[i].setZero();
-  // Its slip relative to the obstacle (moving rigidly) at its place.
-  const Eigen::Vector3d was_at = start_poses[k] * (obstacles[k].pose.inverse() * x);
-  Eigen::Vector3d slip = body.velocities().segment<3>(3 * i) - (x - was_at) / dt;
-  slip -= slip.dot(n) * n;
-  // Friction that stopped or turned its slip leaves it at rest: in place from the next step.
-  // Without friction it never sticks (points at rest do: faces keep their frictionless holds).
-  const bool stopped =
-      face_friction_[i].isZero(0.0) ? slip.norm() <= kAtRest : slip.dot(face_friction_[i]) >= 0.0;
-  if (settings.friction > 0.0 && stopped) {
+  const Eigen::Vector3d slip =
+      slipOn(obstacles[k], start_poses[k], x, body.velocities().segment<3>(3 * i), n, dt);
+  // At rest, it is held in place from the next step. Without friction it never sticks (points
+  // at rest do: faces keep their frictionless holds).
+  if (settings.friction > 0.0 && frictionStopped(face_friction_[i], slip)) {
     face_sticks_[i] = 1;
     face_friction_[i].setZero();
     return;

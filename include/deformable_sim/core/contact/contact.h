@@ -103,6 +103,17 @@ class ContactState {
     Eigen::Vector3d friction = Eigen::Vector3d::Zero();  ///< sliding: what the obstacle exerts
     bool slides = false;                                 ///< in the step
     bool sticks = true;                                  ///< at rest on it after the step
+    /// Adds a hold's constraint force r on the body, with the obstacle's normal n there and the
+    /// mass it holds, if it pushes; whether it did.
+    bool add(const Eigen::Vector3d& r, const Eigen::Vector3d& n, double held_mass) {
+      const double push = r.dot(n);
+      if (!(push > 0.0)) return false;
+      pushing += push;
+      normal += push * n;
+      sliding += r - push * n;
+      mass += held_mass;
+      return true;
+    }
   };
 
   /// Sizes the per-point state for points_ (allocates).
@@ -159,6 +170,17 @@ class ContactState {
   void addForce(int k, const Eigen::Vector3d& at, const Eigen::Vector3d& force);
   Eigen::Vector3d worldNormal(const std::vector<PlacedShape>& obstacles, int p) const;
 
+  /// The velocity at x of the obstacle, moving rigidly from `start_pose` to its pose in the
+  /// step of dt.
+  static Eigen::Vector3d obstacleVelocity(const PlacedShape& obstacle,
+                                          const Eigen::Isometry3d& start_pose,
+                                          const Eigen::Vector3d& x, double dt);
+  /// A point at x moving at `velocity`: its slip on the obstacle, along the plane of normal n.
+  static Eigen::Vector3d slipOn(const PlacedShape& obstacle, const Eigen::Isometry3d& start_pose,
+                                const Eigen::Vector3d& x, const Eigen::Vector3d& velocity,
+                                const Eigen::Vector3d& n, double dt);
+  /// Whether `friction` (zero: none yet) stopped or turned `slip`: then it sticks from now on.
+  static bool frictionStopped(const Eigen::Vector3d& friction, const Eigen::Vector3d& slip);
   /// Sliding points go on planes: a body that touches several obstacles or faces, or is held
   /// otherwise.
   bool slidesOnPlanes() const { return !whole_; }
