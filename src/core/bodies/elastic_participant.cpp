@@ -69,6 +69,23 @@ Eigen::Matrix3d ElasticParticipant::compliance(const SurfacePoint& point, bool l
   return 0.5 * (w + w.transpose());  // A^-1 is symmetric; columns kept from other steps nearly
 }
 
+Eigen::Matrix3d ElasticParticipant::coupling(const SurfacePoint& at, const SurfacePoint& from,
+                                             int from_kept) const {
+  Eigen::Matrix3d w;
+  // `from`'s kept sum read at `at`'s nodes: its rows there, weighed.
+  if (from_kept >= 0 &&
+      response_.keptCompliance(from_kept, at.nodes.data(), at.weights.data(), at.count, w)) {
+    return w;
+  }
+  w.setZero();
+  for (int a = 0; a < at.count; ++a) {
+    for (int b = 0; b < from.count; ++b) {
+      w += at.weights[a] * from.weights[b] * response_.block(at.nodes[a], from.nodes[b]);
+    }
+  }
+  return w;
+}
+
 int ElasticParticipant::keep(const SurfacePoint& point) {
   // A point of a few nodes is answered as fast node by node, and its sum would only take room
   // in the cache (20 blocks in a row: 30 % slower kept).

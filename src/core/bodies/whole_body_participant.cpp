@@ -60,6 +60,19 @@ Eigen::Vector3d WholeBodyParticipant::velocity(const SurfacePoint& point) const 
   return u + velocity_change_ + rate_change_ * arm(point);
 }
 
+Eigen::Matrix3d WholeBodyParticipant::coupling(const SurfacePoint& at, const SurfacePoint& from,
+                                               int) const {
+  // A unit impulse along axis d at `from` moves the centre by 1 / m and changes the gradient's
+  // rate by gradientChange(); `at` moves with both.
+  const Eigen::Vector3d to = arm(at), lever = arm(from);
+  Eigen::Matrix3d w;
+  for (int d = 0; d < 3; ++d) {
+    w.col(d) = inverse_mass_ * Eigen::Vector3d::Unit(d) +
+               gradientChange(lever, Eigen::Vector3d::Unit(d)) * to;
+  }
+  return w;
+}
+
 void WholeBodyParticipant::push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool,
                                 int) {
   velocity_change_ += inverse_mass_ * impulse;

@@ -8,10 +8,15 @@
 namespace deformable_sim::core {
 
 ContactStep::ContactStep(BodyList& bodies, const ContactSettings& settings) : settings_(settings) {
-  states_.reserve(bodies.size());
-  for (const Body& body : bodies) {
-    states_.emplace_back();
-    if (body.finiteElements()) states_.back().emplace(body.mesh());
+  states_.resize(bodies.size());
+  std::vector<bool> finite_elements;
+  for (const Body& body : bodies) finite_elements.push_back(body.finiteElements() != nullptr);
+  if (settings.one_problem) {
+    impulses_.emplace(bodies, settings, finite_elements);
+  } else {
+    for (size_t b = 0; b < bodies.size(); ++b) {
+      if (finite_elements[b]) states_[b].emplace(bodies[b].mesh());
+    }
   }
   addBodyContact(bodies);
 }
@@ -36,6 +41,7 @@ void ContactStep::addBodyContact(BodyList& bodies) {
 
 void ContactStep::embed(int b, const EmbeddedSurface& surface, const Body& body) {
   if (states_[b]) states_[b]->embed(surface);
+  if (impulses_) impulses_->embed(b, surface, body);
   if (body_contact_) body_contact_->embed(b, surface, body);
 }
 
@@ -46,6 +52,7 @@ void ContactStep::begin(const std::vector<PlacedShape>& obstacles) {
   for (std::optional<ContactState>& state : states_) {
     if (state) state->forget();
   }
+  if (impulses_) impulses_->forgetAll();
 }
 
 double ContactStep::hold(int b, Body& body, const std::vector<PlacedShape>& obstacles, double dt) {
@@ -58,6 +65,18 @@ double ContactStep::hold(int b, Body& body, const std::vector<PlacedShape>& obst
 void ContactStep::finish(BodyList& bodies, const std::vector<PlacedShape>& obstacles, double dt,
                          int threads, std::vector<StepReport>& reports) {
   if (body_contact_) resolveBetweenBodies(bodies, dt, threads, reports);
+  if (impulses_) {
+    const WallClock::time_point start = WallClock::now();
+    impulses_->resolve(bodies, obstacles, starts_, dt, reports);
+    const double spent = secondsSince(start);
+    const int n = static_cast<int>(bodies.size());
+    int taking_part = 0;
+    for (int b = 0; b < n; ++b) taking_part += impulses_->takesPart(b);
+    for (int b = 0; b < n; ++b) {
+      if (impulses_->takesPart(b)) reports[b].times.obstacle_contact += spent / taking_part;
+    }
+    obstacle_steps_ += taking_part;
+  }
   parallelFor(threads, 0, static_cast<int>(bodies.size()), [&](int b) {
     if (!states_[b]) return;
     const WallClock::time_point start = WallClock::now();
@@ -87,10 +106,12 @@ void ContactStep::resolveBetweenBodies(BodyList& bodies, double dt, int threads,
 
 void ContactStep::forget(int b) {
   if (states_[b]) states_[b]->forget();
+  if (impulses_) impulses_->forget(b);
 }
 
 const std::vector<ContactLoad>& ContactStep::obstacleContacts(int b) const {
   static const std::vector<ContactLoad> none;
+  if (impulses_) return impulses_->takesPart(b) ? impulses_->loads(b) : none;
   return states_[b] ? states_[b]->obstacleContacts() : none;
 }
 

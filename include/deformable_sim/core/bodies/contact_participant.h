@@ -35,6 +35,11 @@ class ContactParticipant {
   /// (then W comes from what it summed).
   virtual Eigen::Matrix3d compliance(const SurfacePoint& point, bool local = false,
                                      int kept = -1) const;
+  /// The velocity change of point `at` per unit impulse at point `from`, both of this body (W_ij
+  /// of the contacts there; compliance() when they are one); `from_kept`: keep()'s number for
+  /// `from`, or -1.
+  virtual Eigen::Matrix3d coupling(const SurfacePoint& at, const SurfacePoint& from,
+                                   int from_kept = -1) const = 0;
   /// Linear solves a finite-element body took in this step to answer impulses.
   virtual int solves() const { return 0; }
   /// The point's body takes `impulse` (N s) there within the step: its velocities change by

@@ -20,6 +20,8 @@ class ElasticParticipant : public ContactParticipant {
   double inverseMass(const SurfacePoint& point, const Eigen::Vector3d& normal) const override;
   Eigen::Matrix3d compliance(const SurfacePoint& point, bool local = false,
                              int kept = -1) const override;
+  Eigen::Matrix3d coupling(const SurfacePoint& at, const SurfacePoint& from,
+                           int from_kept = -1) const override;
   int solves() const override { return response_.solves(); }
   void push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool local = false,
             int kept = -1) override;

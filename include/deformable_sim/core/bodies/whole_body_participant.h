@@ -17,6 +17,8 @@ class WholeBodyParticipant : public ContactParticipant {
   void end() override;
   Eigen::Vector3d position(const SurfacePoint& point) const override;
   Eigen::Vector3d velocity(const SurfacePoint& point) const override;
+  Eigen::Matrix3d coupling(const SurfacePoint& at, const SurfacePoint& from,
+                           int from_kept = -1) const override;
   void push(const SurfacePoint& point, const Eigen::Vector3d& impulse, bool local = false,
             int kept = -1) override;
   void nudge(const SurfacePoint& point, const Eigen::Vector3d& shift) override;

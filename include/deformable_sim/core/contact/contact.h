@@ -35,6 +35,9 @@ struct ContactSettings {
   double friction = 0.5;  ///< Coulomb coefficient μ >= 0; with 0 a node never sticks
   bool bodies = false;    ///< bodies touch one another (core/body_contact.h)
   bool self = false;      ///< a body touches itself
+  /// Obstacle contact as one problem a step (core/contact/contact_impulses.h) instead of the
+  /// holds below; not yet the default while it does not cover the edges of obstacles.
+  bool one_problem = false;
 };
 
 /// What a body felt from one obstacle in the last step.

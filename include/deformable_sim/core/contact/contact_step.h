@@ -12,6 +12,7 @@
 #include "deformable_sim/core/bodies/body_list.h"
 #include "deformable_sim/core/contact/body_contact.h"
 #include "deformable_sim/core/contact/contact.h"
+#include "deformable_sim/core/contact/contact_impulses.h"
 #include "deformable_sim/core/geometry/shape.h"
 #include "deformable_sim/core/surface_bodies/embedded_surface.h"
 
@@ -41,7 +42,10 @@ class ContactStep {
   void finish(BodyList& bodies, const std::vector<PlacedShape>& obstacles, double dt, int threads,
               std::vector<StepReport>& reports);
   /// Whether contact acts on body b at all.
-  bool actsOn(int b) const { return states_[b].has_value() || body_contact_.has_value(); }
+  bool actsOn(int b) const {
+    return states_[b].has_value() || body_contact_.has_value() ||
+           (impulses_ && impulses_->takesPart(b));
+  }
   /// Body b went back to where it started the step: what it touched is forgotten.
   void forget(int b);
 
@@ -61,7 +65,9 @@ class ContactStep {
   ContactSettings settings_;
   std::vector<std::optional<ContactState>> states_;  ///< per body: its obstacle contact
   std::optional<BodyContact> body_contact_;          ///< only when some body touches others
-  std::vector<Eigen::Isometry3d> starts_;            ///< the obstacles' poses at the step's start
+  /// Obstacle contact as one problem (ContactSettings::one_problem), in place of states_.
+  std::optional<ContactImpulses> impulses_;
+  std::vector<Eigen::Isometry3d> starts_;  ///< the obstacles' poses at the step's start
   long obstacle_steps_ = 0;
   long body_steps_ = 0;
 };

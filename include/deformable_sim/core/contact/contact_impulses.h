@@ -1,0 +1,108 @@
+// A step's contact with obstacles as one problem (core/contact/contact_problem.h), in the order a
+// reader follows it: every body first takes its step free of contact; detection then finds the
+// points of its collision surface at or in an obstacle (core/contact/obstacle_touches.h); the
+// problem gathers them all, each with its free relative velocity, the least normal velocity that
+// leaves it outside at the step's end, and the Delassus blocks of every pair of contacts on one
+// body from the body's own step (core/bodies/contact_participant.h: a finite-element body answers
+// an impulse through the matrix of its implicit step, so the blocks are those of the constrained
+// step itself); one solve gives impulses that only push (λn >= 0) and friction within Coulomb's
+// disc (|λt| <= μ λn); the bodies then take them, velocities and end positions alike. Sticking,
+// sliding and letting go all come out of that solve: a point whose obstacle moves away is simply
+// not pushed, and one held by friction moves with its obstacle.
+//
+// The least normal velocity: a point that was outside at the step's start may close its gap
+// within the step; one found inside at the start (bodies placed into an obstacle) is pushed out
+// at no more than kPushOutSpeed, so that a deep overlap costs steps, not energy.
+//
+// Each contact starts the solve from its impulse of the last step when the same point touched
+// the same obstacle then. Storage is sized once per body and grows only while more points touch
+// than ever before.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "deformable_sim/core/bodies/body_list.h"
+#include "deformable_sim/core/bodies/contact_participant.h"
+#include "deformable_sim/core/contact/body_surface.h"
+#include "deformable_sim/core/contact/contact.h"
+#include "deformable_sim/core/contact/contact_problem.h"
+#include "deformable_sim/core/contact/obstacle_touches.h"
+
+namespace deformable_sim::core {
+
+class ContactImpulses {
+ public:
+  /// Obstacle contact for the bodies b with `takes_part[b]`, with friction μ from `settings`.
+  /// Builds their collision surfaces; allocates.
+  ContactImpulses(BodyList& bodies, const ContactSettings& settings,
+                  const std::vector<bool>& takes_part);
+
+  /// Body b touches with `surface`, the one it was made from. Allocates.
+  void embed(int b, const EmbeddedSurface& surface, const Body& body);
+
+  /// After every body's free step of dt: finds the contacts, solves them as one problem and gives
+  /// the bodies their impulses. `start_poses[k]`: obstacle k's pose at the step's start. Adds each
+  /// body's touching points to reports[b].contacts.
+  void resolve(BodyList& bodies, const std::vector<PlacedShape>& obstacles,
+               const std::vector<Eigen::Isometry3d>& start_poses, double dt,
+               std::vector<StepReport>& reports);
+  /// Body b went back to where it started the step, or the obstacles are others: its last
+  /// impulses are no start for the next solve.
+  void forget(int b);
+  void forgetAll();
+
+  /// Whether obstacle contact acts on body b.
+  bool takesPart(int b) const { return surfaces_[b].has_value(); }
+  /// Per obstacle, what body b felt from it in the last step.
+  const std::vector<ContactLoad>& loads(int b) const { return loads_[b]; }
+  /// The solve of the last step.
+  const ContactSolveReport& lastSolve() const { return last_solve_; }
+  const ContactProblem& problem() const { return problem_; }
+  const std::vector<ObstacleTouch>& touches() const { return touches_; }
+
+  /// The widest a body's point may stand off an obstacle and still take part in its problem: this
+  /// fraction of the body's size (the diagonal of its rest bounding box).
+  static constexpr double kMarginOfSize = 0.01;
+  /// m/s: the fastest a point found inside an obstacle at the step's start is pushed out.
+  static constexpr double kPushOutSpeed = 0.1;
+  /// The solve's sweeps at most and its tolerance, m/s: 10 µm/s leaves a point 0.1 µm off where
+  /// it should be after a step of 10 ms.
+  static constexpr int kMaxSweeps = 200;
+  static constexpr double kTolerance = 1e-5;
+
+ private:
+  /// The positions of body b's surface corners now, into corners_[b].
+  void placeCorners(int b, const Body& body);
+  /// Sets contact i of the problem from touches_[i]: its frame, friction, free relative velocity,
+  /// least normal velocity, Delassus diagonal and warm start.
+  void setContact(int i, double dt);
+  /// The Delassus blocks of every pair of contacts on one body.
+  void addCouplings();
+  /// Gives each body its contacts' impulses, and records the loads and warm starts.
+  void apply(BodyList& bodies, const std::vector<PlacedShape>& obstacles, double dt,
+             std::vector<StepReport>& reports);
+
+  ContactSettings settings_;
+  ContactSolveSettings solve_settings_{kMaxSweeps, kTolerance};
+  std::vector<std::optional<BodySurface>> surfaces_;
+  std::vector<std::unique_ptr<ContactParticipant>> participants_;
+  std::vector<std::vector<Eigen::Vector3d>> corners_;  ///< per body, its corners now
+  std::vector<double> margins_;                        ///< per body, m
+  std::vector<ObstacleTouch> touches_;                 ///< the step's contacts, body by body
+  std::vector<int> kept_;        ///< per contact, its point's ContactParticipant::keep()
+  std::vector<int> body_start_;  ///< per body, its first contact (and one past the last)
+  ContactProblem problem_;
+  ContactSolveReport last_solve_;
+  std::vector<std::vector<ContactLoad>> loads_;  ///< per body, per obstacle
+  /// Per body, per corner: the obstacle it pushed on in the last step (-1: none) and the
+  /// impulse (world, N s).
+  struct Warm {
+    int obstacle = -1;
+    Eigen::Vector3d impulse = Eigen::Vector3d::Zero();
+  };
+  std::vector<std::vector<Warm>> warm_;
+};
+
+}  // namespace deformable_sim::core

@@ -1,0 +1,291 @@
+// Obstacle contact as one problem a step (core/contact/contact_impulses.h): built directly on a
+// body's free step, then through a whole Simulation on the cases that the holds got wrong (a plate
+// lifted off a cube, fingers opening beside one).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "body_meters.h"
+#include "deformable_sim/core/contact/contact_impulses.h"
+#include "deformable_sim/core/session/simulation.h"
+#include "scene_builder.h"
+#include "simulation_test_helpers.h"
+
+namespace dc = deformable_sim::core;
+using deformable_sim::test::centreOfMass;
+using deformable_sim::test::momentum;
+using deformable_sim::test::totalMass;
+
+namespace {
+
+constexpr double kSide = 0.06;  // m, the cube
+const dc::LinearElasticMaterial kFoam{3.0e4, 0.3, 150.0};
+
+dc::SceneSpec cubeOnTable(double friction, double damping_mass = 2.0) {
+  dc::SceneSpec spec = deformable_sim::test::SceneBuilder()
+                           .dt(0.01)
+                           .gravity(9.81)
+                           .warped()
+                           .damping(damping_mass, 0.002)
+                           .contact(friction)
+                           .floor({0.4, 0.4, 0.04}, "table");
+  spec.contact->one_problem = true;
+  spec.bodies.push_back(deformable_sim::test::boxBody("cube", {-0.5 * kSide, -0.5 * kSide, 0.0},
+                                                      {0.5 * kSide, 0.5 * kSide, kSide}, {4, 4, 4},
+                                                      kFoam));
+  return spec;
+}
+
+double lowest(const dc::Body& body) {
+  double z = 1e9;
+  for (int i = 0; i < body.numNodes(); ++i) z = std::min(z, body.positions()[3 * i + 2]);
+  return z;
+}
+
+}  // namespace
+
+// One free step of a cube dropped onto the table, then its contacts solved: every impulse pushes
+// and lies in its friction cone, the points it pushes end on the table, and the body gains exactly
+// the impulses' momentum (its implicit step's answer keeps momentum: 1^T M A^-1 = 1^T without mass
+// damping).
+TEST(ContactImpulses, ASolvedStepPushesOnlyWithinTheConeAndKeepsMomentum) {
+  dc::SceneSpec spec = cubeOnTable(0.5, 0.0);
+  spec.bodies[0].velocity = Eigen::Vector3d(0.3, 0.0, -0.5);
+  dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+  dc::BodyList& bodies = sim.bodies();
+  dc::ContactSettings settings = *spec.contact;
+  dc::ContactImpulses impulses(bodies, settings, {true});
+  const std::vector<Eigen::Isometry3d> starts{sim.obstacles()[0].pose};
+  std::vector<dc::StepReport> reports(1);
+  const double dt = spec.dt;
+  bodies[0].step(dt);  // free: its bottom goes 5 mm into the table
+  ASSERT_LT(lowest(bodies[0]), -0.004);
+  const Eigen::Vector3d before = momentum(bodies[0]);
+  impulses.resolve(bodies, sim.obstacles(), starts, dt, reports);
+  ASSERT_TRUE(impulses.lastSolve().converged)
+      << impulses.lastSolve().sweeps << " sweeps, residual " << impulses.lastSolve().residual;
+  const dc::ContactProblem& problem = impulses.problem();
+  ASSERT_GE(problem.size(), 25);  // the bottom's 5 x 5 nodes
+  Eigen::Vector3d total = Eigen::Vector3d::Zero();
+  for (int i = 0; i < problem.size(); ++i) {
+    const Eigen::Vector3d lambda = problem.impulse(i);
+    EXPECT_GE(lambda[0], 0.0);
+    EXPECT_LE(lambda.tail<2>().norm(), 0.5 * lambda[0] * (1 + 1e-12) + 1e-15);
+    total += problem.worldImpulse(i);
+  }
+  EXPECT_GT(total.z(), 0.0);
+  EXPECT_LT(total.x(), 0.0);  // friction against the slide
+  EXPECT_LT((momentum(bodies[0]) - before - total).norm(), 1e-9 * total.norm());
+  EXPECT_GT(lowest(bodies[0]), -1e-5);
+  EXPECT_EQ(reports[0].contacts, impulses.loads(0)[0].points);
+  EXPECT_NEAR(impulses.loads(0)[0].force.z(), total.z() / dt, 1e-9 * total.norm() / dt);
+}
+
+// At rest on the table the contacts carry the weight, and the cube neither sinks nor creeps.
+TEST(ContactImpulses, ACubeRestsOnTheTableCarriedByItsContacts) {
+  dc::Simulation sim = deformable_sim::test::boxMeshSimulation(cubeOnTable(0.5));
+  std::vector<dc::StepReport> reports;
+  for (int s = 0; s < 200; ++s) sim.step(reports);
+  const double weight = totalMass(sim.bodies()[0]) * 9.81;
+  const dc::ContactLoad& table = sim.obstacleContacts(0)[0];
+  EXPECT_NEAR(table.force.z(), weight, 0.02 * weight);
+  EXPECT_LT(table.force.head<2>().norm(), 1e-6 * weight);
+  EXPECT_GT(lowest(sim.bodies()[0]), -1e-4);
+  const Eigen::Vector3d at = centreOfMass(sim.bodies()[0]);
+  for (int s = 0; s < 100; ++s) sim.step(reports);
+  EXPECT_LT((centreOfMass(sim.bodies()[0]) - at).norm(), 1e-5);
+}
+
+// On a table tilted past the friction angle the cube slides; short of it, it stays.
+TEST(ContactImpulses, ACubeOnATiltedTableSticksOrSlidesAsCoulombSays) {
+  for (double tilt_degrees : {15.0, 35.0}) {
+    dc::SceneSpec spec = cubeOnTable(0.5);  // friction angle 26.6 degrees
+    const double tilt = tilt_degrees * M_PI / 180.0;
+    spec.obstacles[0] = deformable_sim::test::floorBox({0.6, 0.6, 0.04}, "table", tilt);
+    // The cube stood on the tilted top.
+    dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+    const Eigen::AngleAxisd turn(tilt, Eigen::Vector3d::UnitX());
+    Eigen::VectorXd x = sim.bodies()[0].positions();
+    for (int i = 0; i < sim.bodies()[0].numNodes(); ++i) {
+      x.segment<3>(3 * i) = turn * Eigen::Vector3d(x.segment<3>(3 * i));
+    }
+    sim.bodies()[0].setState(x, Eigen::VectorXd::Zero(x.size()));
+    std::vector<dc::StepReport> reports;
+    for (int s = 0; s < 50; ++s) sim.step(reports);
+    const Eigen::Vector3d start = centreOfMass(sim.bodies()[0]);
+    for (int s = 0; s < 50; ++s) sim.step(reports);
+    const double moved = (centreOfMass(sim.bodies()[0]) - start).norm();
+    if (tilt_degrees < 20.0) {
+      EXPECT_LT(moved, 1e-4) << tilt_degrees << " degrees";
+    } else {
+      // g (sin - μ cos) t^2 / 2 over the last half second, give or take its start.
+      EXPECT_GT(moved, 0.05) << tilt_degrees << " degrees";
+    }
+  }
+}
+
+// A cube placed 9 mm into the table comes out no faster than the push-out speed, and gains no
+// more energy than that speed gives it.
+TEST(ContactImpulses, ACubePlacedIntoTheTableComesOutSlowly) {
+  dc::SceneSpec spec = cubeOnTable(0.5);
+  dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+  Eigen::VectorXd x = sim.bodies()[0].positions();
+  for (int i = 0; i < sim.bodies()[0].numNodes(); ++i) x[3 * i + 2] -= 0.009;
+  sim.bodies()[0].setState(x, Eigen::VectorXd::Zero(x.size()));
+  std::vector<dc::StepReport> reports;
+  const double mass = totalMass(sim.bodies()[0]);
+  double most_kinetic = 0.0;
+  for (int s = 0; s < 100; ++s) {
+    sim.step(reports);
+    most_kinetic = std::max(most_kinetic, sim.bodies()[0].kineticEnergy());
+  }
+  const double speed = dc::ContactImpulses::kPushOutSpeed;
+  EXPECT_LT(most_kinetic, 0.5 * mass * speed * speed * 1.5);
+  EXPECT_GT(lowest(sim.bodies()[0]), -1e-4);
+}
+
+namespace {
+
+dc::PlacedShape boxAt(const std::string& name, const Eigen::Vector3d& size,
+                      const Eigen::Vector3d& centre) {
+  dc::PlacedShape box;
+  box.name = name;
+  box.shape.kind = dc::Shape::Kind::kBox;
+  box.shape.size = size;
+  box.pose.translation() = centre;
+  return box;
+}
+
+/// 0 to 1 over s = 0..steps, a cosine ramp.
+double ramp(int s, int steps) { return 0.5 - 0.5 * std::cos(M_PI * std::min(s, steps) / steps); }
+
+double highestTop(const dc::Body& body) {
+  double z = -1e9;
+  for (int i = 0; i < body.numNodes(); ++i) z = std::max(z, body.positions()[3 * i + 2]);
+  return z;
+}
+
+}  // namespace
+
+// [one-contact]: a plate pressed 3 mm into a cube's top and lifted away carried the cube off the
+// table (17.6 mm up for 0.87 s at μ 0.1 and 0.5). Pressed and lifted slowly (10 cm in 2 s) and
+// fast (2 cm in 0.05 s), wider and narrower than the cube, at μ 0.5 and 1.0: after the lift starts
+// the cube's lowest node stays within 1 mm of the table, and the plate never pulls.
+TEST(ContactImpulses, APlateLiftedOffACubeLeavesItOnTheTable) {
+  constexpr double kPlate = 0.01, kPress = 0.003;
+  for (double friction : {0.5, 1.0}) {
+    for (double width : {0.1, 0.035, 0.03}) {
+      for (const auto& [rise, steps] : {std::pair{0.1, 200}, std::pair{0.02, 5}}) {
+        dc::SceneSpec spec = cubeOnTable(friction);
+        spec.obstacles.push_back(
+            boxAt("plate", {width, width, kPlate}, {0, 0, kSide + 0.02 + 0.5 * kPlate}));
+        dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+        std::vector<dc::StepReport> reports;
+        for (int s = 0; s < 100; ++s) sim.step(reports);
+        const double top = highestTop(sim.bodies()[0]);
+        const auto plateAt = [&](double bottom) {
+          sim.obstacles()[1].pose.translation().z() = bottom + 0.5 * kPlate;
+        };
+        for (int s = 1; s <= 50; ++s) {  // down to 3 mm into the top in 0.5 s, held 0.2 s
+          plateAt(top + 0.02 - (0.02 + kPress) * s / 50.0);
+          sim.step(reports);
+        }
+        for (int s = 0; s < 20; ++s) sim.step(reports);
+        const std::string what = "friction " + std::to_string(friction) + ", plate " +
+                                 std::to_string(width) + " m, " + std::to_string(rise) + " m in " +
+                                 std::to_string(steps) + " steps";
+        EXPECT_LT(sim.obstacleContacts(0)[1].force.z(), -1.0) << what << ": it did not press";
+        double highest_bottom = -1.0, largest_pull = 0.0;
+        for (int s = 1; s <= 150; ++s) {
+          plateAt(top - kPress + rise * ramp(s, steps));
+          sim.step(reports);
+          highest_bottom = std::max(highest_bottom, lowest(sim.bodies()[0]));
+          largest_pull = std::max(largest_pull, sim.obstacleContacts(0)[1].force.z());
+        }
+        EXPECT_LT(highest_bottom, 0.001) << what;
+        EXPECT_LE(largest_pull, 1e-9) << what;
+      }
+    }
+  }
+}
+
+// [one-contact]: fingers that opened beside a cube standing on the table drew its sides out with
+// them (8.6 mm past the rest face for 0.85 s), then let them snap back. Squeezed 1 mm a side by two
+// pads whose tips are 1 mm above the table, then opened in 1 s: no node goes more than 1 mm past
+// its rest face, the elastic energy never rises while they open, and the cube rests where it was.
+TEST(ContactImpulses, FingersOpeningBesideACubeLetItGo) {
+  for (double friction : {0.5, 0.8}) {
+    dc::SceneSpec spec = cubeOnTable(friction);
+    const Eigen::Vector3d pad(0.01, 0.04, 0.04);
+    const double tip = 0.001 + 0.5 * pad.z();
+    spec.obstacles.push_back(boxAt("left", pad, {-0.5 * kSide - 0.5 * pad.x() - 0.005, 0, tip}));
+    spec.obstacles.push_back(boxAt("right", pad, {0.5 * kSide + 0.5 * pad.x() + 0.005, 0, tip}));
+    dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+    std::vector<dc::StepReport> reports;
+    for (int s = 0; s < 100; ++s) sim.step(reports);
+    const auto fingersAt = [&](double gap) {  // each pad's inner face `gap` off the rest face
+      sim.obstacles()[1].pose.translation().x() = -0.5 * kSide - gap - 0.5 * pad.x();
+      sim.obstacles()[2].pose.translation().x() = 0.5 * kSide + gap + 0.5 * pad.x();
+    };
+    for (int s = 1; s <= 50; ++s) {  // closed to 1 mm into each side in 0.5 s, held 0.5 s
+      fingersAt(0.005 - 0.006 * ramp(s, 50));
+      sim.step(reports);
+    }
+    for (int s = 0; s < 50; ++s) sim.step(reports);
+    const std::string what = "friction " + std::to_string(friction);
+    ASSERT_LT(sim.obstacleContacts(0)[2].force.x(), -0.1) << what << ": the pads did not squeeze";
+    const Eigen::Vector3d put_down = centreOfMass(sim.bodies()[0]);
+    const double squeezed = sim.bodies()[0].elasticEnergy();
+    double energy = squeezed, most_out = 0.0, rise = 0.0;
+    for (int s = 1; s <= 150; ++s) {  // open 2 cm in 1 s, then wait
+      fingersAt(-0.001 + 0.021 * ramp(s, 100));
+      sim.step(reports);
+      const dc::Body& cube = sim.bodies()[0];
+      for (int i = 0; i < cube.numNodes(); ++i) {
+        most_out = std::max(most_out, std::abs(cube.positions()[3 * i]) - 0.5 * kSide);
+      }
+      const double now = cube.elasticEnergy();
+      if (s <= 100) rise = std::max(rise, now - energy);
+      energy = now;
+    }
+    EXPECT_LT(most_out, 0.001) << what;
+    EXPECT_LE(rise, 1e-4 * squeezed) << what;  // its sag under gravity settles to round-off
+    EXPECT_LT((centreOfMass(sim.bodies()[0]) - put_down).norm(), 0.001) << what;
+  }
+}
+
+// The Delassus blocks between two points of a body are what its answer to an impulse does: the
+// velocity of one point per unit impulse at the other, for every model.
+TEST(ContactImpulses, ABodysCouplingIsHowOnePointMovesWhenTheOtherIsPushed) {
+  for (dc::BodyModel model :
+       {dc::BodyModel::kFiniteElement, dc::BodyModel::kRigid, dc::BodyModel::kPseudoRigid}) {
+    dc::SceneSpec spec = cubeOnTable(0.5);
+    spec.bodies[0] = deformable_sim::test::boxBody("cube", {0, 0, 0}, {0.06, 0.04, 0.02}, {3, 2, 2},
+                                                   kFoam, model);
+    dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+    dc::Body& body = sim.bodies()[0];
+    body.step(0.01);
+    const std::unique_ptr<dc::ContactParticipant> participant = body.contactParticipant();
+    dc::SurfacePoint at, from;
+    at.count = from.count = 1;
+    at.nodes[0] = 0, at.weights[0] = 1.0;
+    from.nodes[0] = body.numNodes() - 1, from.weights[0] = 1.0;
+    participant->begin(0.01);
+    const Eigen::Matrix3d w = participant->coupling(at, from);
+    const Eigen::Vector3d before = participant->velocity(at);
+    const Eigen::Vector3d impulse(0.01, -0.02, 0.03);
+    participant->push(from, impulse);
+    const Eigen::Vector3d change = participant->velocity(at) - before;
+    EXPECT_LT((change - w * impulse).norm(), 1e-9 * change.norm()) << static_cast<int>(model);
+    EXPECT_GT(change.norm(), 0.0);
+    if (model == dc::BodyModel::kRigid) continue;  // its turn is taken as angular momentum
+    participant->end();
+    participant->begin(0.01);
+    const Eigen::Vector3d taken = participant->velocity(at) - before;
+    EXPECT_LT((taken - change).norm(), 1e-9 * change.norm()) << static_cast<int>(model);
+  }
+}
