@@ -10,7 +10,8 @@ ContactImpulses::ContactImpulses(BodyList& bodies, const ContactSettings& settin
     : settings_(settings),
       surfaces_(bodies.size()),
       participants_(bodies.size()),
-      corners_(bodies.size()),
+      starts_(bodies.size()),
+      velocities_(bodies.size()),
       margins_(bodies.size(), 0.0),
       body_start_(bodies.size() + 1, 0),
       loads_(bodies.size()),
@@ -20,7 +21,8 @@ ContactImpulses::ContactImpulses(BodyList& bodies, const ContactSettings& settin
     Body& body = bodies[b];
     surfaces_[b].emplace(body.mesh(), body.positions(), false);
     participants_[b] = body.contactParticipant();
-    corners_[b].resize(body.numNodes());
+    starts_[b].resize(body.numNodes());
+    velocities_[b].resize(body.numNodes());
     margins_[b] = kMarginOfSize * surfaces_[b]->size();
     warm_[b].resize(body.numNodes());
   }
@@ -31,7 +33,8 @@ void ContactImpulses::embed(int b, const EmbeddedSurface& surface, const Body& b
   surfaces_[b].emplace(surface, body.positions());
   margins_[b] = kMarginOfSize * surfaces_[b]->size();
   const size_t corners = surface.numVertices();
-  corners_[b].resize(corners);
+  starts_[b].resize(corners);
+  velocities_[b].resize(corners);
   warm_[b].assign(corners, Warm{});
 }
 
@@ -43,17 +46,29 @@ void ContactImpulses::forgetAll() {
   for (size_t b = 0; b < warm_.size(); ++b) forget(static_cast<int>(b));
 }
 
-void ContactImpulses::placeCorners(int b, const Body& body) {
+void ContactImpulses::placeCorners(int b, const FiniteElementBody& body) {
   // Only the corners on the surface can touch first; the others are never looked at.
   const BodySurface& surface = *surfaces_[b];
-  const Eigen::VectorXd& x = body.positions();
-  std::vector<Eigen::Vector3d>& corners = corners_[b];
+  const Eigen::VectorXd &x = body.stepStart(), &v = body.velocities();
   for (int c : surface.nodes()) {
     const SurfacePoint point = surface.corner(c);
-    Eigen::Vector3d p = Eigen::Vector3d::Zero();
-    for (int k = 0; k < point.count; ++k) p += point.weights[k] * x.segment<3>(3 * point.nodes[k]);
-    corners[c] = p;
+    Eigen::Vector3d start = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero();
+    for (int k = 0; k < point.count; ++k) {
+      start += point.weights[k] * x.segment<3>(3 * point.nodes[k]);
+      velocity += point.weights[k] * v.segment<3>(3 * point.nodes[k]);
+    }
+    starts_[b][c] = start;
+    velocities_[b][c] = velocity;
   }
+}
+
+Eigen::Vector3d ContactImpulses::cornerNow(int b, const Body& body, int c) const {
+  const SurfacePoint point = surfaces_[b]->corner(c);
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  for (int k = 0; k < point.count; ++k) {
+    p += point.weights[k] * body.positions().segment<3>(3 * point.nodes[k]);
+  }
+  return p;
 }
 
 void ContactImpulses::resolve(BodyList& bodies, const std::vector<PlacedShape>& obstacles,
@@ -65,9 +80,9 @@ void ContactImpulses::resolve(BodyList& bodies, const std::vector<PlacedShape>& 
     body_start_[b] = static_cast<int>(touches_.size());
     loads_[b].assign(obstacles.size(), ContactLoad{});  // allocates only when their number grows
     if (!surfaces_[b]) continue;
-    placeCorners(b, bodies[b]);
-    findObstacleTouches(b, surfaces_[b]->nodes(), corners_[b], obstacles, start_poses, dt,
-                        margins_[b], touches_);
+    placeCorners(b, *bodies[b].finiteElements());
+    findObstacleTouches(b, surfaces_[b]->nodes(), starts_[b], velocities_[b], obstacles,
+                        start_poses, dt, margins_[b], touches_);
   }
   body_start_[n] = static_cast<int>(touches_.size());
   const int count = body_start_[n];
@@ -102,10 +117,7 @@ void ContactImpulses::setContact(int i, double dt) {
   const SurfacePoint point = surfaces_[t.body]->corner(t.corner);
   const Eigen::Matrix3d frame = contactFrameFor(t.normal);
   const Eigen::Vector3d relative = body.velocity(point) - t.obstacle_velocity;
-  // The gap at the step's start, had the point and the obstacle moved at these velocities.
-  const double start_gap = t.gap - dt * relative.dot(t.normal);
-  const double target =
-      start_gap >= 0.0 ? -start_gap / dt : std::min(-start_gap / dt, kPushOutSpeed);
+  const double target = t.gap >= 0.0 ? -t.gap / dt : std::min(-t.gap / dt, kPushOutSpeed);
   problem_.setContact(i, frame, settings_.friction, frame.transpose() * relative, target);
   problem_.addDiagonal(i, problem_.inContactFrames(i, i, body.compliance(point, false, kept_[i])));
   const Warm& warm = warm_[t.body][t.corner];
@@ -138,34 +150,40 @@ void ContactImpulses::apply(BodyList& bodies, const std::vector<PlacedShape>& ob
     for (Warm& w : warm_[b]) w.obstacle = -1;
     for (int i = first; i < end; ++i) {
       const ObstacleTouch& t = touches_[i];
-      const Eigen::Vector3d impulse = problem_.worldImpulse(i);
-      participants_[b]->push(surfaces_[b]->corner(t.corner), impulse, false, kept_[i]);
+      participants_[b]->push(surfaces_[b]->corner(t.corner), problem_.worldImpulse(i), false,
+                             kept_[i]);
+      // How deep the free step took it, to its obstacle where that is now.
+      const Eigen::Vector3d free = starts_[b][t.corner] + dt * velocities_[b][t.corner];
+      const PlacedShape& obstacle = obstacles[t.obstacle];
       ContactLoad& load = loads_[b][t.obstacle];
-      load.penetration = std::max(load.penetration, -t.gap);
-      if (!(problem_.impulse(i)[0] > 0.0)) continue;
-      warm_[b][t.corner] = Warm{t.obstacle, impulse};
-      const Eigen::Vector3d force = impulse / dt;
-      load.force += force;
-      load.torque += t.position.cross(force);
-      load.centre += t.position;
-      ++load.points;
+      load.penetration = std::max(load.penetration,
+                                  -signedDistance(obstacle.shape, obstacle.pose.inverse() * free));
     }
     participants_[b]->end();
-    placeCorners(b, bodies[b]);
-    int touching = 0;
-    for (int i = first; i < end; ++i) {
-      const ObstacleTouch& t = touches_[i];
-      ContactLoad& load = loads_[b][t.obstacle];
-      const PlacedShape& obstacle = obstacles[t.obstacle];
-      const double gap =
-          signedDistance(obstacle.shape, obstacle.pose.inverse() * corners_[b][t.corner]);
-      if (problem_.impulse(i)[0] > 0.0) load.depth = std::max(load.depth, -gap);
-    }
-    for (ContactLoad& load : loads_[b]) {
-      if (load.points > 0) load.centre /= load.points;
-      touching += load.points;
-    }
-    reports[b].contacts += touching;
+    addLoads(b, bodies[b], obstacles, dt);
+    for (const ContactLoad& load : loads_[b]) reports[b].contacts += load.points;
+  }
+}
+
+void ContactImpulses::addLoads(int b, const Body& body, const std::vector<PlacedShape>& obstacles,
+                               double dt) {
+  for (int i = body_start_[b]; i < body_start_[b + 1]; ++i) {
+    if (!(problem_.impulse(i)[0] > 0.0)) continue;
+    const ObstacleTouch& t = touches_[i];
+    const Eigen::Vector3d impulse = problem_.worldImpulse(i);
+    warm_[b][t.corner] = Warm{t.obstacle, impulse};
+    const Eigen::Vector3d at = cornerNow(b, body, t.corner), force = impulse / dt;
+    const PlacedShape& obstacle = obstacles[t.obstacle];
+    ContactLoad& load = loads_[b][t.obstacle];
+    load.force += force;
+    load.torque += at.cross(force);
+    load.centre += at;
+    ++load.points;
+    load.depth =
+        std::max(load.depth, -signedDistance(obstacle.shape, obstacle.pose.inverse() * at));
+  }
+  for (ContactLoad& load : loads_[b]) {
+    if (load.points > 0) load.centre /= load.points;
   }
 }
 

@@ -4,7 +4,7 @@ namespace deformable_sim::core {
 
 namespace {
 
-/// Half the extent of the shape's own bounding box, and its centre, in its frame.
+/// The shape's bounding box in its own frame.
 Eigen::AlignedBox3d localBounds(const Shape& shape) {
   Eigen::Vector3d half = Eigen::Vector3d::Zero();
   switch (shape.kind) {
@@ -25,46 +25,50 @@ Eigen::AlignedBox3d localBounds(const Shape& shape) {
 
 }  // namespace
 
-Eigen::AlignedBox3d worldBounds(const PlacedShape& obstacle, double margin) {
-  const Eigen::AlignedBox3d local = localBounds(obstacle.shape);
-  const Eigen::Vector3d centre = obstacle.pose * local.center();
+Eigen::AlignedBox3d worldBounds(const Shape& shape, const Eigen::Isometry3d& pose, double margin) {
+  const Eigen::AlignedBox3d local = localBounds(shape);
+  const Eigen::Vector3d centre = pose * local.center();
   const Eigen::Vector3d half =
-      obstacle.pose.linear().cwiseAbs() * (0.5 * local.sizes()) + Eigen::Vector3d::Constant(margin);
+      pose.linear().cwiseAbs() * (0.5 * local.sizes()) + Eigen::Vector3d::Constant(margin);
   return Eigen::AlignedBox3d(centre - half, centre + half);
 }
 
 Eigen::Vector3d obstacleVelocity(const PlacedShape& obstacle, const Eigen::Isometry3d& start_pose,
                                  const Eigen::Vector3d& x, double dt) {
-  return (x - start_pose * (obstacle.pose.inverse() * x)) / dt;
+  return (obstacle.pose * (start_pose.inverse() * x) - x) / dt;
 }
 
 void findObstacleTouches(int body, const std::vector<int>& corners,
-                         const std::vector<Eigen::Vector3d>& positions,
+                         const std::vector<Eigen::Vector3d>& starts,
+                         const std::vector<Eigen::Vector3d>& velocities,
                          const std::vector<PlacedShape>& obstacles,
                          const std::vector<Eigen::Isometry3d>& start_poses, double dt,
                          double margin, std::vector<ObstacleTouch>& touches) {
   if (corners.empty()) return;
-  Eigen::AlignedBox3d body_box;
-  for (int c : corners) body_box.extend(positions[c]);
+  Eigen::AlignedBox3d body_box;  // where the corners go in the step, widened below by the margin
+  for (int c : corners) {
+    body_box.extend(starts[c]);
+    body_box.extend(starts[c] + dt * velocities[c]);
+  }
   for (size_t k = 0; k < obstacles.size(); ++k) {
     const PlacedShape& obstacle = obstacles[k];
-    const Eigen::AlignedBox3d near = worldBounds(obstacle, margin);
-    if (!near.intersects(body_box)) continue;
-    const Eigen::Isometry3d to_shape = obstacle.pose.inverse();
+    const Eigen::AlignedBox3d near_then = worldBounds(obstacle.shape, start_poses[k], margin);
+    const Eigen::AlignedBox3d near_now = worldBounds(obstacle.shape, obstacle.pose, margin);
+    if (!near_then.intersects(body_box) && !near_now.intersects(body_box)) continue;
+    const Eigen::Isometry3d to_start_shape = start_poses[k].inverse();
     for (int c : corners) {
-      const Eigen::Vector3d& x = positions[c];
-      if (!near.contains(x)) continue;
+      const Eigen::Vector3d& x = starts[c];
       Eigen::Vector3d surface, normal;
-      const double gap = signedDistance(obstacle.shape, to_shape * x, &surface, &normal);
-      if (!(gap < margin)) continue;
+      const double gap = signedDistance(obstacle.shape, to_start_shape * x, &surface, &normal);
+      const Eigen::Vector3d u = obstacleVelocity(obstacle, start_poses[k], x, dt);
+      if (!(gap < margin + dt * (velocities[c] - u).norm())) continue;
       ObstacleTouch touch;
       touch.body = body;
       touch.corner = c;
       touch.obstacle = static_cast<int>(k);
-      touch.position = x;
       touch.normal = (obstacle.pose.linear() * normal).normalized();
       touch.gap = gap;
-      touch.obstacle_velocity = obstacleVelocity(obstacle, start_poses[k], x, dt);
+      touch.obstacle_velocity = u;
       touches.push_back(touch);
     }
   }

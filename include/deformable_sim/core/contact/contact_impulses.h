@@ -11,8 +11,9 @@
 // not pushed, and one held by friction moves with its obstacle.
 //
 // The least normal velocity: a point that was outside at the step's start may close its gap
-// within the step; one found inside at the start (bodies placed into an obstacle) is pushed out
-// at no more than kPushOutSpeed, so that a deep overlap costs steps, not energy.
+// within the step, and no more; one found inside at the start (bodies placed into an obstacle, or
+// the solve's tolerance) is pushed out at no more than kPushOutSpeed, so that a deep overlap costs
+// steps, not energy.
 //
 // Each contact starts the solve from its impulse of the last step when the same point touched
 // the same obstacle then. Storage is sized once per body and grows only while more points touch
@@ -73,8 +74,11 @@ class ContactImpulses {
   static constexpr double kTolerance = 1e-5;
 
  private:
-  /// The positions of body b's surface corners now, into corners_[b].
-  void placeCorners(int b, const Body& body);
+  /// Where body b's surface corners were at the step's start, and their velocities now (after its
+  /// free step), into starts_[b] and velocities_[b].
+  void placeCorners(int b, const FiniteElementBody& body);
+  /// Surface corner c of body b at the body's positions now.
+  Eigen::Vector3d cornerNow(int b, const Body& body, int c) const;
   /// Sets contact i of the problem from touches_[i]: its frame, friction, free relative velocity,
   /// least normal velocity, Delassus diagonal and warm start.
   void setContact(int i, double dt);
@@ -83,16 +87,20 @@ class ContactImpulses {
   /// Gives each body its contacts' impulses, and records the loads and warm starts.
   void apply(BodyList& bodies, const std::vector<PlacedShape>& obstacles, double dt,
              std::vector<StepReport>& reports);
+  /// Body b's loads from the contacts that pushed, at its points where they ended the step, and
+  /// their impulses kept for the next step's start.
+  void addLoads(int b, const Body& body, const std::vector<PlacedShape>& obstacles, double dt);
 
   ContactSettings settings_;
   ContactSolveSettings solve_settings_{kMaxSweeps, kTolerance};
   std::vector<std::optional<BodySurface>> surfaces_;
   std::vector<std::unique_ptr<ContactParticipant>> participants_;
-  std::vector<std::vector<Eigen::Vector3d>> corners_;  ///< per body, its corners now
-  std::vector<double> margins_;                        ///< per body, m
-  std::vector<ObstacleTouch> touches_;                 ///< the step's contacts, body by body
-  std::vector<int> kept_;        ///< per contact, its point's ContactParticipant::keep()
-  std::vector<int> body_start_;  ///< per body, its first contact (and one past the last)
+  /// Per body, per corner: where it was at the step's start, and its free velocity.
+  std::vector<std::vector<Eigen::Vector3d>> starts_, velocities_;
+  std::vector<double> margins_;         ///< per body, m
+  std::vector<ObstacleTouch> touches_;  ///< the step's contacts, body by body
+  std::vector<int> kept_;               ///< per contact, its point's ContactParticipant::keep()
+  std::vector<int> body_start_;         ///< per body, its first contact (and one past the last)
   ContactProblem problem_;
   ContactSolveReport last_solve_;
   std::vector<std::vector<ContactLoad>> loads_;  ///< per body, per obstacle

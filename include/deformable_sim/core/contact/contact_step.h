@@ -53,6 +53,7 @@ class ContactStep {
   const std::vector<ContactLoad>& obstacleContacts(int b) const;
   long obstacleSteps() const { return obstacle_steps_; }  ///< body steps with obstacle contact
   long bodySteps() const { return body_steps_; }          ///< steps with contact between bodies
+  const ContactImpulses* obstacleImpulses() const { return impulses_ ? &*impulses_ : nullptr; }
   const BodyContact* bodyContact() const { return body_contact_ ? &*body_contact_ : nullptr; }
 
  private:

@@ -63,6 +63,10 @@ class Simulation {
   const BodyContact* bodyContact() const {
     return contact_step_ ? contact_step_->bodyContact() : nullptr;
   }
+  /// Obstacle contact's last problem, when it is solved as one (ContactSettings::one_problem).
+  const ContactImpulses* obstacleImpulses() const {
+    return contact_step_ ? contact_step_->obstacleImpulses() : nullptr;
+  }
 
   /// Quasi-static equilibrium of every body.
   std::vector<StaticReport> solveStatic();
