@@ -1,6 +1,6 @@
 // A step's contact with obstacles as one problem (core/contact/contact_problem.h), in the order a
 // reader follows it: every body first takes its step free of contact; detection then finds the
-// points of its collision surface at or in an obstacle (core/contact/obstacle_touches.h); the
+// points of its collision surface that may meet an obstacle in the step (obstacle_touches.h); the
 // problem gathers them all, each with its free relative velocity, the least normal velocity that
 // leaves it outside at the step's end, and the Delassus blocks of every pair of contacts on one
 // body from the body's own step (core/bodies/contact_participant.h: a finite-element body answers
