@@ -2,31 +2,8 @@
 
 namespace deformable_sim::core {
 
-namespace {
-
-/// The shape's bounding box in its own frame.
-Eigen::AlignedBox3d localBounds(const Shape& shape) {
-  Eigen::Vector3d half = Eigen::Vector3d::Zero();
-  switch (shape.kind) {
-    case Shape::Kind::kBox:
-      half = 0.5 * shape.size;
-      break;
-    case Shape::Kind::kSphere:
-      half.setConstant(shape.radius);
-      break;
-    case Shape::Kind::kCylinder:
-      half = Eigen::Vector3d(shape.radius, shape.radius, 0.5 * shape.length);
-      break;
-    case Shape::Kind::kMesh:
-      return shape.mesh->bounds();
-  }
-  return Eigen::AlignedBox3d(-half, half);
-}
-
-}  // namespace
-
 Eigen::AlignedBox3d worldBounds(const Shape& shape, const Eigen::Isometry3d& pose, double margin) {
-  const Eigen::AlignedBox3d local = localBounds(shape);
+  const Eigen::AlignedBox3d local = bounds(shape);
   const Eigen::Vector3d centre = pose * local.center();
   const Eigen::Vector3d half =
       pose.linear().cwiseAbs() * (0.5 * local.sizes()) + Eigen::Vector3d::Constant(margin);
@@ -58,10 +35,13 @@ void findObstacleTouches(int body, const std::vector<int>& corners,
     const Eigen::Isometry3d to_start_shape = start_poses[k].inverse();
     for (int c : corners) {
       const Eigen::Vector3d& x = starts[c];
+      const Eigen::Vector3d u = obstacleVelocity(obstacle, start_poses[k], x, dt);
+      const double reach = dt * (velocities[c] - u).norm();
+      // The gap is at least the way to the box around the obstacle: far corners cost no more.
+      if (!(near_then.exteriorDistance(x) < reach)) continue;
       Eigen::Vector3d surface, normal;
       const double gap = signedDistance(obstacle.shape, to_start_shape * x, &surface, &normal);
-      const Eigen::Vector3d u = obstacleVelocity(obstacle, start_poses[k], x, dt);
-      if (!(gap < margin + dt * (velocities[c] - u).norm())) continue;
+      if (!(gap < margin + reach)) continue;
       ObstacleTouch touch;
       touch.body = body;
       touch.corner = c;

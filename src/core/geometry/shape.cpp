@@ -106,6 +106,24 @@ SurfacePoint nearestOnCylinder(double radius, double length, const Eigen::Vector
 
 }  // namespace
 
+Eigen::AlignedBox3d bounds(const Shape& shape) {
+  Eigen::Vector3d half = Eigen::Vector3d::Zero();
+  switch (shape.kind) {
+    case Shape::Kind::kBox:
+      half = 0.5 * shape.size;
+      break;
+    case Shape::Kind::kSphere:
+      half.setConstant(shape.radius);
+      break;
+    case Shape::Kind::kCylinder:
+      half = Eigen::Vector3d(shape.radius, shape.radius, 0.5 * shape.length);
+      break;
+    case Shape::Kind::kMesh:
+      return shape.mesh->bounds();
+  }
+  return Eigen::AlignedBox3d(-half, half);
+}
+
 double signedDistance(const Shape& shape, const Eigen::Vector3d& p, Eigen::Vector3d* surface,
                       Eigen::Vector3d* normal) {
   SurfacePoint nearest;

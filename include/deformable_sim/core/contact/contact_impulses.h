@@ -61,7 +61,6 @@ class ContactImpulses {
   /// The solve of the last step.
   const ContactSolveReport& lastSolve() const { return last_solve_; }
   const ContactProblem& problem() const { return problem_; }
-  const std::vector<ObstacleTouch>& touches() const { return touches_; }
 
   /// The widest a body's point may stand off an obstacle and still take part in its problem: this
   /// fraction of the body's size (the diagonal of its rest bounding box).

@@ -30,6 +30,9 @@ struct Shape {
 /// Throws std::invalid_argument naming `what` unless every dimension is finite and > 0.
 void validate(const Shape& shape, const std::string& what);
 
+/// The smallest box, in the shape's own frame, that holds it.
+Eigen::AlignedBox3d bounds(const Shape& shape);
+
 /// Signed distance from `point` (in the shape's frame) to the shape's surface: negative inside.
 /// Also the nearest surface point and the outward normal there (either may be null).
 double signedDistance(const Shape& shape, const Eigen::Vector3d& point,
