@@ -294,3 +294,43 @@ TEST(ContactImpulses, ABodysCouplingIsHowOnePointMovesWhenTheOtherIsPushed) {
     EXPECT_LT((taken - change).norm(), 1e-9 * change.norm()) << static_cast<int>(model);
   }
 }
+
+// Detection alone: a corner is a candidate when its gap at the step's start is within the margin
+// plus the way it moves towards the obstacle in the step, at rest or not; the gap, normal and
+// obstacle velocity are those of the obstacle where it started the step.
+TEST(ObstacleTouches, ACornerIsFoundWhenItsGapIsWithinTheMarginPlusItsWay) {
+  dc::PlacedShape table = deformable_sim::test::floorBox({1, 1, 0.1}, "table");
+  const Eigen::Isometry3d start = table.pose;
+  table.pose.translation().z() += 0.002;  // it rises 2 mm in the step
+  const std::vector<Eigen::Vector3d> starts{
+      {0, 0, 0.0005},     // at rest, within the 1 mm margin
+      {0, 0, 0.01},       // 1 cm up at rest: beyond the margin and the table's rise
+      {0, 0, 0.01},       // 1 cm up, falling 1 m/s: 1 cm in the step
+      {0.2, 0, -0.003},   // inside
+      {0.1, 0, 0.0005}};  // riding on the table, within the margin: it moves nowhere towards it
+  // The last moves exactly as the table's point where it starts.
+  const std::vector<Eigen::Vector3d> velocities{
+      Eigen::Vector3d::Zero(),
+      Eigen::Vector3d::Zero(),
+      {0, 0, -1},
+      Eigen::Vector3d::Zero(),
+      dc::obstacleVelocity(table, start, starts[4], 0.01)};
+  std::vector<dc::ObstacleTouch> touches;
+  dc::findObstacleTouches(3, {0, 1, 2, 3, 4}, starts, velocities, {table}, {start}, 0.01, 0.001,
+                          touches);
+  ASSERT_EQ(touches.size(), 4u);
+  EXPECT_EQ(touches[0].corner, 0);
+  EXPECT_EQ(touches[1].corner, 2);
+  EXPECT_EQ(touches[2].corner, 3);
+  EXPECT_EQ(touches[3].corner, 4);
+  for (const dc::ObstacleTouch& t : touches) {
+    EXPECT_EQ(t.body, 3);
+    EXPECT_EQ(t.obstacle, 0);
+    EXPECT_LT((t.normal - Eigen::Vector3d::UnitZ()).norm(), 1e-12);
+    EXPECT_LT((t.obstacle_velocity - Eigen::Vector3d(0, 0, 0.2)).norm(), 1e-9);
+  }
+  EXPECT_NEAR(touches[0].gap, 0.0005, 1e-12);
+  EXPECT_NEAR(touches[1].gap, 0.01, 1e-12);
+  EXPECT_NEAR(touches[2].gap, -0.003, 1e-12);
+  EXPECT_NEAR(touches[3].gap, 0.0005, 1e-12);
+}

@@ -38,7 +38,7 @@ void findObstacleTouches(int body, const std::vector<int>& corners,
       const Eigen::Vector3d u = obstacleVelocity(obstacle, start_poses[k], x, dt);
       const double reach = dt * (velocities[c] - u).norm();
       // The gap is at least the way to the box around the obstacle: far corners cost no more.
-      if (!(near_then.exteriorDistance(x) < reach)) continue;
+      if (near_then.exteriorDistance(x) > reach) continue;
       Eigen::Vector3d surface, normal;
       const double gap = signedDistance(obstacle.shape, to_start_shape * x, &surface, &normal);
       if (!(gap < margin + reach)) continue;
