@@ -23,7 +23,6 @@ class SlowScene(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('test_slow_scene')
         cls.lock = threading.Lock()
-        cls.first_step = None  # wall time of the first ~stats message after a step
         cls.warnings = []      # (wall time, text) of the node's slow-tick warnings
         cls.diagnostics = []
         cls.stats = None
@@ -48,8 +47,6 @@ class SlowScene(unittest.TestCase):
     @classmethod
     def on_stats(cls, message):
         with cls.lock:
-            if message.step > 0 and cls.first_step is None:
-                cls.first_step = time.time()
             cls.stats = message
 
     @classmethod
@@ -59,15 +56,16 @@ class SlowScene(unittest.TestCase):
 
     def test_a_warning_names_the_step_time_and_its_costliest_part(self):
         self.assertTrue(self.warnings, 'no warning on /rosout within 60 s')
-        seen, log = self.warnings[0]
+        _, log = self.warnings[0]
         self.assertEqual(log.level, Log.WARN)
         self.assertRegex(log.msg, r'slower than real time for [0-9]+ s \([0-9.e+-]+ x real time\): '
                          + PART)
         factor = float(re.search(r'\(([0-9.e+-]+) x', log.msg).group(1))
         self.assertLess(factor, 0.9)
-        # Not at the first slow tick: after 5 s of them (the first heard ~stats is a tick late).
-        self.assertIsNotNone(self.first_step)
-        self.assertGreater(seen - self.first_step, 4.0)
+        # Not at the first slow tick: after 5 s of them (core/driver/slow_tick_watch.h). The span
+        # is the node's own: when this test's subscriptions connected is not when stepping began.
+        slow_for = float(re.search(r'for ([0-9]+) s', log.msg).group(1))
+        self.assertGreaterEqual(slow_for, 5.0)
 
     def test_diagnostics_go_warn_with_the_costliest_part(self):
         slow = self.slow_diagnostics()
