@@ -11,6 +11,7 @@
 
 #include "body_meters.h"
 #include "deformable_sim/core/contact/contact_impulses.h"
+#include "deformable_sim/core/elements/box_mesh.h"
 #include "deformable_sim/core/session/simulation.h"
 #include "scene_builder.h"
 #include "simulation_test_helpers.h"
@@ -333,4 +334,45 @@ TEST(ObstacleTouches, ACornerIsFoundWhenItsGapIsWithinTheMarginPlusItsWay) {
   EXPECT_NEAR(touches[1].gap, 0.01, 1e-12);
   EXPECT_NEAR(touches[2].gap, -0.003, 1e-12);
   EXPECT_NEAR(touches[3].gap, 0.0005, 1e-12);
+}
+
+// An obstacle's edge between a body's corners is found on the face it presses, and only there: a
+// bar laid edge first 0.5 mm over a cube's top, half way between two columns of nodes, touches
+// the top faces it crosses, with their normal; a finger squeezing the cube's side and reaching
+// below it touches no face (its inner side lies flat on the side faces, and its underside turns
+// away from the bottom faces: its lower edge is at the side, not under the cube).
+TEST(ObstacleTouches, AnEdgeBetweenCornersIsFoundOnTheFacesItPressesOnly) {
+  const dc::Mesh mesh =
+      dc::makeBoxMesh({0, 0, 0}, {0.04, 0.04, 0.04}, {4, 4, 4}, dc::BoxElement::kHexahedron);
+  Eigen::VectorXd x(3 * mesh.positions.size());
+  for (size_t i = 0; i < mesh.positions.size(); ++i) x.segment<3>(3 * i) = mesh.positions[i];
+  const dc::BodySurface surface(mesh, x, false);
+  std::vector<Eigen::Vector3d> starts(mesh.positions.begin(), mesh.positions.end());
+  const std::vector<Eigen::Vector3d> velocities(starts.size(), Eigen::Vector3d::Zero());
+  dc::PlacedShape bar, finger;
+  bar.shape.size = {0.01, 0.08, 0.01};
+  bar.pose.linear() = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  bar.pose.translation() = Eigen::Vector3d(0.005, 0.02, 0.0405 + std::sqrt(0.5) * 0.01);
+  finger.shape.size = {0.03, 0.01, 0.07};
+  finger.pose.translation() = Eigen::Vector3d(0.02, -0.005 + 0.0002, 0.035 - 0.0005);
+  const std::vector<dc::PlacedShape> obstacles{bar, finger};
+  std::vector<dc::ObstacleTouch> touches;
+  std::vector<int> near;
+  dc::findFaceTouches(2, surface, starts, velocities, obstacles, {bar.pose, finger.pose}, 0.01,
+                      0.001, near, touches);
+  // The top's faces in the column of cells the edge crosses: two triangles in each of four.
+  EXPECT_EQ(touches.size(), 8u);
+  for (const dc::ObstacleTouch& t : touches) {
+    EXPECT_EQ(t.body, 2);
+    EXPECT_EQ(t.obstacle, 0);
+    EXPECT_EQ(t.corner, -1);
+    EXPECT_LT((t.normal + Eigen::Vector3d::UnitZ()).norm(), 1e-12);
+    EXPECT_NEAR(t.gap, 0.0005, 1e-12);
+    EXPECT_NEAR(t.weights[0] + t.weights[1] + t.weights[2], 1.0, 1e-12);
+    const dc::Triangle& face = surface.triangles()[t.face];
+    Eigen::Vector3d at = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) at += t.weights[k] * starts[face[k]];
+    EXPECT_NEAR(at.x(), 0.005, 1e-12);
+    EXPECT_NEAR(at.z(), 0.04, 1e-12);
+  }
 }

@@ -215,3 +215,31 @@ TEST(MeshShape, ValidationSaysWhatIsWrong) {
   empty.kind = dc::Shape::Kind::kMesh;
   EXPECT_THROW(dc::validate(empty, "obstacles[0]"), std::invalid_argument);
 }
+
+TEST(MeshShape, TheRidgesOfABoxAreItsTwelveEdgesNotTheDiagonalsOfItsSides) {
+  const dc::TriangleMeshShape box(dc::boxSurface({-1, -1, -1}, {1, 1, 1}));
+  int ridges = 0;
+  for (int t = 0; t < static_cast<int>(box.mesh().triangles.size()); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      if (!box.ridge(t, k)) continue;
+      ++ridges;
+      // Between two sides at right angles, spoken for once.
+      const int other = box.across(t, k);
+      ASSERT_GE(other, 0);
+      EXPECT_NEAR(box.faceNormal(t).dot(box.faceNormal(other)), 0.0, 1e-12);
+      for (int j = 0; j < 3; ++j) EXPECT_FALSE(box.across(other, j) == t && box.ridge(other, j));
+    }
+  }
+  EXPECT_EQ(ridges, 12);
+  // An open square of two triangles: its four free edges, not its diagonal.
+  dc::TriangleMesh square;
+  square.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  square.triangles = {{0, 1, 2}, {0, 2, 3}};
+  const dc::TriangleMeshShape open(square);
+  int free_ridges = 0;
+  for (int t = 0; t < 2; ++t) {
+    for (int k = 0; k < 3; ++k) free_ridges += open.ridge(t, k) && open.across(t, k) < 0;
+  }
+  EXPECT_EQ(free_ridges, 4);
+  EXPECT_FALSE(open.ridge(0, 2) || open.ridge(1, 0));  // the diagonal 0-2, both ways
+}

@@ -127,3 +127,25 @@ TEST(TriangleSeparation, AMeshDentsASmallFaceDeeperThanHalfItsWidth) {
   EXPECT_NEAR(bar.dent(to_bar * a, to_bar * b, to_bar * c, to_bar.linear() * down, 0.0, near), 0.3,
               1e-12);
 }
+
+TEST(TriangleSeparation, AnEdgeAcrossAFacePressesAtTheMiddleOfItsPartWithin) {
+  // A level face (the body below it: inward -z) and an edge 0.05 m below its plane, along x.
+  const Eigen::Vector3d a(-1, -1, 0), b(1, -1, 0), c(0, 1, 0), inward(0, 0, -1);
+  const dc::EdgeDent level = dc::edgeDent(a, b, c, inward, {-5, 0, -0.05}, {5, 0, -0.05});
+  EXPECT_NEAR(level.depth, 0.05, 1e-15);
+  // Within the outline from x = -0.5 to 0.5 at y = 0: its middle, not an end of the edge.
+  EXPECT_LT((level.at - Eigen::Vector3d(0, 0, -0.05)).norm(), 1e-15);
+  EXPECT_FALSE(level.at_corner);
+  // Tilted, from 5 mm behind to 5 mm in front over that part: the deepest depth, at the middle.
+  const dc::EdgeDent tilted = dc::edgeDent(a, b, c, inward, {-5, 0, -0.05}, {5, 0, 0.05});
+  EXPECT_NEAR(tilted.depth, 0.005, 1e-15);
+  EXPECT_LT(tilted.at.norm(), 1e-15);
+  // An edge standing on the face, its lower end 0.05 m through: that end, a corner.
+  const dc::EdgeDent corner = dc::edgeDent(a, b, c, inward, {0.1, 0, -0.05}, {0.1, 0, 1});
+  EXPECT_NEAR(corner.depth, 0.05, 1e-15);
+  EXPECT_LT((corner.at - Eigen::Vector3d(0.1, 0, -0.05)).norm(), 1e-15);
+  EXPECT_TRUE(corner.at_corner);
+  // Beside the outline: no dent, however deep.
+  EXPECT_EQ(dc::edgeDent(a, b, c, inward, {3, -5, -0.5}, {3, 5, -0.5}).depth,
+            -std::numeric_limits<double>::infinity());
+}

@@ -117,6 +117,7 @@ void BodySurface::setStart(const Eigen::VectorXd& positions) {
 void BodySurface::findEdges(const std::vector<Eigen::Vector3d>& rest) {
   // (lower node, higher node) -> the triangles that have that edge
   std::map<std::pair<int, int>, std::vector<int>> sharing;
+  folds_.assign(triangles_.size(), {false, false, false});
   for (size_t t = 0; t < triangles_.size(); ++t) {
     for (int k = 0; k < 3; ++k) {
       const int a = triangles_[t][k], b = triangles_[t][(k + 1) % 3];
@@ -137,6 +138,12 @@ void BodySurface::findEdges(const std::vector<Eigen::Vector3d>& rest) {
     for (int k : second) apex = (k != nodes.first && k != nodes.second) ? k : apex;
     if (!(n0.dot(rest[apex] - rest[nodes.first]) < 0.0)) continue;
     edges_.push_back({{nodes.first, nodes.second}, {triangles[0], triangles[1]}});
+    for (int t : triangles) {
+      for (int k = 0; k < 3; ++k) {
+        const int a = triangles_[t][k], b = triangles_[t][(k + 1) % 3];
+        if (std::min(a, b) == nodes.first && std::max(a, b) == nodes.second) folds_[t][k] = true;
+      }
+    }
   }
 }
 

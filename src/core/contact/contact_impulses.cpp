@@ -24,7 +24,7 @@ ContactImpulses::ContactImpulses(BodyList& bodies, const ContactSettings& settin
     starts_[b].resize(body.numNodes());
     velocities_[b].resize(body.numNodes());
     margins_[b] = kMarginOfSize * surfaces_[b]->size();
-    warm_[b].resize(body.numNodes());
+    warm_[b].resize(body.numNodes() + surfaces_[b]->triangles().size());
   }
 }
 
@@ -35,7 +35,7 @@ void ContactImpulses::embed(int b, const EmbeddedSurface& surface, const Body& b
   const size_t corners = surface.numVertices();
   starts_[b].resize(corners);
   velocities_[b].resize(corners);
-  warm_[b].assign(corners, Warm{});
+  warm_[b].assign(corners + surface.triangles().size(), Warm{});
 }
 
 void ContactImpulses::forget(int b) {
@@ -62,8 +62,41 @@ void ContactImpulses::placeCorners(int b, const FiniteElementBody& body) {
   }
 }
 
-Eigen::Vector3d ContactImpulses::cornerNow(int b, const Body& body, int c) const {
-  const SurfacePoint point = surfaces_[b]->corner(c);
+SurfacePoint ContactImpulses::pointOf(const ObstacleTouch& touch) const {
+  const BodySurface& surface = *surfaces_[touch.body];
+  if (touch.face < 0) return surface.corner(touch.corner);
+  return surface.trianglePoint(surface.triangles()[touch.face], touch.weights);
+}
+
+int ContactImpulses::warmSlot(const ObstacleTouch& touch) const {
+  if (touch.face < 0) return touch.corner;
+  return static_cast<int>(starts_[touch.body].size()) + touch.face;
+}
+
+int ContactImpulses::keepPoint(const ObstacleTouch& touch, bool with_sums) {
+  ContactParticipant& body = *participants_[touch.body];
+  const BodySurface& surface = *surfaces_[touch.body];
+  if (touch.face < 0) return body.keepCorner(touch.corner, surface.corner(touch.corner));
+  const Triangle& face = surface.triangles()[touch.face];
+  std::array<int, 3> kept{};
+  for (int k = 0; k < 3; ++k) kept[k] = body.keepCorner(face[k], surface.corner(face[k]));
+  if (!with_sums || *std::min_element(kept.begin(), kept.end()) < 0) return -1;
+  return body.keepSum(kept.data(), touch.weights.data(), 3);
+}
+
+Eigen::Vector3d ContactImpulses::freeEnd(const SurfacePoint& point, const FiniteElementBody& body,
+                                         double dt) {
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  for (int k = 0; k < point.count; ++k) {
+    const int i = point.nodes[k];
+    x += point.weights[k] *
+         (body.stepStart().segment<3>(3 * i) + dt * body.velocities().segment<3>(3 * i));
+  }
+  return x;
+}
+
+Eigen::Vector3d ContactImpulses::pointNow(const ObstacleTouch& touch, const Body& body) const {
+  const SurfacePoint point = pointOf(touch);
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   for (int k = 0; k < point.count; ++k) {
     p += point.weights[k] * body.positions().segment<3>(3 * point.nodes[k]);
@@ -83,6 +116,8 @@ void ContactImpulses::resolve(BodyList& bodies, const std::vector<PlacedShape>& 
     placeCorners(b, *bodies[b].finiteElements());
     findObstacleTouches(b, surfaces_[b]->nodes(), starts_[b], velocities_[b], obstacles,
                         start_poses, dt, margins_[b], touches_);
+    findFaceTouches(b, *surfaces_[b], starts_[b], velocities_[b], obstacles, start_poses, dt,
+                    margins_[b], near_triangles_, touches_);
   }
   body_start_[n] = static_cast<int>(touches_.size());
   const int count = body_start_[n];
@@ -99,10 +134,7 @@ void ContactImpulses::resolve(BodyList& bodies, const std::vector<PlacedShape>& 
   // Every corner's nodes first, then their sums: a sum kept before a later corner added its
   // nodes would not cover them.
   for (int pass = 0; pass < 2; ++pass) {
-    for (int i = 0; i < count; ++i) {
-      const ObstacleTouch& t = touches_[i];
-      kept_[i] = participants_[t.body]->keepCorner(t.corner, surfaces_[t.body]->corner(t.corner));
-    }
+    for (int i = 0; i < count; ++i) kept_[i] = keepPoint(touches_[i], pass == 1);
   }
   problem_.begin(count);
   for (int i = 0; i < count; ++i) setContact(i, dt);
@@ -114,13 +146,13 @@ void ContactImpulses::resolve(BodyList& bodies, const std::vector<PlacedShape>& 
 void ContactImpulses::setContact(int i, double dt) {
   const ObstacleTouch& t = touches_[i];
   ContactParticipant& body = *participants_[t.body];
-  const SurfacePoint point = surfaces_[t.body]->corner(t.corner);
+  const SurfacePoint point = pointOf(t);
   const Eigen::Matrix3d frame = contactFrameFor(t.normal);
   const Eigen::Vector3d relative = body.velocity(point) - t.obstacle_velocity;
   const double target = t.gap >= 0.0 ? -t.gap / dt : std::min(-t.gap / dt, kPushOutSpeed);
   problem_.setContact(i, frame, settings_.friction, frame.transpose() * relative, target);
   problem_.addDiagonal(i, problem_.inContactFrames(i, i, body.compliance(point, false, kept_[i])));
-  const Warm& warm = warm_[t.body][t.corner];
+  const Warm& warm = warm_[t.body][warmSlot(t)];
   if (warm.obstacle == t.obstacle) problem_.setImpulse(i, frame.transpose() * warm.impulse);
 }
 
@@ -128,9 +160,9 @@ void ContactImpulses::addCouplings() {
   for (size_t b = 0; b + 1 < body_start_.size(); ++b) {
     const int first = body_start_[b], end = body_start_[b + 1];
     for (int i = first; i < end; ++i) {
-      const SurfacePoint at = surfaces_[b]->corner(touches_[i].corner);
+      const SurfacePoint at = pointOf(touches_[i]);
       for (int j = i + 1; j < end; ++j) {
-        const SurfacePoint from = surfaces_[b]->corner(touches_[j].corner);
+        const SurfacePoint from = pointOf(touches_[j]);
         const Eigen::Matrix3d w = participants_[b]->coupling(at, from, kept_[j]);
         problem_.addCoupling(i, j, problem_.inContactFrames(i, j, w));
       }
@@ -150,10 +182,10 @@ void ContactImpulses::apply(BodyList& bodies, const std::vector<PlacedShape>& ob
     for (Warm& w : warm_[b]) w.obstacle = -1;
     for (int i = first; i < end; ++i) {
       const ObstacleTouch& t = touches_[i];
-      participants_[b]->push(surfaces_[b]->corner(t.corner), problem_.worldImpulse(i), false,
-                             kept_[i]);
+      const SurfacePoint point = pointOf(t);
       // How deep the free step took it, to its obstacle where that is now.
-      const Eigen::Vector3d free = starts_[b][t.corner] + dt * velocities_[b][t.corner];
+      const Eigen::Vector3d free = freeEnd(point, *bodies[b].finiteElements(), dt);
+      participants_[b]->push(point, problem_.worldImpulse(i), false, kept_[i]);
       const PlacedShape& obstacle = obstacles[t.obstacle];
       ContactLoad& load = loads_[b][t.obstacle];
       load.penetration = std::max(load.penetration,
@@ -171,8 +203,8 @@ void ContactImpulses::addLoads(int b, const Body& body, const std::vector<Placed
     if (!(problem_.impulse(i)[0] > 0.0)) continue;
     const ObstacleTouch& t = touches_[i];
     const Eigen::Vector3d impulse = problem_.worldImpulse(i);
-    warm_[b][t.corner] = Warm{t.obstacle, impulse};
-    const Eigen::Vector3d at = cornerNow(b, body, t.corner), force = impulse / dt;
+    warm_[b][warmSlot(t)] = Warm{t.obstacle, impulse};
+    const Eigen::Vector3d at = pointNow(t, body), force = impulse / dt;
     const PlacedShape& obstacle = obstacles[t.obstacle];
     ContactLoad& load = loads_[b][t.obstacle];
     load.force += force;

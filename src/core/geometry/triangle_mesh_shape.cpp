@@ -68,6 +68,7 @@ TriangleMeshShape::TriangleMeshShape(TriangleMesh mesh, double open_depth)
     findNeighbours();
   }
   computePseudoNormals();
+  findRidges();
   // Built over the mesh as it is kept, so that a shape made again from mesh() (a replay) has
   // the same tree and answers bit for bit the same.
   tree_ = TriangleAabbTree(mesh_);
@@ -142,6 +143,29 @@ void TriangleMeshShape::computePseudoNormals() {
   }
   for (size_t v = 0; v < vertex_normals_.size(); ++v) {
     if (on_free_edge[v]) vertex_normals_[v].setZero();
+  }
+}
+
+void TriangleMeshShape::findRidges() {
+  ridges_.assign(mesh_.triangles.size(), {false, false, false});
+  const double flat = std::cos(kRidgeAngle);
+  for (size_t k = 0; k < mesh_.triangles.size(); ++k) {
+    const Eigen::Vector3i& t = mesh_.triangles[k];
+    for (int c = 0; c < 3; ++c) {
+      const int across = neighbours_[k][c];
+      if (across < 0) {
+        ridges_[k][c] = true;
+        continue;
+      }
+      if (across < static_cast<int>(k)) continue;  // spoken for by the other
+      // Convex: the other triangle's far corner lies behind this one's plane.
+      const Eigen::Vector3i& other = mesh_.triangles[across];
+      int far = 0;
+      while (other[far] == t[c] || other[far] == t[(c + 1) % 3]) ++far;
+      const bool convex =
+          face_normals_[k].dot(mesh_.vertices[other[far]] - mesh_.vertices[t[c]]) < 0.0;
+      ridges_[k][c] = convex && face_normals_[k].dot(face_normals_[across]) < flat;
+    }
   }
 }
 

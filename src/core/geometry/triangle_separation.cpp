@@ -83,4 +83,36 @@ double dentDepth(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen
   return deepest;
 }
 
+EdgeDent edgeDent(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                  const Eigen::Vector3d& inward, const Eigen::Vector3d& p,
+                  const Eigen::Vector3d& q) {
+  // The part p + s (q - p), s in [from, to], on the inner side of the face's three side planes.
+  double from = 0.0, to = 1.0;
+  const std::array<Eigen::Vector3d, 3> face{a, b, c};
+  for (int e = 0; e < 3; ++e) {
+    const Eigen::Vector3d& corner = face[e];
+    Eigen::Vector3d side = inward.cross(face[(e + 1) % 3] - corner);
+    if (side.dot(face[(e + 2) % 3] - corner) < 0.0) side = -side;  // towards the face's inside
+    const double at_p = side.dot(p - corner), along = side.dot(q - p);
+    if (along == 0.0) {
+      if (at_p < 0.0) return {};
+      continue;
+    }
+    const double crossing = -at_p / along;
+    if (along > 0.0) {
+      from = std::max(from, crossing);
+    } else {
+      to = std::min(to, crossing);
+    }
+  }
+  if (!(from <= to)) return {};
+  const Eigen::Vector3d start = p + from * (q - p), end = p + to * (q - p);
+  const double start_depth = inward.dot(start - a), end_depth = inward.dot(end - a);
+  // Deepest at a corner of the obstacle: there. Else the middle of the part: an edge across two
+  // triangles of a body has a point in each, not one on the side they share.
+  if (from == 0.0 && start_depth > end_depth) return {start_depth, start, true};
+  if (to == 1.0 && end_depth > start_depth) return {end_depth, end, true};
+  return {std::max(start_depth, end_depth), 0.5 * (start + end), false};
+}
+
 }  // namespace deformable_sim::core

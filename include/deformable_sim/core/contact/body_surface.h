@@ -41,6 +41,8 @@ class BodySurface {
   /// has a corner. An edge inside a flat or hollow part of the surface is reached through corners
   /// and triangles.
   const std::vector<SurfaceEdge>& edges() const { return edges_; }
+  /// Whether the side of triangle t from its corner k to corner k + 1 is one of edges().
+  bool fold(int t, int k) const { return folds_[t][k]; }
   /// Cosine of the feature angle: 25 degrees between the triangles' normals.
   static constexpr double kFeatureCosine = 0.9;
   /// The corners on the surface, ascending: the only points that can touch anything first.
@@ -83,6 +85,7 @@ class BodySurface {
 
   std::vector<Triangle> triangles_;
   std::vector<SurfaceEdge> edges_;
+  std::vector<std::array<bool, 3>> folds_;  ///< see fold()
   std::vector<int> nodes_;
   double size_ = 0.0, shortest_edge_ = 0.0;
   Eigen::VectorXd start_;  ///< node positions at the step's start

@@ -76,8 +76,16 @@ class ContactImpulses {
   /// Where body b's surface corners were at the step's start, and their velocities now (after its
   /// free step), into starts_[b] and velocities_[b].
   void placeCorners(int b, const FiniteElementBody& body);
-  /// Surface corner c of body b at the body's positions now.
-  Eigen::Vector3d cornerNow(int b, const Body& body, int c) const;
+  /// The point of body b a touch is at (a corner, or a point of a triangle).
+  SurfacePoint pointOf(const ObstacleTouch& touch) const;
+  /// Readies touch i's point for the solve's pushes (ContactParticipant::keep): a corner, or in
+  /// `with_sums` passes a triangle's point as the sum of its corners'.
+  int keepPoint(const ObstacleTouch& touch, bool with_sums);
+  /// Where the point's free step took it: from the step's start at the velocities now.
+  static Eigen::Vector3d freeEnd(const SurfacePoint& point, const FiniteElementBody& body,
+                                 double dt);
+  /// Where a touch's point is at the body's positions now.
+  Eigen::Vector3d pointNow(const ObstacleTouch& touch, const Body& body) const;
   /// Sets contact i of the problem from touches_[i]: its frame, friction, free relative velocity,
   /// least normal velocity, Delassus diagonal and warm start.
   void setContact(int i, double dt);
@@ -98,18 +106,21 @@ class ContactImpulses {
   std::vector<std::vector<Eigen::Vector3d>> starts_, velocities_;
   std::vector<double> margins_;         ///< per body, m
   std::vector<ObstacleTouch> touches_;  ///< the step's contacts, body by body
+  std::vector<int> near_triangles_;     ///< room for a mesh obstacle's triangles near a face
   std::vector<int> kept_;               ///< per contact, its point's ContactParticipant::keep()
   std::vector<int> body_start_;         ///< per body, its first contact (and one past the last)
   ContactProblem problem_;
   ContactSolveReport last_solve_;
   std::vector<std::vector<ContactLoad>> loads_;  ///< per body, per obstacle
-  /// Per body, per corner: the obstacle it pushed on in the last step (-1: none) and the
-  /// impulse (world, N s).
+  /// Per body, per corner and then per triangle: the obstacle it pushed on in the last step (-1:
+  /// none) and the impulse (world, N s).
   struct Warm {
     int obstacle = -1;
     Eigen::Vector3d impulse = Eigen::Vector3d::Zero();
   };
   std::vector<std::vector<Warm>> warm_;
+  /// The slot of a touch's warm start in warm_[touch.body].
+  int warmSlot(const ObstacleTouch& touch) const;
 };
 
 }  // namespace deformable_sim::core

@@ -8,8 +8,10 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <array>
 #include <vector>
 
+#include "deformable_sim/core/contact/body_surface.h"
 #include "deformable_sim/core/geometry/shape.h"
 
 namespace deformable_sim::core {
@@ -17,7 +19,12 @@ namespace deformable_sim::core {
 /// A point of a body that may meet an obstacle within the step.
 struct ObstacleTouch {
   int body = 0;
-  int corner = 0;  ///< the point: a corner of the body's collision surface (core/body_surface.h)
+  /// The point: a corner of the body's collision surface (core/contact/body_surface.h), or, where
+  /// an obstacle's edge or corner meets one of its triangles between corners, the point of
+  /// triangle `face` with barycentric `weights` (corner -1).
+  int corner = -1;
+  int face = -1;
+  std::array<double, 3> weights{};
   int obstacle = 0;
   /// Out of the obstacle at the point's start, in the world at the step's end (it turns with the
   /// obstacle).
@@ -50,5 +57,22 @@ void findObstacleTouches(int body, const std::vector<int>& corners,
                          const std::vector<PlacedShape>& obstacles,
                          const std::vector<Eigen::Isometry3d>& start_poses, double dt,
                          double margin, std::vector<ObstacleTouch>& touches);
+
+/// Appends to `touches` the points where the edges of box and mesh obstacles (a mesh's ridges:
+/// TriangleMeshShape::ridge) may dent body `body`'s `faces` (triangles of corners) between their
+/// corners within a step of dt: per face and obstacle, the deepest dent of its edges into the
+/// face along the face's inward normal, within the face's outline
+/// (core/geometry/triangle_separation.h edgeDent), if its gap is within `margin` plus the way
+/// the face goes towards it. The normal is the face's, inward. Left out: a dent at one of the
+/// face's corners (that corner's own), and one within `margin` of a fold of the body's surface
+/// at the face's side (a finger squeezing a cube reaches below it: its lower edge is in front
+/// of the cube's bottom faces, but along the side it presses, not under them). `starts`,
+/// `velocities`: per corner; `near` is room for a mesh's triangles.
+void findFaceTouches(int body, const BodySurface& surface,
+                     const std::vector<Eigen::Vector3d>& starts,
+                     const std::vector<Eigen::Vector3d>& velocities,
+                     const std::vector<PlacedShape>& obstacles,
+                     const std::vector<Eigen::Isometry3d>& start_poses, double dt, double margin,
+                     std::vector<int>& near, std::vector<ObstacleTouch>& touches);
 
 }  // namespace deformable_sim::core

@@ -41,6 +41,21 @@ class TriangleMeshShape {
                         Eigen::Vector3d* normal = nullptr) const;
   /// The mesh's bounding box, in its frame.
   const Eigen::AlignedBox3d& bounds() const { return bounds_; }
+  /// Whether the edge of triangle t from its corner k to corner k + 1 is a ridge of the surface
+  /// (a free edge, or a convex fold of more than kRidgeAngle) that t speaks for: each ridge is
+  /// spoken for by one of its two triangles.
+  bool ridge(int t, int k) const { return ridges_[t][k]; }
+  /// The triangle across that edge (-1 on a free edge), and triangle t's outward unit normal.
+  int across(int t, int k) const { return neighbours_[t][k]; }
+  const Eigen::Vector3d& faceNormal(int t) const { return face_normals_[t]; }
+  /// Radians between two triangles' normals beyond which their edge is a ridge: flatter, it is
+  /// a curved surface's facet edge, or a flat face's diagonal.
+  static constexpr double kRidgeAngle = 0.175;  // 10 degrees
+  /// Appends to `out` the triangles whose boxes meet the box lower..upper (the mesh's frame).
+  void trianglesNear(const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
+                     std::vector<int>& out) const {
+    tree_.trianglesNear(lower, upper, out);
+  }
   /// How deep the mesh's edges and corners dent the triangle a, b, c (the mesh's frame) along
   /// `inward`, its unit normal into the body: the deepest dentDepth()
   /// (core/geometry/triangle_separation.h) of the mesh's triangles within `margin` of it;
@@ -52,6 +67,7 @@ class TriangleMeshShape {
  private:
   void findNeighbours();
   void computePseudoNormals();
+  void findRidges();
 
   TriangleMesh mesh_;
   double open_depth_;
@@ -61,6 +77,7 @@ class TriangleMeshShape {
   std::vector<Eigen::Vector3d> face_normals_;
   std::vector<std::array<Eigen::Vector3d, 3>> edge_normals_;  ///< zero on a free edge
   std::vector<Eigen::Vector3d> vertex_normals_;  ///< angle-weighted; zero on a free edge's corner
+  std::vector<std::array<bool, 3>> ridges_;      ///< see ridge()
   TriangleAabbTree tree_;
   Eigen::AlignedBox3d bounds_;
 };

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <limits>
 
 namespace deformable_sim::core {
 
@@ -31,5 +32,22 @@ TriangleSeparation separateFromBox(const Eigen::Isometry3d& pose, const Eigen::V
 double dentDepth(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                  const Eigen::Vector3d& inward, const Eigen::Vector3d& p, const Eigen::Vector3d& q,
                  const Eigen::Vector3d& r);
+
+struct EdgeDent {
+  /// m: how far the edge reaches behind the face (negative: the gap; -infinity: no part of the
+  /// edge is within the face's outline).
+  double depth = -std::numeric_limits<double>::infinity();
+  /// Where it presses: the edge's end (the obstacle's corner) where that is the deepest within
+  /// the outline, else the middle of its part within the outline.
+  Eigen::Vector3d at = Eigen::Vector3d::Zero();
+  bool at_corner = false;  ///< `at` is the edge's end
+};
+
+/// How far the edge p, q reaches behind the face a, b, c along `inward` (the face's unit normal
+/// into the body), counting only its part within the face's outline seen along that normal: the
+/// dent an obstacle's edge makes in a body's face between its corners.
+EdgeDent edgeDent(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                  const Eigen::Vector3d& inward, const Eigen::Vector3d& p,
+                  const Eigen::Vector3d& q);
 
 }  // namespace deformable_sim::core
