@@ -897,6 +897,7 @@ core::Simulation buildSimulation(const core::SceneSpec& spec, std::vector<std::s
     for (size_t b = 0; b < surfaces.size(); ++b) {
       if (surfaces[b]) simulation.setEmbeddedSurface(static_cast<int>(b), std::move(*surfaces[b]));
     }
+    simulation.refuseBodiesInsideEachOther();
     return simulation;
   } catch (const core::SpecError& e) {
     throw SceneError(locatedMessage(spec, e));

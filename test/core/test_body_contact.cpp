@@ -414,3 +414,27 @@ TEST(BodyContact, ABarDroppedAcrossAnotherRestsOnItWhereOnlyTheirEdgesMeet) {
   EXPECT_LT(z.minCoeff(), 0.005);       // it did come down onto it
   EXPECT_LT(bar.kineticEnergy(), 1e-6);
 }
+
+// Bodies that touch each other may start inside each other no deeper than their contact
+// tolerance (1 % of the smaller one's size, 0.69 mm for these 4 cm cubes); deeper, the scene is
+// refused with both names and the depth. Without contact between them, they may overlap.
+TEST(BodyContact, BodiesStartedDeeperInsideEachOtherThanTheToleranceAreRefused) {
+  const auto overlapping = [](double depth, bool bodies) {
+    dc::SceneSpec spec = bodyContactScene();
+    spec.contact->bodies = bodies;
+    spec.bodies.push_back(cube("lower", {0, 0, 0}, 0.04));
+    spec.bodies.push_back(cube("upper", {0, 0, 0.04 - depth}, 0.04));
+    return deformable_sim::test::boxMeshSimulation(spec);
+  };
+  EXPECT_NO_THROW(overlapping(0.0005, true).refuseBodiesInsideEachOther());
+  EXPECT_NO_THROW(overlapping(0.009, false).refuseBodiesInsideEachOther());
+  try {
+    overlapping(0.009, true).refuseBodiesInsideEachOther();
+    FAIL() << "two cubes 9 mm into each other were not refused";
+  } catch (const dc::SpecError& e) {
+    EXPECT_EQ(e.key(), "bodies[1]");
+    EXPECT_STREQ(e.what(),
+                 "bodies[1]: body 'upper' starts 9.0 mm inside body 'lower'; bodies may start at "
+                 "most 0.7 mm into each other (1 % of the smaller one's size): place them apart");
+  }
+}

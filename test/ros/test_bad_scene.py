@@ -33,6 +33,14 @@ class BadScene(unittest.TestCase):
         self.assertEqual(run.returncode, 1, run.stdout + run.stderr)
         self.assertIn('empty_group.yaml:8: bodies[0].groups.nowhere: selects no node', run.stderr)
 
+    def test_bodies_started_inside_each_other_are_refused_with_both_names_and_the_depth(self):
+        run = start_node('_scene:=' + os.path.join(SCENES, 'tubes_inside_each_other.yaml'),
+                         '__name:=tubes_inside')
+        self.assertEqual(run.returncode, 1, run.stdout + run.stderr)
+        self.assertRegex(run.stderr, r"tubes_inside_each_other.yaml:[0-9]+: bodies\[1\]: body "
+                         r"'tube_b' starts [0-9.]+ mm inside body 'tube_a'; bodies may start at "
+                         r"most 1.3 mm into each other")
+
     def test_missing_scene_file(self):
         run = start_node('_scene:=/nonexistent/scene.yaml', '__name:=missing_scene')
         self.assertEqual(run.returncode, 1)

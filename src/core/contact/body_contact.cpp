@@ -3,10 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <stdexcept>
+#include <utility>
 
 #include "deformable_sim/core/base/parallel_for.h"
 #include "deformable_sim/core/contact/edge_edge.h"
 #include "deformable_sim/core/contact/node_triangle.h"
+#include "deformable_sim/core/geometry/triangle_mesh.h"
+#include "deformable_sim/core/geometry/triangle_mesh_shape.h"
 
 namespace deformable_sim::core {
 
@@ -72,6 +77,37 @@ void BodyContact::reserveContacts() {
     kept_corners_[b].clear();
     kept_corners_[b].reserve(warm_[b].size());
   }
+}
+
+BodyContact::Overlap BodyContact::deepestOverlap() const {
+  Overlap deepest;
+  for (size_t of = 0; of < surfaces_.size(); ++of) {
+    if (!surfaces_[of] || !with_bodies_[of]) continue;
+    const BodySurface& surface = *surfaces_[of];
+    TriangleMesh mesh;
+    for (size_t c = 0; c * 3 < static_cast<size_t>(surface.start().size()); ++c) {
+      mesh.vertices.emplace_back(surface.start().segment<3>(3 * c));
+    }
+    for (const Triangle& t : surface.triangles()) mesh.triangles.emplace_back(t[0], t[1], t[2]);
+    std::optional<TriangleMeshShape> shape;
+    try {
+      shape.emplace(std::move(mesh));
+    } catch (const std::invalid_argument&) {
+      continue;  // not a mesh a point can be inside of
+    }
+    if (!shape->closed()) continue;
+    for (size_t inside = 0; inside < surfaces_.size(); ++inside) {
+      if (inside == of || !surfaces_[inside] || !with_bodies_[inside]) continue;
+      const BodySurface& other = *surfaces_[inside];
+      for (int c : other.nodes()) {
+        const double depth = -shape->signedDistance(other.start().segment<3>(3 * c));
+        if (depth > deepest.depth) {
+          deepest = {static_cast<int>(inside), static_cast<int>(of), depth};
+        }
+      }
+    }
+  }
+  return deepest;
 }
 
 double BodyContact::tolerance(int a, int b) const {
@@ -221,11 +257,12 @@ void BodyContact::shift(Contact& c, const Eigen::Vector3d& amount) {
   if (c.triangle_moves) participants_[c.triangle_body]->nudge(c.triangle, -amount);
 }
 
-void BodyContact::separate(std::vector<StepReport>& reports) {
+void BodyContact::separate(double dt, std::vector<StepReport>& reports) {
+  const double farthest = kPushOutSpeed * dt;
   for (int pass = 0; pass < kPositionPasses; ++pass) {
     bool settled = true;
     for (Contact& c : contacts_) {
-      const double depth = -gap(c);
+      const double depth = std::min(-gap(c), farthest - c.separated);
       if (!(depth > 0.0)) continue;
       if (depth > kTarget * tolerance(c.node_body, c.triangle_body)) settled = false;
       const double w =
@@ -234,6 +271,7 @@ void BodyContact::separate(std::vector<StepReport>& reports) {
                             : 0.0);
       if (!(w > 0.0)) continue;  // both held: nothing can move
       c.pushed += depth / w;
+      c.separated += depth;
       shift(c, depth / w * c.normal);
     }
     if (settled) break;
@@ -424,7 +462,7 @@ void BodyContact::resolve(BodyList& bodies, double dt, int threads,
     }
     if (!last) settleVelocities(dt, threads);
     if (round == 0) addContactForces(dt);
-    separate(reports);
+    separate(dt, reports);
     parallelFor(threads, 0, static_cast<int>(bodies.size()), [&](int b) {
       if (surfaces_[b]) participants_[b]->end();
     });

@@ -22,6 +22,7 @@ void Session::rebuild() {
   for (size_t b = 0; b < surfaces_.size(); ++b) {
     if (surfaces_[b]) simulation_->setEmbeddedSurface(static_cast<int>(b), *surfaces_[b]);
   }
+  simulation_->refuseBodiesInsideEachOther();
   commands_ = std::make_unique<CommandProcessor>(*simulation_, limits_);
 }
 

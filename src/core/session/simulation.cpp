@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
+#include <string>
 
 #include "deformable_sim/core/base/parallel_for.h"
 #include "deformable_sim/core/base/spec_error.h"
@@ -196,6 +198,26 @@ void Simulation::undoStep(int b, StepReport& report) {
   bodies_[b].undoStep();
   report.recovered = true;
   ++recoveries_[b];
+}
+
+void Simulation::refuseBodiesInsideEachOther() const {
+  const BodyContact* contact = bodyContact();
+  if (!contact) return;
+  const BodyContact::Overlap overlap = contact->deepestOverlap();
+  if (overlap.inside < 0) return;
+  const double allowed =
+      BodyContact::kStartingOverlap * contact->tolerance(overlap.inside, overlap.of);
+  if (!(overlap.depth > allowed)) return;
+  const auto mm = [](double m) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f", 1e3 * m);
+    return std::string(text);
+  };
+  throw SpecError("bodies[" + std::to_string(overlap.inside) + "]",
+                  "body '" + bodies_[overlap.inside].name() + "' starts " + mm(overlap.depth) +
+                      " mm inside body '" + bodies_[overlap.of].name() +
+                      "'; bodies may start at most " + mm(allowed) +
+                      " mm into each other (1 % of the smaller one's size): place them apart");
 }
 
 const std::vector<ContactLoad>& Simulation::obstacleContacts(int b) const {

@@ -68,6 +68,12 @@ class Simulation {
     return contact_step_ ? contact_step_->obstacleImpulses() : nullptr;
   }
 
+  /// Throws SpecError (key "bodies[i]" of the body inside) naming both bodies and the
+  /// depth when two bodies that touch each other start deeper inside each other than the pair's
+  /// contact tolerance (BodyContact::kStartingOverlap). Call once the bodies have the surfaces
+  /// they were made from.
+  void refuseBodiesInsideEachOther() const;
+
   /// Quasi-static equilibrium of every body.
   std::vector<StaticReport> solveStatic();
 
