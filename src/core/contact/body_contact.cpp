@@ -257,12 +257,11 @@ void BodyContact::shift(Contact& c, const Eigen::Vector3d& amount) {
   if (c.triangle_moves) participants_[c.triangle_body]->nudge(c.triangle, -amount);
 }
 
-void BodyContact::separate(double dt, std::vector<StepReport>& reports) {
-  const double farthest = kPushOutSpeed * dt;
+void BodyContact::separate(std::vector<StepReport>& reports) {
   for (int pass = 0; pass < kPositionPasses; ++pass) {
     bool settled = true;
     for (Contact& c : contacts_) {
-      const double depth = std::min(-gap(c), farthest - c.separated);
+      const double depth = -gap(c);
       if (!(depth > 0.0)) continue;
       if (depth > kTarget * tolerance(c.node_body, c.triangle_body)) settled = false;
       const double w =
@@ -271,7 +270,6 @@ void BodyContact::separate(double dt, std::vector<StepReport>& reports) {
                             : 0.0);
       if (!(w > 0.0)) continue;  // both held: nothing can move
       c.pushed += depth / w;
-      c.separated += depth;
       shift(c, depth / w * c.normal);
     }
     if (settled) break;
@@ -462,7 +460,7 @@ void BodyContact::resolve(BodyList& bodies, double dt, int threads,
     }
     if (!last) settleVelocities(dt, threads);
     if (round == 0) addContactForces(dt);
-    separate(dt, reports);
+    separate(reports);
     parallelFor(threads, 0, static_cast<int>(bodies.size()), [&](int b) {
       if (surfaces_[b]) participants_[b]->end();
     });

@@ -67,10 +67,9 @@ class BodyContact {
   /// surface is open, or not a valid closed mesh, is not looked into. Allocates.
   Overlap deepestOverlap() const;
   /// The deepest two bodies may start inside each other, as a fraction of the pair's tolerance.
-  /// Deeper, detection is not to be trusted with the way out: a tube placed 9 mm into another
-  /// (its wall 5 mm thick) has its surface in the other's bore; pushed out all at once, the two
-  /// reached 1e130 J in 200 steps, and at kPushOutSpeed they still tangled, 7 J in 2 s, where
-  /// 2 mm apart came out clean in a step.
+  /// Deeper, detection is not to be trusted with the way out: two tubes placed 9 mm into each
+  /// other (walls 5 mm thick) have their surfaces in each other's bores, and the position passes
+  /// fed each other up to 1e130 J in 200 steps; 2 mm apart they came out clean in a step.
   static constexpr double kStartingOverlap = 1.0;
   /// What body a felt from body b in the last step (a == b: from itself, which nets to zero
   /// force): the contact impulses over dt, the torque about the world origin, the points found
@@ -80,11 +79,6 @@ class BodyContact {
 
   /// Fraction of a pair's tolerance to which the position passes bring every contact.
   static constexpr double kTarget = 0.01;
-  /// m/s: the most the position passes of a round move a pair apart, over the step's dt. A
-  /// deeper overlap (bodies placed into each other) comes out over several steps: moved out at
-  /// once, the nodes along it would take its depth as strain, and the elastic energy it gave
-  /// them fed the next step's overlap (two tubes placed 9 mm into each other reached 1e130 J).
-  static constexpr double kPushOutSpeed = 0.1;
   /// Passes over the contacts to separate them (Gauss-Seidel) and, at most, to settle their
   /// velocities.
   static constexpr int kPositionPasses = 64;
@@ -116,7 +110,6 @@ class BodyContact {
     SurfacePoint node, triangle;
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< out of the triangle's body
     double pushed = 0.0;     ///< kg m: the normal shift of the position passes
-    double separated = 0.0;  ///< m: how far they moved the pair apart in this round
     double impulse = 0.0;    ///< N s: the normal impulse of the velocity passes
     Eigen::Vector3d friction = Eigen::Vector3d::Zero();  ///< N s: their friction impulse
     double start_gap = 0.0;  ///< m: along the normal, node minus triangle point, at the start
@@ -154,10 +147,9 @@ class BodyContact {
   void findEdgeContacts(int a, int e, std::vector<Contact>& found) const;
   /// Out of body b at its surface edge e, now: the sum of its two triangles' unit normals.
   Eigen::Vector3d outwardAt(int b, const SurfaceEdge& edge) const;
-  /// Position passes until every contact is within kTarget of its tolerance, each moving its
-  /// pair apart by no more than kPushOutSpeed dt in all; the largest depth left, per body, into
-  /// reports[b].body_penetration.
-  void separate(double dt, std::vector<StepReport>& reports);
+  /// Position passes until every contact is within kTarget of its tolerance; returns the
+  /// largest depth left, per body into `left`.
+  void separate(std::vector<StepReport>& reports);
   /// Velocity passes (Gauss-Seidel): each pair's normal impulse, then its friction, from last
   /// step's impulses, until they change the velocities by less than kVelocityTolerance.
   void settleVelocities(double dt, int threads);
