@@ -84,15 +84,13 @@ int ContactImpulses::keepPoint(const ObstacleTouch& touch, bool with_sums) {
   return body.keepSum(kept.data(), touch.weights.data(), 3);
 }
 
-Eigen::Vector3d ContactImpulses::freeEnd(const SurfacePoint& point, const FiniteElementBody& body,
-                                         double dt) {
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+Eigen::Vector3d ContactImpulses::freeStep(const SurfacePoint& point, const FiniteElementBody& body,
+                                          double dt) {
+  Eigen::Vector3d step = Eigen::Vector3d::Zero();
   for (int k = 0; k < point.count; ++k) {
-    const int i = point.nodes[k];
-    x += point.weights[k] *
-         (body.stepStart().segment<3>(3 * i) + dt * body.velocities().segment<3>(3 * i));
+    step += point.weights[k] * dt * body.velocities().segment<3>(3 * point.nodes[k]);
   }
-  return x;
+  return step;
 }
 
 Eigen::Vector3d ContactImpulses::pointNow(const ObstacleTouch& touch, const Body& body) const {
@@ -183,13 +181,13 @@ void ContactImpulses::apply(BodyList& bodies, const std::vector<PlacedShape>& ob
     for (int i = first; i < end; ++i) {
       const ObstacleTouch& t = touches_[i];
       const SurfacePoint point = pointOf(t);
-      // How deep the free step took it, to its obstacle where that is now.
-      const Eigen::Vector3d free = freeEnd(point, *bodies[b].finiteElements(), dt);
-      participants_[b]->push(point, problem_.worldImpulse(i), false, kept_[i]);
-      const PlacedShape& obstacle = obstacles[t.obstacle];
+      // How deep the free step took it past the face it was outside of (not to the nearest face:
+      // a point that crossed a thin table in the step is deep in it, not near its underside).
+      const Eigen::Vector3d relative =
+          freeStep(point, *bodies[b].finiteElements(), dt) - dt * t.obstacle_velocity;
       ContactLoad& load = loads_[b][t.obstacle];
-      load.penetration = std::max(load.penetration,
-                                  -signedDistance(obstacle.shape, obstacle.pose.inverse() * free));
+      load.penetration = std::max(load.penetration, -(t.gap + t.normal.dot(relative)));
+      participants_[b]->push(point, problem_.worldImpulse(i), false, kept_[i]);
     }
     participants_[b]->end();
     addLoads(b, bodies[b], obstacles, dt);

@@ -81,9 +81,9 @@ class ContactImpulses {
   /// Readies touch i's point for the solve's pushes (ContactParticipant::keep): a corner, or in
   /// `with_sums` passes a triangle's point as the sum of its corners'.
   int keepPoint(const ObstacleTouch& touch, bool with_sums);
-  /// Where the point's free step took it: from the step's start at the velocities now.
-  static Eigen::Vector3d freeEnd(const SurfacePoint& point, const FiniteElementBody& body,
-                                 double dt);
+  /// How far the point's free step moved it: dt times its velocity now.
+  static Eigen::Vector3d freeStep(const SurfacePoint& point, const FiniteElementBody& body,
+                                  double dt);
   /// Where a touch's point is at the body's positions now.
   Eigen::Vector3d pointNow(const ObstacleTouch& touch, const Body& body) const;
   /// Sets contact i of the problem from touches_[i]: its frame, friction, free relative velocity,
