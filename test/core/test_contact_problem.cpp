@@ -259,6 +259,7 @@ TEST(ContactProblem, AWarmStartFromTheLastStepTakesFewerSweeps) {
   scene.fill(problem);
   dc::ContactSolveSettings settings;
   settings.max_sweeps = 2000;
+  settings.sweeps_before_newton = settings.max_sweeps + 1;  // the sweeps' own warm start
   settings.tolerance = 1e-8;
   const dc::ContactSolveReport cold = problem.solve(settings);
   ASSERT_TRUE(cold.converged);
@@ -273,6 +274,34 @@ TEST(ContactProblem, AWarmStartFromTheLastStepTakesFewerSweeps) {
   const dc::ContactSolveReport warm = problem.solve(settings);
   EXPECT_TRUE(warm.converged);
   EXPECT_LT(warm.sweeps, cold.sweeps / 2) << "cold " << cold.sweeps << ", warm " << warm.sweeps;
+}
+
+// A tall stack of light and heavy masses in turn: each sweep passes a change one contact along,
+// so the sweeps crawl; Newton, from where 20 of them got, finds the same answer in a few steps.
+TEST(ContactProblem, WhereTheSweepsCrawlNewtonFinishesInAFewSteps) {
+  PointMasses scene = stack(30, 1.0);
+  for (size_t b = 1; b < scene.masses.size(); ++b) scene.masses[b] = b % 2 ? 1.0 : 50.0;
+  for (auto& c : scene.contacts) c.normal = Eigen::Vector3d(0.1, 0.0, 1.0).normalized();
+  dc::ContactProblem problem;
+  scene.fill(problem);
+  dc::ContactSolveSettings sweeps_only = tight(100000);
+  sweeps_only.sweeps_before_newton = sweeps_only.max_sweeps + 1;
+  const dc::ContactSolveReport crawl = problem.solve(sweeps_only);
+  ASSERT_TRUE(crawl.converged);
+  std::vector<Eigen::Vector3d> by_sweeps;
+  for (int i = 0; i < problem.size(); ++i) by_sweeps.push_back(problem.impulse(i));
+  scene.fill(problem);
+  const dc::ContactSolveReport newton = problem.solve(tight(100000));
+  ASSERT_TRUE(newton.converged);
+  EXPECT_EQ(newton.sweeps, 20);
+  EXPECT_GT(crawl.sweeps, 50 * newton.sweeps);
+  EXPECT_GE(newton.newton_steps, 1);
+  EXPECT_LE(newton.newton_steps, 5);
+  EXPECT_LE(newton.residual, 1e-10);
+  const double weight = 25 * 51.0 * kGravity * kDt;  // N s, all the masses' step of weight
+  for (int i = 0; i < problem.size(); ++i) {
+    EXPECT_NEAR((problem.impulse(i) - by_sweeps[i]).norm(), 0.0, 1e-8 * weight) << i;
+  }
 }
 
 TEST(ContactProblem, RandomProblemsKeepToTheConeAndConvergeToComplementarity) {
@@ -354,6 +383,7 @@ TEST(ContactProblem, ASolveWithinTheReserveAllocatesNothingAndRepeatsItsBits) {
   std::vector<Eigen::Vector3d> impulses;
   const long after = deformable_sim::test::g_allocations.load();
   EXPECT_EQ(after, before);
+  EXPECT_GT(first.newton_steps, 0);  // the sweeps' part and Newton's
   for (int i = 0; i < problem.size(); ++i) impulses.push_back(problem.impulse(i));
   scene.fill(problem);
   const dc::ContactSolveReport second = problem.solve(tight(200));

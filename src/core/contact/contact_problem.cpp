@@ -46,6 +46,12 @@ void ContactProblem::reserve(int max_contacts, int max_couplings) {
   impulses_.reserve(max_contacts);
   velocities_.reserve(max_contacts);
   fill_.reserve(max_contacts);
+  next_.reserve(max_contacts);
+  slopes_.reserve(max_contacts);
+  slot_.reserve(max_contacts);
+  step_.reserve(max_contacts);
+  before_step_.reserve(max_contacts);
+  newton_space_.get();
   row_start_.reserve(max_contacts + 1);
   couplings_.reserve(max_couplings);
   row_cols_.reserve(2 * static_cast<size_t>(max_couplings));
@@ -63,6 +69,11 @@ void ContactProblem::begin(int count) {
   impulses_.assign(count, Eigen::Vector3d::Zero());
   velocities_.assign(count, Eigen::Vector3d::Zero());
   fill_.assign(count, 0);
+  next_.assign(count, Eigen::Vector3d::Zero());
+  slopes_.assign(count, {Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()});
+  slot_.assign(count, -1);
+  step_.assign(count, Eigen::Vector3d::Zero());
+  before_step_.assign(count, Eigen::Vector3d::Zero());
   row_start_.assign(count + 1, 0);
   couplings_.clear();
   row_cols_.clear();
@@ -134,17 +145,47 @@ void ContactProblem::projectIntoCone(int i) {
 }
 
 Eigen::Vector3d ContactProblem::updated(int i, const Eigen::Vector3d& impulse,
-                                        const Eigen::Vector3d& v) const {
+                                        const Eigen::Vector3d& v,
+                                        std::pair<Eigen::Matrix3d, Eigen::Matrix3d>* slopes) const {
   const Eigen::Matrix3d& w = diagonal_[i];
-  Eigen::Vector3d next;
+  if (slopes) {
+    slopes->first.setZero();
+    slopes->second.setZero();
+  }
+  Eigen::Vector3d next = Eigen::Vector3d::Zero();
   // The normal first: the min-map of Signorini's complementarity, one scalar step.
-  next[0] = std::max(0.0, impulse[0] - (v[0] - targets_[i]) / w(0, 0));
+  const double pushed = impulse[0] - (v[0] - targets_[i]) / w(0, 0);
+  if (!(pushed > 0.0)) return next;  // no push, no friction: every slope zero
+  next[0] = pushed;
   // Then friction, with the slip the new normal impulse leaves (W_tn couples them).
   const Eigen::Vector2d slip = v.tail<2>() + w.block<2, 1>(1, 0) * (next[0] - impulse[0]);
   const double step = tangent_steps_[i];
   const Eigen::Vector2d wanted =
       step > 0.0 ? Eigen::Vector2d(impulse.tail<2>() - slip / step) : Eigen::Vector2d::Zero();
-  next.tail<2>() = intoDisc(wanted, friction_[i] * next[0]);
+  const double radius = friction_[i] * next[0], length = wanted.norm();
+  next.tail<2>() = intoDisc(wanted, radius);
+  if (!slopes) return next;
+  // The normal's slopes, then the wanted friction's, then through the disc's projection.
+  Eigen::Matrix3d& by_impulse = slopes->first;
+  Eigen::Matrix3d& by_velocity = slopes->second;
+  by_impulse(0, 0) = 1.0;
+  by_velocity(0, 0) = -1.0 / w(0, 0);
+  if (!(step > 0.0) || !(radius > 0.0)) return next;
+  Eigen::Matrix<double, 2, 3> wanted_by_velocity;
+  wanted_by_velocity << w.block<2, 1>(1, 0) / (w(0, 0) * step), -Eigen::Matrix2d::Identity() / step;
+  if (length <= radius) {
+    by_impulse.bottomRightCorner<2, 2>().setIdentity();
+    by_velocity.bottomRows<2>() = wanted_by_velocity;
+    return next;
+  }
+  // On the rim: t = radius u with u = wanted / |wanted|, so dt = radius / |wanted| (I - u u^T)
+  // d wanted + μ u d(normal).
+  const Eigen::Vector2d u = wanted / length;
+  const Eigen::Matrix2d across =
+      radius / length * (Eigen::Matrix2d::Identity() - u * u.transpose());
+  by_impulse.bottomRows<2>() = friction_[i] * u * by_impulse.row(0);
+  by_impulse.bottomRightCorner<2, 2>() += across;
+  by_velocity.bottomRows<2>() = across * wanted_by_velocity + friction_[i] * u * by_velocity.row(0);
   return next;
 }
 
@@ -180,6 +221,8 @@ ContactSolveReport ContactProblem::solve(const ContactSolveSettings& settings) {
     double change = 0.0;
     for (int i = 0; i < size(); ++i) change = std::max(change, update(i));
     report.sweeps = sweep;
+    // Newton's answer, when it has one, is checked as the sweeps' would be.
+    if (sweep % settings.sweeps_before_newton == 0 && newton(settings, report)) change = 0.0;
     // The updates' changes are cheap to watch; the residual, a pass of its own, is taken only
     // when they say the sweeps are done (later updates may have disturbed earlier contacts).
     if (change > settings.tolerance) continue;

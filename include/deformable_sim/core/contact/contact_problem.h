@@ -25,11 +25,23 @@
 // set how fast it gets there; w_t >= every tangential eigenvalue keeps each step from
 // overshooting.
 //
+// Where the sweeps stall (contacts leaning on one stiff body couple so strongly that Gauss-Seidel
+// gains little a sweep: a stiff block on 9 points took more than 200), a semismooth Newton method
+// (Alart & Curnier 1991; Hintermueller et al. 2002) takes over from where they got to: its
+// unknowns the impulses, its equations λ = the update above, its Jacobian the update's derivative
+// (by active normals and sticking or sliding tangents), solved densely over the contacts that push,
+// each step shortened until the error falls. Near the answer it converges quadratically. It ends
+// with every contact taking its own update, so the impulses keep to their cones however far it got;
+// if it cannot go on (more pushing contacts than kMaxNewtonContacts, or at a kink of the update no
+// step that lowers the error), the sweeps resume, and it tries again after as many more.
+//
 // Storage is reserved once (reserve()); a problem no larger than that allocates nothing. The
-// sweeps run in a fixed order on one thread: the same bits whatever else runs.
+// sweeps and Newton's steps run in a fixed order on one thread: the same bits whatever else runs.
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
+#include <utility>
 #include <vector>
 
 namespace deformable_sim::core {
@@ -41,18 +53,27 @@ Eigen::Matrix3d contactFrameFor(const Eigen::Vector3d& normal);
 struct ContactSolveSettings {
   int max_sweeps = 100;     ///< Gauss-Seidel sweeps at most, >= 1
   double tolerance = 1e-6;  ///< m/s: the largest velocity error (see residual) accepted
+  /// Newton takes over after this many sweeps without convergence, and again after as many more
+  /// each time it stalls (never if > max_sweeps).
+  int sweeps_before_newton = 20;
+  int max_newton_steps = 30;  ///< Newton steps at most, each time it takes over
 };
 
 struct ContactSolveReport {
   int sweeps = 0;         ///< sweeps taken
+  int newton_steps = 0;   ///< Newton steps taken
   double residual = 0.0;  ///< m/s: the largest contact's error at the end (see residual())
   bool converged = false;
 };
 
 class ContactProblem {
  public:
+  /// The most contacts pushing at once that Newton's dense steps take on.
+  static constexpr int kMaxNewtonContacts = 64;
+
   /// Room for `max_contacts` contacts and `max_couplings` coupling blocks W_ij (i != j, each pair
-  /// counted once). Allocates; a problem within both sizes allocates nothing after it.
+  /// counted once), and for Newton's steps. Allocates; a problem within both sizes allocates
+  /// nothing after it.
   void reserve(int max_contacts, int max_couplings);
 
   /// Starts a problem of `count` contacts, with no coupling and zero impulses (grows the storage
@@ -104,8 +125,39 @@ class ContactProblem {
   void projectIntoCone(int i);
   /// One Gauss-Seidel update of contact i; returns the velocity change it made, m/s.
   double update(int i);
-  /// The impulse one update of contact i alone would give, from its velocity v.
-  Eigen::Vector3d updated(int i, const Eigen::Vector3d& impulse, const Eigen::Vector3d& v) const;
+  /// The impulse one update of contact i alone would give, from its velocity v; with `slopes`,
+  /// also its derivatives: by the contact's own impulse (first) and by its velocity (second), both
+  /// zero where it does not push.
+  Eigen::Vector3d updated(int i, const Eigen::Vector3d& impulse, const Eigen::Vector3d& v,
+                          std::pair<Eigen::Matrix3d, Eigen::Matrix3d>* slopes = nullptr) const;
+
+  // Newton's method (contact_problem_newton.cpp).
+  struct NewtonSystem;
+  /// Newton's dense matrix and its factorization, on the heap once (a copy makes its own).
+  class NewtonSpace {
+   public:
+    NewtonSpace();
+    NewtonSpace(const NewtonSpace& other);
+    NewtonSpace& operator=(const NewtonSpace& other);
+    NewtonSpace(NewtonSpace&& other) noexcept;
+    NewtonSpace& operator=(NewtonSpace&& other) noexcept;
+    ~NewtonSpace();
+    /// The system; allocates on the first call.
+    NewtonSystem& get();
+
+   private:
+    std::unique_ptr<NewtonSystem> system_;
+  };
+  /// Newton steps from the impulses as they are, up to the settings' number; true when they
+  /// converged. Leaves every impulse at its own update (in its cone).
+  bool newton(const ContactSolveSettings& settings, ContactSolveReport& report);
+  /// Fills next_ and slopes_ from the impulses as they are; returns the sum of the squared
+  /// errors W_ii (next - λ) and their largest norm.
+  std::pair<double, double> linearize();
+  /// The Newton step step_ for the linearization: false when it cannot be taken.
+  bool newtonStep();
+  /// Every contact takes its update from the same velocities (Jacobi): into its cone.
+  void takeUpdates();
 
   // Per contact.
   std::vector<Eigen::Matrix3d> frames_;
@@ -122,6 +174,13 @@ class ContactProblem {
   std::vector<int> row_cols_;
   std::vector<Eigen::Matrix3d> row_blocks_;
   std::vector<int> fill_;  ///< per contact, entries placed so far (buildRows)
+  // Newton's: per contact, its update, the update's slopes, its place among the pushing contacts
+  // (-1: not pushing), the step, and the impulses before it.
+  std::vector<Eigen::Vector3d> next_;
+  std::vector<std::pair<Eigen::Matrix3d, Eigen::Matrix3d>> slopes_;
+  std::vector<int> slot_;
+  std::vector<Eigen::Vector3d> step_, before_step_;
+  NewtonSpace newton_space_;
 };
 
 }  // namespace deformable_sim::core
