@@ -201,14 +201,19 @@ void ContactImpulses::addLoads(int b, const Body& body, const std::vector<Placed
     if (!(problem_.impulse(i)[0] > 0.0)) continue;
     const ObstacleTouch& t = touches_[i];
     const Eigen::Vector3d impulse = problem_.worldImpulse(i);
-    warm_[b][warmSlot(t)] = Warm{t.obstacle, impulse};
-    const Eigen::Vector3d at = pointNow(t, body), force = impulse / dt;
     const PlacedShape& obstacle = obstacles[t.obstacle];
+    // A point on two shapes of one name (a link's two collision boxes) is one of its points.
+    Warm& warm = warm_[b][warmSlot(t)];
+    const bool counted = warm.obstacle >= 0 && obstacles[warm.obstacle].name == obstacle.name;
+    warm = Warm{t.obstacle, impulse};
+    const Eigen::Vector3d at = pointNow(t, body), force = impulse / dt;
     ContactLoad& load = loads_[b][t.obstacle];
     load.force += force;
     load.torque += at.cross(force);
-    load.centre += at;
-    ++load.points;
+    if (!counted) {
+      load.centre += at;
+      ++load.points;
+    }
     load.depth =
         std::max(load.depth, -signedDistance(obstacle.shape, obstacle.pose.inverse() * at));
   }

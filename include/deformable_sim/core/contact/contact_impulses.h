@@ -113,7 +113,8 @@ class ContactImpulses {
   ContactSolveReport last_solve_;
   std::vector<std::vector<ContactLoad>> loads_;  ///< per body, per obstacle
   /// Per body, per corner and then per triangle: the obstacle it pushed on in the last step (-1:
-  /// none) and the impulse (world, N s).
+  /// none) and the impulse (world, N s). addLoads() writes it as it goes, and so also tells
+  /// which points one obstacle name has already counted in this step.
   struct Warm {
     int obstacle = -1;
     Eigen::Vector3d impulse = Eigen::Vector3d::Zero();
