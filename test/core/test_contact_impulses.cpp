@@ -1,4 +1,4 @@
-// Obstacle contact as one problem a step (core/contact/contact_impulses.h): built directly on a
+// Contact as one problem a step (core/contact/contact_impulses.h): built directly on a
 // body's free step, then through a whole Simulation on the cases that the holds got wrong (a plate
 // lifted off a cube, fingers opening beside one).
 #include <gtest/gtest.h>
@@ -67,7 +67,7 @@ TEST(ContactImpulses, ASolvedStepPushesOnlyWithinTheConeAndKeepsMomentum) {
   bodies[0].step(dt);  // free: its bottom goes 5 mm into the table
   ASSERT_LT(lowest(bodies[0]), -0.004);
   const Eigen::Vector3d before = momentum(bodies[0]);
-  impulses.resolve(bodies, sim.obstacles(), starts, dt, reports);
+  impulses.resolve(bodies, sim.obstacles(), starts, dt, 1, reports);
   ASSERT_TRUE(impulses.lastSolve().converged)
       << impulses.lastSolve().sweeps << " sweeps, residual " << impulses.lastSolve().residual;
   const dc::ContactProblem& problem = impulses.problem();
@@ -338,6 +338,76 @@ TEST(ContactImpulses, FingersOpeningBesideACubeLetItGo) {
     EXPECT_LE(rise, 1e-4 * squeezed) << what;  // its sag under gravity settles to round-off
     EXPECT_LT((centreOfMass(sim.bodies()[0]) - put_down).norm(), 0.001) << what;
   }
+}
+
+// The problem is the step the body takes: after it, every contact's velocity is what the solve
+// said (W λ + v_free, for the impulses it ended with). Pads squeezing a cube press their edges
+// into its faces between nodes; a soft body's answers kept from earlier steps
+// (core/bodies/implicit_response.h) are not quite symmetric, and with W taken as symmetric those
+// contacts missed (here by up to 1 µm/s; in the friction grasps by up to 8 mm/s, where squeezes
+// too light to hold the block lifted it).
+TEST(ContactImpulses, EveryContactMovesAsTheSolveSaid) {
+  dc::SceneSpec spec = cubeOnTable(0.5);
+  const Eigen::Vector3d pad(0.01, 0.04, 0.04);
+  const double tip = 0.01 + 0.5 * pad.z();
+  spec.obstacles.push_back(boxAt("left", pad, {-0.5 * kSide - 0.5 * pad.x() - 0.005, 0, tip}));
+  spec.obstacles.push_back(boxAt("right", pad, {0.5 * kSide + 0.5 * pad.x() + 0.005, 0, tip}));
+  dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+  std::vector<dc::StepReport> reports;
+  for (int s = 0; s < 50; ++s) sim.step(reports);
+  int checked = 0;
+  for (int s = 1; s <= 100; ++s) {  // 2 mm into each side in 0.5 s, then lifted 2 cm
+    const double in = 0.005 - 0.007 * ramp(std::min(s, 50), 50);
+    const double up = tip + 0.02 * ramp(std::max(0, s - 50), 50);
+    sim.obstacles()[1].pose.translation() =
+        Eigen::Vector3d(-0.5 * kSide - in - 0.5 * pad.x(), 0, up);
+    sim.obstacles()[2].pose.translation() =
+        Eigen::Vector3d(0.5 * kSide + in + 0.5 * pad.x(), 0, up);
+    sim.step(reports);
+    const dc::ContactImpulses& impulses = *sim.obstacleImpulses();
+    for (int i = 0; i < impulses.problem().size(); ++i) {
+      const Eigen::Vector3d promised = impulses.problem().velocity(i);
+      EXPECT_LT((impulses.velocityNow(i, sim.bodies()) - promised).norm(), 1e-9) << s << " " << i;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 1000);
+}
+
+// Contact between bodies in the same problem: a cube dropped on one standing on the table. Each
+// pair is a contact whose two sides are points of the two cubes; after every step each contact's
+// velocity is what the solve said, every impulse pushes, and the cubes' momentum changes by their
+// weight and the table's impulses alone (the pairs' impulses are equal and opposite).
+TEST(ContactImpulses, TwoCubesMeetInTheSameProblemAsTheTable) {
+  dc::SceneSpec spec = cubeOnTable(0.5, 0.0);
+  spec.contact->bodies = true;
+  spec.bodies.push_back(
+      deformable_sim::test::boxBody("upper", {-0.4 * kSide, -0.4 * kSide, kSide + 0.003},
+                                    {0.4 * kSide, 0.4 * kSide, 1.8 * kSide}, {3, 3, 3}, kFoam));
+  spec.bodies[1].velocity = Eigen::Vector3d(0.1, 0.0, -0.3);
+  dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
+  const double mass = totalMass(sim.bodies()[0]) + totalMass(sim.bodies()[1]);
+  std::vector<dc::StepReport> reports;
+  int between = 0;
+  for (int s = 1; s <= 60; ++s) {
+    const Eigen::Vector3d before = momentum(sim.bodies()[0]) + momentum(sim.bodies()[1]);
+    sim.step(reports);
+    const dc::ContactImpulses& impulses = *sim.obstacleImpulses();
+    const dc::ContactProblem& problem = impulses.problem();
+    for (int i = 0; i < problem.size(); ++i) {
+      EXPECT_GE(problem.impulse(i)[0], 0.0);
+      EXPECT_LT((impulses.velocityNow(i, sim.bodies()) - problem.velocity(i)).norm(), 1e-9) << s;
+    }
+    Eigen::Vector3d table = Eigen::Vector3d::Zero();
+    for (int b = 0; b < 2; ++b) table += sim.obstacleContacts(b)[0].force * spec.dt;
+    const Eigen::Vector3d change = momentum(sim.bodies()[0]) + momentum(sim.bodies()[1]) - before;
+    const Eigen::Vector3d expected = table + mass * spec.dt * Eigen::Vector3d(0, 0, -9.81);
+    // To the round-off of the bodies' answers: a millionth of the weight's impulse.
+    EXPECT_LT((change - expected).norm(), 1e-6 * mass * 9.81 * spec.dt) << s;
+    between += reports[1].body_contacts;
+  }
+  EXPECT_GT(between, 100);
+  EXPECT_GT(lowest(sim.bodies()[1]), kSide - 0.001);  // it rests on the lower cube
 }
 
 // The Delassus blocks between two points of a body are what its answer to an impulse does: the

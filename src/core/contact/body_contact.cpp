@@ -22,6 +22,21 @@ namespace {
 /// triangle within the step. A quarter edge is less than any part of the body is thick.
 constexpr double kShallowFraction = 0.25;
 
+/// Where the point of `body` is now.
+Eigen::Vector3d pointAt(const Body& body, const SurfacePoint& point) {
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  for (int k = 0; k < point.count; ++k) {
+    x += point.weights[k] * body.positions().segment<3>(3 * point.nodes[k]);
+  }
+  return x;
+}
+
+/// How far the contact's node side is behind its triangle side now, m (zero: not behind).
+double depthLeft(const BodyList& bodies, const BodyContact::Contact& c) {
+  return std::max(0.0, -c.normal.dot(pointAt(bodies[c.node_body], c.node) -
+                                     pointAt(bodies[c.triangle_body], c.triangle)));
+}
+
 Eigen::Vector3d startOf(const BodySurface& surface, const SurfacePoint& point) {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   for (int k = 0; k < point.count; ++k) {
@@ -283,18 +298,10 @@ void BodyContact::separate(std::vector<StepReport>& reports) {
 }
 
 void BodyContact::measureDepths(const BodyList& bodies) {
-  const auto at = [&](int b, const SurfacePoint& point) {
-    Eigen::Vector3d x = Eigen::Vector3d::Zero();
-    for (int k = 0; k < point.count; ++k) {
-      x += point.weights[k] * bodies[b].positions().segment<3>(3 * point.nodes[k]);
-    }
-    return x;
-  };
   const size_t n = surfaces_.size();
   for (ContactLoad& load : loads_) load.depth = 0.0;
   for (const Contact& c : contacts_) {
-    const double left =
-        std::max(0.0, -c.normal.dot(at(c.node_body, c.node) - at(c.triangle_body, c.triangle)));
+    const double left = depthLeft(bodies, c);
     for (size_t pair : {c.node_body * n + c.triangle_body, c.triangle_body * n + c.node_body}) {
       loads_[pair].depth = std::max(loads_[pair].depth, left);
     }
@@ -354,13 +361,18 @@ void BodyContact::update(Contact& c, double dt) {
   largest_change_ = std::max(largest_change_, (c.compliance * change).norm());
 }
 
-void BodyContact::startFromLastStep(Contact& c) {
-  if (c.node_corners.count != 1) return;  // edges that meet
+Eigen::Vector3d BodyContact::lastImpulse(int i) const {
+  const Contact& c = contacts_[i];
+  if (c.node_corners.count != 1) return Eigen::Vector3d::Zero();  // edges that meet
   const Warm& last = warm_[c.node_body][c.node_corners.ids[0]];
-  if (last.triangle_body != c.triangle_body) return;
+  return last.triangle_body == c.triangle_body ? last.impulse : Eigen::Vector3d::Zero();
+}
+
+void BodyContact::startFromLastStep(Contact& c) {
   // Last step's impulse on the pair, turned into this step's normal and cone.
-  c.impulse = std::max(0.0, c.normal.dot(last.impulse));
-  Eigen::Vector3d friction = last.impulse - c.normal.dot(last.impulse) * c.normal;
+  const Eigen::Vector3d last = lastImpulse(static_cast<int>(&c - contacts_.data()));
+  c.impulse = std::max(0.0, c.normal.dot(last));
+  Eigen::Vector3d friction = last - c.normal.dot(last) * c.normal;
   const double cone = settings_.friction * c.impulse;
   if (friction.norm() > cone) friction *= cone / friction.norm();
   c.friction = friction;
@@ -379,7 +391,7 @@ void BodyContact::keepForNextStep() {
   }
 }
 
-int BodyContact::keepPoint(int b, const Corners& corners) {
+int BodyContact::keepPoint(int b, const SurfaceCorners& corners) {
   ContactParticipant& body = *participants_[b];
   std::array<int, 3> kept{};
   for (int k = 0; k < corners.count; ++k) {
@@ -543,6 +555,36 @@ void BodyContact::addContactForces(double dt) {
     ContactLoad& on_triangle = loads_[c.triangle_body * n + c.node_body];
     on_triangle.force -= force;
     on_triangle.torque -= at_triangle.cross(force);
+  }
+}
+
+void BodyContact::find(BodyList& bodies, double dt, int threads, std::vector<StepReport>& reports) {
+  dt_ = dt;
+  findContacts(bodies, true, threads);
+  countContacts(reports);
+  startLoads();
+  for (Contact& c : contacts_) c.start_gap = startGap(c);
+}
+
+void BodyContact::takeImpulse(int i, const Eigen::Vector3d& impulse) {
+  Contact& c = contacts_[i];
+  c.impulse = c.normal.dot(impulse);
+  c.friction = impulse - c.impulse * c.normal;
+}
+
+void BodyContact::finishStep(const BodyList& bodies, double dt, std::vector<StepReport>& reports) {
+  addContactForces(dt);
+  keepForNextStep();
+  for (const Contact& c : contacts_) {
+    const double left = depthLeft(bodies, c);
+    for (int b : {c.node_body, c.triangle_body}) {
+      reports[b].body_penetration = std::max(reports[b].body_penetration, left);
+    }
+  }
+  for (int b = 0; b < static_cast<int>(bodies.size()); ++b) {
+    if (!surfaces_[b]) continue;
+    surfaces_[b]->setStart(bodies[b].positions());
+    reports[b].body_contact_solves = participants_[b]->solves();
   }
 }
 

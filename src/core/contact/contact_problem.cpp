@@ -93,9 +93,10 @@ void ContactProblem::setContact(int i, const Eigen::Matrix3d& frame, double fric
 
 void ContactProblem::addDiagonal(int i, const Eigen::Matrix3d& block) { diagonal_[i] += block; }
 
-void ContactProblem::addCoupling(int i, int j, const Eigen::Matrix3d& block) {
+void ContactProblem::addCoupling(int i, int j, const Eigen::Matrix3d& ij,
+                                 const Eigen::Matrix3d& ji) {
   assert(i != j);
-  couplings_.push_back({i, j, block});
+  couplings_.push_back({i, j, ij, ji});
 }
 
 Eigen::Matrix3d ContactProblem::inContactFrames(int i, int j,
@@ -104,7 +105,7 @@ Eigen::Matrix3d ContactProblem::inContactFrames(int i, int j,
 }
 
 void ContactProblem::buildRows() {
-  // A counting sort by row: each coupling lands in row i as W_ij and in row j as W_ij^T, the
+  // A counting sort by row: each coupling lands in row i as W_ij and in row j as W_ji, the
   // entries of a row in the order the couplings were added (the same order every time).
   const int n = size();
   std::fill(row_start_.begin(), row_start_.end(), 0);
@@ -122,7 +123,7 @@ void ContactProblem::buildRows() {
     row_blocks_[in_row] = c.block;
     const int in_col = row_start_[c.col] + fill_[c.col]++;
     row_cols_[in_col] = c.row;
-    row_blocks_[in_col] = c.block.transpose();
+    row_blocks_[in_col] = c.back;
   }
 }
 

@@ -1,6 +1,7 @@
 #include "deformable_sim/core/contact/contact_step.h"
 
 #include <algorithm>
+#include <functional>
 
 #include "deformable_sim/core/base/parallel_for.h"
 #include "deformable_sim/core/base/wall_clock.h"
@@ -9,16 +10,16 @@ namespace deformable_sim::core {
 
 ContactStep::ContactStep(BodyList& bodies, const ContactSettings& settings) : settings_(settings) {
   states_.resize(bodies.size());
+  addBodyContact(bodies);
   std::vector<bool> finite_elements;
   for (const Body& body : bodies) finite_elements.push_back(body.finiteElements() != nullptr);
   if (settings.one_problem) {
-    impulses_.emplace(bodies, settings, finite_elements);
+    impulses_.emplace(bodies, settings, finite_elements, body_contact_.get());
   } else {
     for (size_t b = 0; b < bodies.size(); ++b) {
       if (finite_elements[b]) states_[b].emplace(bodies[b].mesh());
     }
   }
-  addBodyContact(bodies);
 }
 
 void ContactStep::addBodyContact(BodyList& bodies) {
@@ -36,13 +37,13 @@ void ContactStep::addBodyContact(BodyList& bodies) {
   };
   if (count(with_bodies) < 2 && count(with_self) == 0) return;
   if (count(with_bodies) < 2) with_bodies.assign(with_bodies.size(), false);
-  body_contact_.emplace(bodies, settings_, with_bodies, with_self);
+  body_contact_ = std::make_unique<BodyContact>(bodies, settings_, with_bodies, with_self);
 }
 
 void ContactStep::embed(int b, const EmbeddedSurface& surface, const Body& body) {
   if (states_[b]) states_[b]->embed(surface);
-  if (impulses_) impulses_->embed(b, surface, body);
   if (body_contact_) body_contact_->embed(b, surface, body);
+  if (impulses_) impulses_->embed(b, surface, body);
 }
 
 void ContactStep::begin(const std::vector<PlacedShape>& obstacles) {
@@ -64,18 +65,24 @@ double ContactStep::hold(int b, Body& body, const std::vector<PlacedShape>& obst
 
 void ContactStep::finish(BodyList& bodies, const std::vector<PlacedShape>& obstacles, double dt,
                          int threads, std::vector<StepReport>& reports) {
-  if (body_contact_) resolveBetweenBodies(bodies, dt, threads, reports);
   if (impulses_) {
+    // One problem: finding contact between bodies is timed as theirs, the rest (the obstacles'
+    // detection and the one solve) as the obstacles'.
     const WallClock::time_point start = WallClock::now();
-    impulses_->resolve(bodies, obstacles, starts_, dt, reports);
-    const double spent = secondsSince(start);
-    const int n = static_cast<int>(bodies.size());
-    int taking_part = 0;
-    for (int b = 0; b < n; ++b) taking_part += impulses_->takesPart(b);
-    for (int b = 0; b < n; ++b) {
-      if (impulses_->takesPart(b)) reports[b].times.obstacle_contact += spent / taking_part;
+    impulses_->resolve(bodies, obstacles, starts_, dt, threads, reports);
+    const double between = impulses_->timeBetweenBodies();
+    shareTime(
+        secondsSince(start) - between, [&](int b) { return impulses_->takesPart(b); },
+        &StepTimes::obstacle_contact, reports);
+    if (body_contact_) {
+      shareTime(
+          between, [&](int b) { return body_contact_->takesPart(b); }, &StepTimes::body_contact,
+          reports);
+      ++body_steps_;
     }
-    obstacle_steps_ += taking_part;
+    for (size_t b = 0; b < bodies.size(); ++b) obstacle_steps_ += impulses_->takesPart(b);
+  } else if (body_contact_) {
+    resolveBetweenBodies(bodies, dt, threads, reports);
   }
   parallelFor(threads, 0, static_cast<int>(bodies.size()), [&](int b) {
     if (!states_[b]) return;
@@ -95,12 +102,18 @@ void ContactStep::resolveBetweenBodies(BodyList& bodies, double dt, int threads,
   const WallClock::time_point start = WallClock::now();
   body_contact_->resolve(bodies, dt, threads, reports);
   ++body_steps_;
-  const double spent = secondsSince(start);
-  const int n = static_cast<int>(bodies.size());
+  shareTime(
+      secondsSince(start), [&](int b) { return body_contact_->takesPart(b); },
+      &StepTimes::body_contact, reports);
+}
+
+void ContactStep::shareTime(double seconds, const std::function<bool(int)>& takes_part,
+                            double StepTimes::*part, std::vector<StepReport>& reports) {
+  const int n = static_cast<int>(reports.size());
   int taking_part = 0;
-  for (int b = 0; b < n; ++b) taking_part += body_contact_->takesPart(b);
+  for (int b = 0; b < n; ++b) taking_part += takes_part(b);
   for (int b = 0; b < n; ++b) {
-    if (body_contact_->takesPart(b)) reports[b].times.body_contact = spent / taking_part;
+    if (takes_part(b)) reports[b].times.*part += seconds / taking_part;
   }
 }
 

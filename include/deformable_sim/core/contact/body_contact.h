@@ -95,22 +95,17 @@ class BodyContact {
   /// blocks side by side on a floor, where a node touches the other's bottom edge, exploded).
   static constexpr double kMovable = 0.2;
 
- private:
-  /// A point as a weighed sum of surface corners: a node (one), an edge's point (two), a
-  /// triangle's (three).
-  struct Corners {
-    int count = 0;
-    std::array<int, 3> ids{};
-    std::array<double, 3> weights{};
-  };
+  /// A contact found: a point of one body's surface (the node side: a corner, or a point of an
+  /// edge) against a point of another's or its own (the triangle side: a triangle's point, or an
+  /// edge's), along a normal out of the triangle side.
   struct Contact {
     int node_body = 0, triangle_body = 0;
     /// Of node and triangle; a node's contact is on one corner, edges that meet on two.
-    Corners node_corners, triangle_corners;
+    SurfaceCorners node_corners, triangle_corners;
     SurfacePoint node, triangle;
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< out of the triangle's body
-    double pushed = 0.0;     ///< kg m: the normal shift of the position passes
-    double impulse = 0.0;    ///< N s: the normal impulse of the velocity passes
+    double pushed = 0.0;   ///< kg m: the normal shift of the position passes
+    double impulse = 0.0;  ///< N s: the normal impulse of the velocity passes
     Eigen::Vector3d friction = Eigen::Vector3d::Zero();  ///< N s: their friction impulse
     double start_gap = 0.0;  ///< m: along the normal, node minus triangle point, at the start
     /// m/s per N s: how the points part per unit impulse on the pair (both bodies' answers).
@@ -125,6 +120,25 @@ class BodyContact {
     bool node_moves = true, triangle_moves = true;
   };
 
+  // As part of one contact problem a step (core/contact/contact_impulses.h), which takes the
+  // contacts found here, solves them with the obstacles' and hands back their impulses.
+  /// The participant through which body b takes part (nullptr: it does not). The one problem
+  /// pushes through it too: a body answers through one participant a step.
+  ContactParticipant* participant(int b) const { return participants_[b].get(); }
+  /// After every body's free step of dt: begins the participants, finds the contacts and counts
+  /// them into reports. Allocates nothing.
+  void find(BodyList& bodies, double dt, int threads, std::vector<StepReport>& reports);
+  const std::vector<Contact>& contacts() const { return contacts_; }
+  /// The impulse on contact i's node side in the last step (world, N s) where the same corner
+  /// touched the same body then, else zero: the solve's start.
+  Eigen::Vector3d lastImpulse(int i) const;
+  /// Contact i took `impulse` (world, N s) on its node side, the opposite on its triangle side.
+  void takeImpulse(int i, const Eigen::Vector3d& impulse);
+  /// After the bodies took the impulses (their participants ended): the loads, the impulses kept
+  /// for the next step's start, the depths left into reports, and the sweeps' next start.
+  void finishStep(const BodyList& bodies, double dt, std::vector<StepReport>& reports);
+
+ private:
   bool touches(int a, int b) const;
   /// After the first round: whether its answers and corrections can have moved a node into a
   /// surface deeper than the position passes leave it (else the last round finds nothing new).
@@ -157,7 +171,7 @@ class BodyContact {
   void prepareAnswers(int b);
   /// Body b's kept answers at a point of its surface, summed from its corners' (each kept once a
   /// round); -1: not kept.
-  int keepPoint(int b, const Corners& corners);
+  int keepPoint(int b, const SurfaceCorners& corners);
   /// One Gauss-Seidel update of the pair: its normal impulse, then its friction, applied at once.
   void update(Contact& c, double dt);
   /// Gives a node's contact the impulse it had last step on the same body, if it had one.

@@ -24,6 +24,15 @@ struct SurfaceEdge {
   std::array<int, 2> triangles{};
 };
 
+/// A point of the surface as a weighed sum of its corners: a corner (one), an edge's point (two),
+/// a triangle's (three). Its corners, unlike its nodes, are the same from step to step, so what a
+/// body readies for them may be kept (ContactParticipant::keepCorner).
+struct SurfaceCorners {
+  int count = 0;
+  std::array<int, 3> ids{};
+  std::array<double, 3> weights{};
+};
+
 class BodySurface {
  public:
   /// The surface of `mesh` at `positions` (3n): its corners are the nodes. With

@@ -2,9 +2,9 @@
 // (columns: the normal, out of the second body into the first, and two tangents), a friction
 // coefficient μ, the relative velocity v_free it would have with no contact impulse (in its frame,
 // m/s) and the Delassus operator W (how the relative velocity of point i changes per unit impulse
-// at point j, m/s per N s; symmetric positive semi-definite, 3x3 blocks, W_ij non-zero only where
-// contacts i and j share a body). The impulses λ (N s, in the contacts' frames) and the relative
-// velocities v = W λ + v_free meet Signorini's and Coulomb's laws:
+// at point j, m/s per N s; positive semi-definite, symmetric or nearly, 3x3 blocks, W_ij non-zero
+// only where contacts i and j share a body). The impulses λ (N s, in the contacts' frames) and the
+// relative velocities v = W λ + v_free meet Signorini's and Coulomb's laws:
 //   λ_n >= 0,  v_n >= v_target,  λ_n (v_n - v_target) = 0       (a contact only pushes)
 //   |λ_t| <= μ λ_n,  and where it slides (v_t != 0): λ_t = -μ λ_n v_t / |v_t|
 // v_target is each contact's least normal velocity: 0 to stop it approaching, -gap / dt to let a
@@ -90,7 +90,13 @@ class ContactProblem {
   void addDiagonal(int i, const Eigen::Matrix3d& block);
   /// W_ij += block and W_ji += block^T (i != j, contact frames of i and j). A pair may be added
   /// more than once (once per body the two contacts share).
-  void addCoupling(int i, int j, const Eigen::Matrix3d& block);
+  void addCoupling(int i, int j, const Eigen::Matrix3d& block) {
+    addCoupling(i, j, block, block.transpose());
+  }
+  /// W_ij += ij and W_ji += ji, for a body whose answers are not quite symmetric (a
+  /// finite-element body's kept from steps whose matrices differed a little): the problem is then
+  /// the step the bodies will take.
+  void addCoupling(int i, int j, const Eigen::Matrix3d& ij, const Eigen::Matrix3d& ji);
   /// A world block (velocity of point i per impulse at point j) in the frames of i and j.
   Eigen::Matrix3d inContactFrames(int i, int j, const Eigen::Matrix3d& world_block) const;
 
@@ -101,6 +107,8 @@ class ContactProblem {
   /// Sweeps until every contact's velocity error is within the tolerance or the sweeps run out.
   ContactSolveReport solve(const ContactSolveSettings& settings);
 
+  /// Contact i's frame (columns: its normal, then its tangents).
+  const Eigen::Matrix3d& frame(int i) const { return frames_[i]; }
   /// Contact i's impulse (its frame, N s) and in the world.
   const Eigen::Vector3d& impulse(int i) const { return impulses_[i]; }
   Eigen::Vector3d worldImpulse(int i) const { return frames_[i] * impulses_[i]; }
@@ -114,7 +122,8 @@ class ContactProblem {
  private:
   struct Coupling {
     int row = 0, col = 0;
-    Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
+    Eigen::Matrix3d block = Eigen::Matrix3d::Zero();  ///< W_row,col
+    Eigen::Matrix3d back = Eigen::Matrix3d::Zero();   ///< W_col,row
   };
 
   /// Orders the couplings by row, both halves of each, once per solve.

@@ -6,6 +6,8 @@
 // say: what is inside them is put back out (projection).
 #pragma once
 
+#include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -43,8 +45,7 @@ class ContactStep {
               std::vector<StepReport>& reports);
   /// Whether contact acts on body b at all.
   bool actsOn(int b) const {
-    return states_[b].has_value() || body_contact_.has_value() ||
-           (impulses_ && impulses_->takesPart(b));
+    return states_[b].has_value() || body_contact_ || (impulses_ && impulses_->takesPart(b));
   }
   /// Body b went back to where it started the step: what it touched is forgotten.
   void forget(int b);
@@ -54,7 +55,7 @@ class ContactStep {
   long obstacleSteps() const { return obstacle_steps_; }  ///< body steps with obstacle contact
   long bodySteps() const { return body_steps_; }          ///< steps with contact between bodies
   const ContactImpulses* obstacleImpulses() const { return impulses_ ? &*impulses_ : nullptr; }
-  const BodyContact* bodyContact() const { return body_contact_ ? &*body_contact_ : nullptr; }
+  const BodyContact* bodyContact() const { return body_contact_.get(); }
 
  private:
   /// Contact between bodies and with themselves, if the settings and some body ask for it.
@@ -63,9 +64,14 @@ class ContactStep {
   void resolveBetweenBodies(BodyList& bodies, double dt, int threads,
                             std::vector<StepReport>& reports);
 
+  /// `seconds` shared equally among the bodies that `takes_part`, added to their times' `part`.
+  static void shareTime(double seconds, const std::function<bool(int)>& takes_part,
+                        double StepTimes::*part, std::vector<StepReport>& reports);
+
   ContactSettings settings_;
   std::vector<std::optional<ContactState>> states_;  ///< per body: its obstacle contact
-  std::optional<BodyContact> body_contact_;          ///< only when some body touches others
+  /// Only when some body touches others; on the heap, where impulses_ finds it.
+  std::unique_ptr<BodyContact> body_contact_;
   /// Obstacle contact as one problem (ContactSettings::one_problem), in place of states_.
   std::optional<ContactImpulses> impulses_;
   std::vector<Eigen::Isometry3d> starts_;  ///< the obstacles' poses at the step's start
