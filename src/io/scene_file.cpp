@@ -189,13 +189,16 @@ class SceneParser {
   std::optional<core::ContactSettings> parseContact(const YAML::Node& contact) const {
     if (!contact) return std::nullopt;
     expectMap(contact, "effects.contact");
-    checkKeys(contact, "effects.contact", {"friction", "bodies", "self"});
+    checkKeys(contact, "effects.contact", {"friction", "bodies", "self", "one_problem"});
     core::ContactSettings settings;
     if (contact["friction"]) {
       settings.friction = nonNegative(contact["friction"], "effects.contact.friction");
     }
     if (contact["bodies"]) settings.bodies = boolean(contact["bodies"], "effects.contact.bodies");
     if (contact["self"]) settings.self = boolean(contact["self"], "effects.contact.self");
+    if (contact["one_problem"]) {
+      settings.one_problem = boolean(contact["one_problem"], "effects.contact.one_problem");
+    }
     return settings;
   }
 

@@ -484,7 +484,14 @@ TEST(SceneFile, ContactBetweenBodiesAndWithItselfIsTurnedOnByTheSceneAndOffByABo
       dio::parseScene(replaced(kScene, "effects: {", "effects: {contact: {}, "), "t", ".");
   EXPECT_FALSE(plain.contact->bodies);
   EXPECT_FALSE(plain.contact->self);
+  EXPECT_FALSE(plain.contact->one_problem);
   EXPECT_NE(errorOf(replaced(kScene, "effects: {", "effects: {contact: {self: 2}, ")), "");
+  // All contact as one problem a step (doc/physics.md, "One problem a step").
+  const dc::SceneSpec one = dio::parseScene(
+      replaced(kScene, "effects: {", "effects: {contact: {one_problem: true}, "), "t", ".");
+  EXPECT_TRUE(one.contact->one_problem);
+  EXPECT_EQ(errorOf(replaced(kScene, "effects: {", "effects: {contact: {one_problem: 1.5}, ")),
+            "test.yaml:3: effects.contact.one_problem: expected true or false");
 }
 
 TEST(SceneFile, ABodyHasItsOwnColourOrThePalettes) {
