@@ -2,7 +2,10 @@
 """launch/grasp_demo.launch mode:=friction: fingers that are STL meshes in the URDF pick the block
 up by squeezing it, with no grasp attachment; it rises, swings and hangs still with them, and the
 fingers' contact wrenches (~contacts/<link>/wrench) then carry its weight within 2 %; put down, it
-rests on the table again. ~contacts names the pairs that touch. rviz under Xvfb shows gripper,
+rests on the table again. [one-contact]: put down where it was grasped (fingertips 1 mm above the
+table), the fingers open: no node of it goes more than 1 mm past its faces as they were put down,
+its elastic energy does not rise while they open, and it rests within 1 mm of where it was put
+down (the holds drew its sides 8.6 mm out with the pads). ~contacts names the pairs that touch. rviz under Xvfb shows gripper,
 block and contact wrenches while it hangs (the screenshot, kept by ~screenshot, is the README's)."""
 import os
 import shutil
@@ -16,7 +19,7 @@ import rospy
 import rostest
 from geometry_msgs.msg import WrenchStamped
 
-from deformable_sim.msg import BodyState, ContactPair, Contacts
+from deformable_sim.msg import BodyState, ContactPair, Contacts, Stats
 from rviz_xvfb import (RvizUnderXvfb, count_pixels, is_gripper_grey, is_reaction_cyan,
                        is_strain_coloured)
 
@@ -26,15 +29,19 @@ MASS = 150.0 * 0.06 ** 3  # kg: the block of config/scenes/grasp_demo.yaml
 FINGERS = ('left_finger', 'right_finger')
 # scripts/grasp_demo_motion: the block hangs still (after the swing) from 11.5 s to 12.5 s.
 STILL = (11.9, 12.4)
+PUT_DOWN, OPENED, RISEN = 14.5, 15.5, 17.5  # s: the fingers open, then rise 17 cm
+HALF = 0.03  # m: half the block's side
 
 
 class FrictionGrasp(unittest.TestCase):
     def setUp(self):
         self.lock = threading.Lock()
         self.states, self.wrenches, self.pairs = [], {f: [] for f in FINGERS}, set()
+        self.energies = []
         self.start = None
         rospy.Subscriber('/deformable_sim/state', BodyState, self.on_state, queue_size=100)
         rospy.Subscriber('/deformable_sim/contacts', Contacts, self.on_contacts, queue_size=100)
+        rospy.Subscriber('/deformable_sim/stats', Stats, self.on_stats, queue_size=100)
         for finger in FINGERS:
             rospy.Subscriber('/deformable_sim/contacts/%s/wrench' % finger, WrenchStamped,
                              lambda m, f=finger: self.on_wrench(f, m), queue_size=100)
@@ -62,6 +69,10 @@ class FrictionGrasp(unittest.TestCase):
         points = np.array([(p.x, p.y, p.z) for p in message.positions])
         with self.lock:
             self.states.append((message.header.stamp.to_sec(), points))
+
+    def on_stats(self, message):
+        with self.lock:
+            self.energies.append((message.header.stamp.to_sec(), message.bodies[0].elastic_energy))
 
     def on_contacts(self, message):
         with self.lock:
@@ -109,6 +120,29 @@ class FrictionGrasp(unittest.TestCase):
             self.assertIn(('block', ContactPair.OBSTACLE, finger), pairs)
         self.assertIn(('block', ContactPair.OBSTACLE, 'table'), pairs)
         self.assertIsNotNone(shot, 'rviz never showed block, contact wrenches and gripper together')
+        with self.lock:
+            energies = [(t - t0, e) for t, e in self.energies]
+        self.fingers_let_go(states, times, energies)
+
+    def fingers_let_go(self, states, times, energies):
+        """While the fingers open beside the block put down, nothing follows them out."""
+        put_down = [points for t, points in zip(times, states) if t >= PUT_DOWN][0][1]
+        centre = 0.5 * (put_down.min(axis=0) + put_down.max(axis=0))
+        most_out = 0.0
+        for t, (_, points) in zip(times, states):
+            if PUT_DOWN <= t <= RISEN:
+                most_out = max(most_out, (np.abs(points[:, :2] - centre[:2]) - HALF).max())
+        print('opening: a node at most %.2f mm past its rest face' % (1000 * most_out))
+        self.assertLess(most_out, 0.001, 'a node followed the fingers %.1f mm out' % (1000 * most_out))
+        opening = [e for t, e in energies if PUT_DOWN <= t <= OPENED]
+        self.assertGreater(len(opening), 5)
+        rises = [b - a for a, b in zip(opening, opening[1:])]
+        self.assertLessEqual(max(rises), 1e-4 * opening[0], 'its elastic energy rose as they opened')
+        end = states[-1][1]
+        moved = np.linalg.norm(end.mean(axis=0) - put_down.mean(axis=0))
+        print('opening: energy %.3g J when put down, largest rise %.2g J; moved %.2f mm after'
+              % (opening[0], max(rises), 1000 * moved))
+        self.assertLess(moved, 0.001, 'it moved %.1f mm after it was put down' % (1000 * moved))
 
 
 if __name__ == '__main__':
