@@ -189,7 +189,10 @@ int ContactImpulses::findContacts(BodyList& bodies, const std::vector<PlacedShap
   sides_.resize(touches_.size() + between);
   for (size_t i = 0; i < touches_.size(); ++i) {
     const ObstacleTouch& t = touches_[i];
-    sides_[i] = {Side{t.body, pointOf(t), cornersOf(t)}, Side{}};
+    const SurfacePoint point = pointOf(t);
+    // A point mostly on held nodes is the holds' to keep out (see BodyContact::kMovable).
+    const bool moves = participants_[t.body]->movable(point) >= BodyContact::kMovable;
+    sides_[i] = {Side{t.body, point, cornersOf(t), 1.0, moves}, Side{}};
   }
   for (int j = 0; j < between; ++j) {
     const BodyContact::Contact& c = between_->contacts()[j];

@@ -18,8 +18,10 @@
 // With contact between bodies (core/contact/body_contact.h) in the same problem: its detection
 // finds the pairs of points, each a contact whose two sides are points of bodies (one body twice
 // for a body touching itself), and whose Delassus blocks are the sums of both sides' answers,
-// signed by the side; the bodies push through the same participants. A side on held nodes
-// (BodyContact::kMovable) neither takes impulses nor feels the others' in the problem.
+// signed by the side; the bodies push through the same participants. A point that lies mostly on
+// held nodes (BodyContact::kMovable), with an obstacle or another body, neither takes impulses nor
+// feels the others' in the problem: its free nodes alone would take 1 / weight^2 the impulse, and
+// be flung (a block held by grasp attachments had a node thrown 30 cm by a finger's edge).
 //
 // Each contact starts the solve from its impulse of the last step when the same point touched
 // the same obstacle then. Storage is sized once per body and grows only while more points touch
