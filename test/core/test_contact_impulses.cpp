@@ -162,6 +162,14 @@ dc::PlacedShape boxAt(const std::string& name, const Eigen::Vector3d& size,
   return box;
 }
 
+/// Two pads of `size` beside the cube, 5 mm off its sides, their centres at height `centre`.
+void addPads(dc::SceneSpec& spec, const Eigen::Vector3d& size, double centre) {
+  for (double side : {-1.0, 1.0}) {
+    spec.obstacles.push_back(boxAt(side < 0 ? "left" : "right", size,
+                                   {side * (0.5 * kSide + 0.5 * size.x() + 0.005), 0, centre}));
+  }
+}
+
 /// 0 to 1 over s = 0..steps, a cosine ramp.
 double ramp(int s, int steps) { return 0.5 - 0.5 * std::cos(M_PI * std::min(s, steps) / steps); }
 
@@ -303,9 +311,7 @@ TEST(ContactImpulses, FingersOpeningBesideACubeLetItGo) {
   for (double friction : {0.5, 0.8}) {
     dc::SceneSpec spec = cubeOnTable(friction);
     const Eigen::Vector3d pad(0.01, 0.04, 0.04);
-    const double tip = 0.001 + 0.5 * pad.z();
-    spec.obstacles.push_back(boxAt("left", pad, {-0.5 * kSide - 0.5 * pad.x() - 0.005, 0, tip}));
-    spec.obstacles.push_back(boxAt("right", pad, {0.5 * kSide + 0.5 * pad.x() + 0.005, 0, tip}));
+    addPads(spec, pad, 0.001 + 0.5 * pad.z());
     dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
     std::vector<dc::StepReport> reports;
     for (int s = 0; s < 100; ++s) sim.step(reports);
@@ -350,8 +356,7 @@ TEST(ContactImpulses, EveryContactMovesAsTheSolveSaid) {
   dc::SceneSpec spec = cubeOnTable(0.5);
   const Eigen::Vector3d pad(0.01, 0.04, 0.04);
   const double tip = 0.01 + 0.5 * pad.z();
-  spec.obstacles.push_back(boxAt("left", pad, {-0.5 * kSide - 0.5 * pad.x() - 0.005, 0, tip}));
-  spec.obstacles.push_back(boxAt("right", pad, {0.5 * kSide + 0.5 * pad.x() + 0.005, 0, tip}));
+  addPads(spec, pad, tip);
   dc::Simulation sim = deformable_sim::test::boxMeshSimulation(spec);
   std::vector<dc::StepReport> reports;
   for (int s = 0; s < 50; ++s) sim.step(reports);
