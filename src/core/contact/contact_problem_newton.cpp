@@ -4,7 +4,7 @@
 // rows (I - A_i) E_i - B_i W_i. (E_i picks contact i, W_i its row of W.) A contact that does not
 // push has A_i = B_i = 0: its step is plain, Δ_i = U_i - λ_i, and only the pushing contacts are
 // left to solve for, densely.
-#include <Eigen/LU>
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 
@@ -19,16 +19,42 @@ constexpr int kMaxHalvings = 10;
 constexpr double kNewtonAim = 0.1;
 /// Armijo's fraction: a step of length α must lower the squared error by at least this times α.
 constexpr double kSufficientDecrease = 1e-4;
+
+/// Solves a x = b for the leading n rows and columns, by Gaussian elimination with partial
+/// pivoting, in place: a is overwritten, b becomes x. False when a pivot is zero or not finite.
+/// Written out because Eigen's PartialPivLU goes blocked past 16 rows and its product, run in
+/// parallel by OpenMP, allocates its work space at every call: a solve of the step must not.
+bool solveInPlace(Eigen::MatrixXd& a, Eigen::VectorXd& b, int n) {
+  for (int k = 0; k < n; ++k) {
+    int pivot = k;
+    a.col(k).segment(k, n - k).cwiseAbs().maxCoeff(&pivot);
+    pivot += k;
+    if (!(std::abs(a(pivot, k)) > 0.0) || !std::isfinite(a(pivot, k))) return false;
+    if (pivot != k) {
+      a.row(k).head(n).swap(a.row(pivot).head(n));
+      std::swap(b[k], b[pivot]);
+    }
+    for (int i = k + 1; i < n; ++i) {
+      const double factor = a(i, k) / a(k, k);
+      if (factor == 0.0) continue;
+      a.row(i).segment(k + 1, n - k - 1) -= factor * a.row(k).segment(k + 1, n - k - 1);
+      b[i] -= factor * b[k];
+    }
+  }
+  for (int k = n - 1; k >= 0; --k) {
+    b[k] = (b[k] - a.row(k).segment(k + 1, n - k - 1).dot(b.segment(k + 1, n - k - 1))) / a(k, k);
+  }
+  return true;
+}
 }  // namespace
 
 struct ContactProblem::NewtonSystem {
-  /// A dense system of a fixed size, allocated once: the pushing contacts' rows, then identity.
-  /// Sizes double from one to the next, so a step costs at most 8 times its own size's.
+  /// A dense system of a fixed size, allocated once, of which the pushing contacts' rows and
+  /// columns are solved. Sizes double from one to the next.
   struct Sized {
-    explicit Sized(int rows) : jacobian(rows, rows), lu(rows), right(rows), solution(rows) {}
+    explicit Sized(int rows) : jacobian(rows, rows), right(rows) {}
     Eigen::MatrixXd jacobian;
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-    Eigen::VectorXd right, solution;
+    Eigen::VectorXd right;  ///< and, solved, the step
   };
   NewtonSystem() {
     for (int contacts = 8; contacts <= kMaxNewtonContacts; contacts *= 2)
@@ -89,9 +115,10 @@ bool ContactProblem::newtonStep() {
   }
   if (pushing > kMaxNewtonContacts) return false;
   if (pushing == 0) return true;
-  NewtonSystem::Sized& system = newton_space_.get().holding(3 * pushing);
-  system.jacobian.setIdentity();
-  system.right.setZero();
+  const int rows = 3 * pushing;
+  NewtonSystem::Sized& system = newton_space_.get().holding(rows);
+  system.jacobian.topLeftCorner(rows, rows).setZero();
+  system.right.head(rows).setZero();
   for (int i = 0; i < size(); ++i) {
     const int s = slot_[i];
     if (s < 0) continue;
@@ -108,11 +135,11 @@ bool ContactProblem::newtonStep() {
     }
     system.right.segment<3>(3 * s) = right;
   }
-  system.lu.compute(system.jacobian);
-  system.solution.noalias() = system.lu.solve(system.right);
-  if (!system.solution.allFinite()) return false;
+  if (!solveInPlace(system.jacobian, system.right, rows) || !system.right.head(rows).allFinite()) {
+    return false;
+  }
   for (int i = 0; i < size(); ++i) {
-    if (slot_[i] >= 0) step_[i] = system.solution.segment<3>(3 * slot_[i]);
+    if (slot_[i] >= 0) step_[i] = system.right.segment<3>(3 * slot_[i]);
   }
   return true;
 }
