@@ -174,6 +174,40 @@ TEST(BodySurface, FeatureEdgesAreTheConvexRidgesOnly) {
   }
 }
 
+// Out of the body at a corner: along its face's normal inside a face, between its faces' normals
+// on an edge or a corner (the faces' triangles, weighted by area, summed).
+TEST(BodySurface, OutwardAtACornerIsTheNormalOfTheFacesAroundIt) {
+  const dc::Mesh box = dc::makeBoxMesh({0, 0, 0}, {0.2, 0.2, 0.1}, {2, 2, 1});
+  Eigen::VectorXd x(3 * box.numNodes());
+  for (int i = 0; i < box.numNodes(); ++i) x.segment<3>(3 * i) = box.positions[i];
+  dc::BodySurface surface(box, x, false);
+  surface.sweep(x, 0.0);
+  const Eigen::Vector3d centre(0.1, 0.1, 0.05);
+  for (int i : surface.nodes()) {
+    const Eigen::Vector3d p = box.positions[i], out = surface.outwardAt(i).normalized();
+    // Each axis it points along is one whose faces the corner lies on.
+    for (int axis = 0; axis < 3; ++axis) {
+      const double offset = p[axis] - centre[axis];
+      const bool on_face = std::abs(std::abs(offset) - (axis == 2 ? 0.05 : 0.1)) < 1e-12;
+      if (on_face) {
+        EXPECT_GT(offset > 0.0 ? out[axis] : -out[axis], 0.25) << i;
+      } else {
+        EXPECT_NEAR(out[axis], 0.0, 1e-12) << i;
+      }
+    }
+  }
+  // The middle of the top: straight up, the sum of its triangles' twice-areas (two to six of the
+  // top's eight, each 0.005 m^2).
+  for (int i = 0; i < box.numNodes(); ++i) {
+    if (!box.positions[i].isApprox(Eigen::Vector3d(0.1, 0.1, 0.1))) continue;
+    const Eigen::Vector3d up = surface.outwardAt(i);
+    EXPECT_NEAR(up.head<2>().norm(), 0.0, 1e-15);
+    const double triangles = up.z() / 0.01;
+    EXPECT_NEAR(triangles, std::round(triangles), 1e-12);
+    EXPECT_GE(triangles, 2.0);
+  }
+}
+
 namespace {
 
 using deformable_sim::test::centreOfNodes;

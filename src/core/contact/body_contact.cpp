@@ -85,6 +85,9 @@ void BodyContact::reserveContacts() {
     const int count = corners.empty() ? 0 : *std::max_element(corners.begin(), corners.end()) + 1;
     warm_[b].assign(count, Warm{});
   }
+  node_contact_.resize(surfaces_.size());
+  for (size_t b = 0; b < surfaces_.size(); ++b) node_contact_[b].assign(warm_[b].size(), -1);
+  twice_found_.reserve(contacts_.capacity());
   corner_kept_.resize(surfaces_.size());
   kept_corners_.resize(surfaces_.size());
   for (size_t b = 0; b < surfaces_.size(); ++b) {
@@ -150,16 +153,29 @@ bool BodyContact::touches(int a, int b) const {
   return a == b ? bool(with_self_[a]) : with_bodies_[a] && with_bodies_[b];
 }
 
+bool BodyContact::prefer(const Candidate& hit, const Candidate& best, double tie) const {
+  if (hit.rank != best.rank) return hit.rank < best.rank;
+  if (!settings_.one_problem || std::abs(hit.depth - best.depth) > tie) {
+    return hit.depth < best.depth;
+  }
+  if (std::abs(hit.facing - best.facing) > kFacingTie) return hit.facing > best.facing;
+  return hit.last && !best.last;
+}
+
 void BodyContact::findContact(int a, int i, std::vector<Contact>& found) const {
   const BodySurface& mine = *surfaces_[a];
   SweptNode node{mine.start().segment<3>(3 * i), mine.now(i)};
   Contact best;
-  double best_depth = std::numeric_limits<double>::infinity();
-  int best_rank = 3;
+  Candidate chosen;
+  // Out of the body at the node (only the one problem weighs how squarely it faces a triangle).
+  const Eigen::Vector3d out =
+      settings_.one_problem ? mine.outwardAt(i).normalized() : Eigen::Vector3d::Zero();
+  const Warm& last = warm_[a][i];
   for (int b = 0; b < static_cast<int>(surfaces_.size()); ++b) {
     if (!surfaces_[b] || !touches(a, b)) continue;
     const BodySurface& other = *surfaces_[b];
     const double skin = tolerance(a, b);
+    const double tie = settings_.one_problem ? kTie * skin : 0.0;
     Box3 box(node.start.cwiseMin(node.end), node.start.cwiseMax(node.end));
     box = Box3(box.min().array() - skin, box.max().array() + skin);
     other.tree().query(box, [&](int t) {
@@ -176,12 +192,13 @@ void BodyContact::findContact(int a, int i, std::vector<Contact>& found) const {
       NodeTriangleHit hit;
       const double shallow = kShallowFraction * other.shortestEdge();
       if (!nodeHitsTriangle(node, swept, skin, shallow, &hit)) return;
-      // A triangle the node came through beats one it only ended behind, which beats one it is
-      // only about to touch; among equals, the nearest.
-      const int rank = hit.crossed ? 0 : hit.depth > 0.0 ? 1 : 2;
-      if (rank != best_rank ? rank > best_rank : !(std::abs(hit.depth) < best_depth)) return;
-      best_rank = rank;
-      best_depth = std::abs(hit.depth);
+      Candidate candidate;
+      candidate.rank = !(hit.depth > tie) ? 2 : hit.crossed ? 0 : 1;
+      candidate.depth = std::abs(hit.depth);
+      candidate.facing = -hit.normal.dot(out);
+      candidate.last = last.triangle_body == b && last.corners == tri;
+      if (!prefer(candidate, chosen, tie)) return;
+      chosen = candidate;
       best.triangle_body = b;
       best.triangle = other.trianglePoint(tri, {hit.weights[0], hit.weights[1], hit.weights[2]});
       best.triangle_corners = {
@@ -189,7 +206,7 @@ void BodyContact::findContact(int a, int i, std::vector<Contact>& found) const {
       best.normal = hit.normal;
     });
   }
-  if (best_depth == std::numeric_limits<double>::infinity()) return;
+  if (chosen.rank == 3) return;
   best.node_body = a;
   best.node_corners = {1, {i, 0, 0}, {1.0, 0.0, 0.0}};
   best.node = mine.corner(i);
@@ -386,8 +403,9 @@ void BodyContact::keepForNextStep() {
   }
   for (const Contact& c : contacts_) {
     if (c.node_corners.count != 1) continue;
-    warm_[c.node_body][c.node_corners.ids[0]] = {c.triangle_body,
-                                                 c.impulse * c.normal + c.friction};
+    const std::array<int, 3>& t = c.triangle_corners.ids;
+    warm_[c.node_body][c.node_corners.ids[0]] = {
+        c.triangle_body, {t[0], t[1], t[2]}, c.impulse * c.normal + c.friction};
   }
 }
 
@@ -513,6 +531,57 @@ void BodyContact::findContacts(BodyList& bodies, bool new_step, int threads) {
   }
 }
 
+void BodyContact::dropTwiceFound() {
+  const int n = static_cast<int>(contacts_.size());
+  for (int i = 0; i < n; ++i) {
+    const Contact& c = contacts_[i];
+    if (c.node_corners.count == 1) node_contact_[c.node_body][c.node_corners.ids[0]] = i;
+  }
+  // The node of contact c's triangle that c sits on, if any, and that node's own contact.
+  const auto partner = [&](const Contact& c) {
+    for (int k = 0; k < c.triangle_corners.count; ++k) {
+      if (c.triangle_corners.weights[k] >= kOnTheNode)
+        return node_contact_[c.triangle_body][c.triangle_corners.ids[k]];
+    }
+    return -1;
+  };
+  const auto onNodes = [](const SurfaceCorners& edge) {
+    return std::max(edge.weights[0], edge.weights[1]) >= kOnTheNode;
+  };
+  // How squarely contact c's node faces the triangle it found (1: head on).
+  const auto facing = [&](const Contact& c) {
+    const Eigen::Vector3d out = surfaces_[c.node_body]->outwardAt(c.node_corners.ids[0]);
+    return out.norm() > 0.0 ? -c.normal.dot(out.normalized()) : 0.0;
+  };
+  const auto hadLastStep = [&](const Contact& c) {
+    return warm_[c.node_body][c.node_corners.ids[0]].triangle_body == c.triangle_body;
+  };
+  twice_found_.assign(n, 0);
+  for (int i = 0; i < n; ++i) {
+    const Contact& c = contacts_[i];
+    if (c.node_corners.count == 2) {  // edges that meet at their ends: nodes that touch
+      twice_found_[i] = onNodes(c.node_corners) && onNodes(c.triangle_corners);
+      continue;
+    }
+    const int j = partner(c);
+    if (j <= i || contacts_[j].triangle_body != c.node_body || partner(contacts_[j]) != i) continue;
+    // Of the pair, the one whose node faces its triangle more squarely; if about as squarely,
+    // the one kept last step, else the first found.
+    const Contact& d = contacts_[j];
+    const bool take_d = std::abs(facing(d) - facing(c)) > kFacingTie
+                            ? facing(d) > facing(c)
+                            : hadLastStep(d) && !hadLastStep(c);
+    twice_found_[take_d ? i : j] = 1;
+  }
+  int kept = 0;
+  for (int i = 0; i < n; ++i) {
+    const Contact& c = contacts_[i];
+    if (c.node_corners.count == 1) node_contact_[c.node_body][c.node_corners.ids[0]] = -1;
+    if (!twice_found_[i]) contacts_[kept++] = c;
+  }
+  contacts_.resize(kept);
+}
+
 void BodyContact::countContacts(std::vector<StepReport>& reports) const {
   for (const Contact& c : contacts_) {
     if (c.node_body == c.triangle_body) {
@@ -561,6 +630,7 @@ void BodyContact::addContactForces(double dt) {
 void BodyContact::find(BodyList& bodies, double dt, int threads, std::vector<StepReport>& reports) {
   dt_ = dt;
   findContacts(bodies, true, threads);
+  dropTwiceFound();
   countContacts(reports);
   startLoads();
   for (Contact& c : contacts_) c.start_gap = startGap(c);

@@ -68,6 +68,17 @@ void BodySurface::build(const std::vector<Eigen::Vector3d>& rest, const Eigen::V
   }
   std::sort(nodes_.begin(), nodes_.end());
   nodes_.erase(std::unique(nodes_.begin(), nodes_.end()), nodes_.end());
+  // A counting sort of the triangles by corner.
+  triangles_at_.assign(rest.size() + 1, 0);
+  for (const Triangle& t : triangles_) {
+    for (int c : t) ++triangles_at_[c + 1];
+  }
+  for (size_t c = 0; c < rest.size(); ++c) triangles_at_[c + 1] += triangles_at_[c];
+  corner_triangles_.resize(triangles_at_.back());
+  std::vector<int> placed(triangles_at_.begin(), triangles_at_.end() - 1);
+  for (size_t k = 0; k < triangles_.size(); ++k) {
+    for (int c : triangles_[k]) corner_triangles_[placed[c]++] = static_cast<int>(k);
+  }
   for (const Triangle& t : triangles_) boxes_.push_back(boxOf(corners, t));
   tree_.build(boxes_);
   findEdges(rest);
@@ -166,6 +177,15 @@ void BodySurface::sweep(const Eigen::VectorXd& positions, double margin) {
     edge_boxes_[k] = Box3(box.min() - widen, box.max() + widen);
   }
   edge_tree_.refit(edge_boxes_);
+}
+
+Eigen::Vector3d BodySurface::outwardAt(int c) const {
+  Eigen::Vector3d outward = Eigen::Vector3d::Zero();
+  for (int k = triangles_at_[c]; k < triangles_at_[c + 1]; ++k) {
+    const Triangle& t = triangles_[corner_triangles_[k]];
+    outward += (now(t[1]) - now(t[0])).cross(now(t[2]) - now(t[0]));
+  }
+  return outward;
 }
 
 bool BodySurface::adjacent(int a, int b) const {

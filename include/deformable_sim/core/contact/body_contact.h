@@ -21,6 +21,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -94,6 +95,17 @@ class BodyContact {
   /// its free nodes alone would take impulses and shifts of 1 / weight times what it needs (two
   /// blocks side by side on a floor, where a node touches the other's bottom edge, exploded).
   static constexpr double kMovable = 0.2;
+  /// A touch is of two nodes (see dropTwiceFound()) when each side's point puts at least this
+  /// weight on a node.
+  static constexpr double kOnTheNode = 0.9;
+  /// Two triangles a node is behind are about as near when their depths differ by less than this
+  /// fraction of the pair's tolerance: the node then takes the one it faces more squarely, not
+  /// whichever came first (a block's corner on the edge of the one beside it took its bottom
+  /// face, pressing down a block that stands on the floor).
+  static constexpr double kTie = 1.0;
+  /// ... and faces one more squarely only by more than this (in cosines): triangles of one face,
+  /// bent a little, keep the first found, so a node keeps its triangle from step to step.
+  static constexpr double kFacingTie = 0.1;
 
   /// A contact found: a point of one body's surface (the node side: a corner, or a point of an
   /// edge) against a point of another's or its own (the triangle side: a triangle's point, or an
@@ -125,8 +137,8 @@ class BodyContact {
   /// The participant through which body b takes part (nullptr: it does not). The one problem
   /// pushes through it too: a body answers through one participant a step.
   ContactParticipant* participant(int b) const { return participants_[b].get(); }
-  /// After every body's free step of dt: begins the participants, finds the contacts and counts
-  /// them into reports. Allocates nothing.
+  /// After every body's free step of dt: begins the participants, finds the contacts (each touch
+  /// once: see dropTwiceFound()) and counts them into reports. Allocates nothing.
   void find(BodyList& bodies, double dt, int threads, std::vector<StepReport>& reports);
   const std::vector<Contact>& contacts() const { return contacts_; }
   /// The impulse on contact i's node side in the last step (world, N s) where the same corner
@@ -148,11 +160,28 @@ class BodyContact {
   /// Sweeps the surfaces from the step's start to the bodies' positions now and finds every
   /// contact; `new_step`: the bodies have just stepped (else a later round of the same step).
   void findContacts(BodyList& bodies, bool new_step, int threads);
+  /// Keeps one finding of each touch of two nodes: a node on (nearly) a node of the other body
+  /// whose own contact is on (nearly) the first (meshes whose nodes meet, as equal blocks
+  /// stacked or side by side), and edges that meet at their ends. Found twice, a touch gives the
+  /// contact problem rows of W that are equal, or whose normals disagree (one block's side face,
+  /// the other's bottom), which no solve can share out: its sweeps crawl, its Newton steps are
+  /// singular. Of two node contacts it keeps the one whose node faces its triangle more squarely;
+  /// edges at their ends are left to the nodes' contacts.
+  void dropTwiceFound();
   void countContacts(std::vector<StepReport>& reports) const;
   /// Starts the step's loads: the contacts just found, where and how deep.
   void startLoads();
   /// Adds the velocity passes' impulses over dt to the loads.
   void addContactForces(double dt);
+  /// A triangle a node is behind, as findContact() weighs it.
+  struct Candidate {
+    int rank = 3;  ///< 0: came through it; 1: ended behind it; 2: touches it (3: none yet)
+    double depth = std::numeric_limits<double>::infinity();  ///< m, either side
+    double facing = -2.0;  ///< how squarely the node faces it: -(its normal . the node's outward)
+    bool last = false;     ///< the node touched it last step
+  };
+  /// Whether a node takes `hit` over `best` (`tie`: see kTie).
+  bool prefer(const Candidate& hit, const Candidate& best, double tie) const;
   /// The contact of surface node i of body a, if it ended the step behind some triangle, into
   /// `found`.
   void findContact(int a, int i, std::vector<Contact>& found) const;
@@ -200,6 +229,7 @@ class BodyContact {
   /// A node contact's impulse (world, N s) and the body it touched, kept for the next step.
   struct Warm {
     int triangle_body = -1;
+    Triangle corners{-1, -1, -1};  ///< of the triangle it touched
     Eigen::Vector3d impulse = Eigen::Vector3d::Zero();
   };
   std::vector<std::vector<Warm>> warm_;  ///< per body, per surface corner; sized once
@@ -208,6 +238,10 @@ class BodyContact {
   std::vector<std::vector<int>> corner_kept_;
   std::vector<std::vector<int>> kept_corners_;
   static constexpr int kNotKept = -2;
+  /// Per body, per surface corner: the index of its node contact in contacts_ (-1: none), while
+  /// dropTwiceFound() runs; and per contact, whether it is dropped. Sized once.
+  std::vector<std::vector<int>> node_contact_;
+  std::vector<char> twice_found_;
   double largest_change_ = 0.0;  ///< m/s, in the current velocity pass
   int passes_ = 0;               ///< velocity passes in the last step
 };

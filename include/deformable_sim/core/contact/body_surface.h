@@ -76,6 +76,9 @@ class BodySurface {
   const Eigen::VectorXd& nodeStart() const { return start_; }
   /// Where corner c was at the last sweep (its end).
   Eigen::Vector3d now(int c) const { return corners_now_.segment<3>(3 * c); }
+  /// Out of the body at corner c at the last sweep: the sum of its triangles' normals, each as
+  /// long as twice its area (zero for a corner on no triangle).
+  Eigen::Vector3d outwardAt(int c) const;
   const AabbTree& tree() const { return tree_; }           ///< over the swept triangles
   const AabbTree& edgeTree() const { return edge_tree_; }  ///< over the swept edges
 
@@ -96,6 +99,8 @@ class BodySurface {
   std::vector<SurfaceEdge> edges_;
   std::vector<std::array<bool, 3>> folds_;  ///< see fold()
   std::vector<int> nodes_;
+  /// The triangles at corner c: corner_triangles_[triangles_at_[c], triangles_at_[c + 1]).
+  std::vector<int> triangles_at_, corner_triangles_;
   double size_ = 0.0, shortest_edge_ = 0.0;
   Eigen::VectorXd start_;  ///< node positions at the step's start
   /// An embedded surface: each vertex on its cell's nodes, and the vertices at the step's start.
