@@ -37,11 +37,7 @@ void WholeBodyParticipant::end() {
 }
 
 Eigen::Vector3d WholeBodyParticipant::arm(const SurfacePoint& point) const {
-  Eigen::Vector3d a = Eigen::Vector3d::Zero();
-  for (int k = 0; k < point.count; ++k) {
-    a += point.weights[k] * body_->restPositions().segment<3>(3 * point.nodes[k]);
-  }
-  return a - rest_centre_;
+  return point.of(body_->restPositions()) - rest_centre_;
 }
 
 Eigen::Vector3d WholeBodyParticipant::position(const SurfacePoint& point) const {

@@ -22,27 +22,10 @@ namespace {
 /// triangle within the step. A quarter edge is less than any part of the body is thick.
 constexpr double kShallowFraction = 0.25;
 
-/// Where the point of `body` is now.
-Eigen::Vector3d pointAt(const Body& body, const SurfacePoint& point) {
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();
-  for (int k = 0; k < point.count; ++k) {
-    x += point.weights[k] * body.positions().segment<3>(3 * point.nodes[k]);
-  }
-  return x;
-}
-
 /// How far the contact's node side is behind its triangle side now, m (zero: not behind).
 double depthLeft(const BodyList& bodies, const BodyContact::Contact& c) {
-  return std::max(0.0, -c.normal.dot(pointAt(bodies[c.node_body], c.node) -
-                                     pointAt(bodies[c.triangle_body], c.triangle)));
-}
-
-Eigen::Vector3d startOf(const BodySurface& surface, const SurfacePoint& point) {
-  Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (int k = 0; k < point.count; ++k) {
-    p += point.weights[k] * surface.nodeStart().segment<3>(3 * point.nodes[k]);
-  }
-  return p;
+  return std::max(0.0, -c.normal.dot(c.node.of(bodies[c.node_body].positions()) -
+                                     c.triangle.of(bodies[c.triangle_body].positions())));
 }
 
 }  // namespace
@@ -326,8 +309,8 @@ void BodyContact::measureDepths(const BodyList& bodies) {
 }
 
 double BodyContact::startGap(const Contact& c) const {
-  return c.normal.dot(startOf(*surfaces_[c.node_body], c.node) -
-                      startOf(*surfaces_[c.triangle_body], c.triangle));
+  return c.normal.dot(c.node.of(surfaces_[c.node_body]->nodeStart()) -
+                      c.triangle.of(surfaces_[c.triangle_body]->nodeStart()));
 }
 
 void BodyContact::apply(Contact& c, const Eigen::Vector3d& impulse) {
@@ -378,8 +361,9 @@ void BodyContact::update(Contact& c, double dt) {
   largest_change_ = std::max(largest_change_, (c.compliance * change).norm());
 }
 
-Eigen::Vector3d BodyContact::lastImpulse(int i) const {
-  const Contact& c = contacts_[i];
+Eigen::Vector3d BodyContact::lastImpulse(int i) const { return lastImpulseOf(contacts_[i]); }
+
+Eigen::Vector3d BodyContact::lastImpulseOf(const Contact& c) const {
   if (c.node_corners.count != 1) return Eigen::Vector3d::Zero();  // edges that meet
   const Warm& last = warm_[c.node_body][c.node_corners.ids[0]];
   return last.triangle_body == c.triangle_body ? last.impulse : Eigen::Vector3d::Zero();
@@ -387,7 +371,7 @@ Eigen::Vector3d BodyContact::lastImpulse(int i) const {
 
 void BodyContact::startFromLastStep(Contact& c) {
   // Last step's impulse on the pair, turned into this step's normal and cone.
-  const Eigen::Vector3d last = lastImpulse(static_cast<int>(&c - contacts_.data()));
+  const Eigen::Vector3d last = lastImpulseOf(c);
   c.impulse = std::max(0.0, c.normal.dot(last));
   Eigen::Vector3d friction = last - c.normal.dot(last) * c.normal;
   const double cone = settings_.friction * c.impulse;

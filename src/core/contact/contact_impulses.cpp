@@ -79,13 +79,8 @@ void ContactImpulses::placeCorners(int b, const FiniteElementBody& body) {
   const Eigen::VectorXd &x = body.stepStart(), &v = body.velocities();
   for (int c : surface.nodes()) {
     const SurfacePoint point = surface.corner(c);
-    Eigen::Vector3d start = Eigen::Vector3d::Zero(), velocity = Eigen::Vector3d::Zero();
-    for (int k = 0; k < point.count; ++k) {
-      start += point.weights[k] * x.segment<3>(3 * point.nodes[k]);
-      velocity += point.weights[k] * v.segment<3>(3 * point.nodes[k]);
-    }
-    starts_[b][c] = start;
-    velocities_[b][c] = velocity;
+    starts_[b][c] = point.of(x);
+    velocities_[b][c] = point.of(v);
   }
 }
 
@@ -121,20 +116,11 @@ int ContactImpulses::keepSide(const Side& side, bool with_sums) {
 
 Eigen::Vector3d ContactImpulses::freeStep(const SurfacePoint& point, const FiniteElementBody& body,
                                           double dt) {
-  Eigen::Vector3d step = Eigen::Vector3d::Zero();
-  for (int k = 0; k < point.count; ++k) {
-    step += point.weights[k] * dt * body.velocities().segment<3>(3 * point.nodes[k]);
-  }
-  return step;
+  return dt * point.of(body.velocities());
 }
 
 Eigen::Vector3d ContactImpulses::pointNow(const ObstacleTouch& touch, const Body& body) const {
-  const SurfacePoint point = pointOf(touch);
-  Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (int k = 0; k < point.count; ++k) {
-    p += point.weights[k] * body.positions().segment<3>(3 * point.nodes[k]);
-  }
-  return p;
+  return pointOf(touch).of(body.positions());
 }
 
 void ContactImpulses::resolve(BodyList& bodies, const std::vector<PlacedShape>& obstacles,
@@ -247,11 +233,7 @@ Eigen::Vector3d ContactImpulses::velocityNow(int i, const BodyList& bodies) cons
   Eigen::Vector3d v =
       i < touches ? Eigen::Vector3d(-touches_[i].obstacle_velocity) : Eigen::Vector3d::Zero();
   for (const Side& side : sides_[i]) {
-    if (side.body < 0) continue;
-    const Eigen::VectorXd& velocities = bodies[side.body].velocities();
-    for (int k = 0; k < side.point.count; ++k) {
-      v += side.sign * side.point.weights[k] * velocities.segment<3>(3 * side.point.nodes[k]);
-    }
+    if (side.body >= 0) v += side.sign * side.point.of(bodies[side.body].velocities());
   }
   return problem_.frame(i).transpose() * v;
 }

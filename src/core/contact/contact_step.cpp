@@ -1,7 +1,6 @@
 #include "deformable_sim/core/contact/contact_step.h"
 
 #include <algorithm>
-#include <functional>
 
 #include "deformable_sim/core/base/parallel_for.h"
 #include "deformable_sim/core/base/wall_clock.h"
@@ -105,16 +104,6 @@ void ContactStep::resolveBetweenBodies(BodyList& bodies, double dt, int threads,
   shareTime(
       secondsSince(start), [&](int b) { return body_contact_->takesPart(b); },
       &StepTimes::body_contact, reports);
-}
-
-void ContactStep::shareTime(double seconds, const std::function<bool(int)>& takes_part,
-                            double StepTimes::*part, std::vector<StepReport>& reports) {
-  const int n = static_cast<int>(reports.size());
-  int taking_part = 0;
-  for (int b = 0; b < n; ++b) taking_part += takes_part(b);
-  for (int b = 0; b < n; ++b) {
-    if (takes_part(b)) reports[b].times.*part += seconds / taking_part;
-  }
 }
 
 void ContactStep::forget(int b) {

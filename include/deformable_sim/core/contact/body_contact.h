@@ -203,6 +203,8 @@ class BodyContact {
   int keepPoint(int b, const SurfaceCorners& corners);
   /// One Gauss-Seidel update of the pair: its normal impulse, then its friction, applied at once.
   void update(Contact& c, double dt);
+  /// What lastImpulse() says of contact c.
+  Eigen::Vector3d lastImpulseOf(const Contact& c) const;
   /// Gives a node's contact the impulse it had last step on the same body, if it had one.
   void startFromLastStep(Contact& c);
   /// Keeps the impulses of the node contacts for the next step's start.

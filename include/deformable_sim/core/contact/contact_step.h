@@ -3,10 +3,12 @@
 // obstacles; after, the bodies meet one another (detection, response with friction, separation)
 // while those points are still held, so that what presses on a body goes through it to the
 // obstacles under it; then each body lets go of what would pull, and the obstacles have the last
-// say: what is inside them is put back out (projection).
+// say: what is inside them is put back out (projection). With `one_problem`
+// (core/contact/contact_impulses.h) there are no holds: after the bodies' free steps, every
+// contact, with obstacles and between bodies, is found and solved as one problem, and the bodies
+// take its impulses.
 #pragma once
 
-#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -64,9 +66,18 @@ class ContactStep {
   void resolveBetweenBodies(BodyList& bodies, double dt, int threads,
                             std::vector<StepReport>& reports);
 
-  /// `seconds` shared equally among the bodies that `takes_part`, added to their times' `part`.
-  static void shareTime(double seconds, const std::function<bool(int)>& takes_part,
-                        double StepTimes::*part, std::vector<StepReport>& reports);
+  /// `seconds` shared equally among the bodies b that `takes_part(b)`, added to their times'
+  /// `part`.
+  template <typename TakesPart>
+  static void shareTime(double seconds, const TakesPart& takes_part, double StepTimes::*part,
+                        std::vector<StepReport>& reports) {
+    const int n = static_cast<int>(reports.size());
+    int taking_part = 0;
+    for (int b = 0; b < n; ++b) taking_part += takes_part(b);
+    for (int b = 0; b < n; ++b) {
+      if (takes_part(b)) reports[b].times.*part += seconds / taking_part;
+    }
+  }
 
   ContactSettings settings_;
   std::vector<std::optional<ContactState>> states_;  ///< per body: its obstacle contact

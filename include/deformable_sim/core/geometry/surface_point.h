@@ -3,6 +3,7 @@
 // cell's nodes, trilinear weights) or a point of one of its triangles (up to three cells).
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 
 namespace deformable_sim::core {
@@ -17,6 +18,14 @@ struct SurfacePoint {
   /// answers): a vertex of an embedded surface, whose cell has nodes outside the surface that
   /// weigh next to nothing and, answering by their own masses, would take nearly all of it.
   bool shifts_cells = false;
+
+  /// The point's value in a field given node by node, 3 per node (positions, velocities): the
+  /// weighted sum of its nodes' values.
+  Eigen::Vector3d of(const Eigen::VectorXd& field) const {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int k = 0; k < count; ++k) sum += weights[k] * field.segment<3>(3 * nodes[k]);
+    return sum;
+  }
 
   /// Adds `weight` times `other` (merging the nodes the two share).
   void add(const SurfacePoint& other, double weight) {
