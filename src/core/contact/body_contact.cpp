@@ -537,10 +537,11 @@ void BodyContact::dropTwiceFound() {
     const Eigen::Vector3d out = surfaces_[c.node_body]->outwardAt(c.node_corners.ids[0]);
     return out.norm() > 0.0 ? -c.normal.dot(out.normalized()) : 0.0;
   };
+  // Whether c's node touched c's other body last step (on whichever triangle).
   const auto hadLastStep = [&](const Contact& c) {
     return warm_[c.node_body][c.node_corners.ids[0]].triangle_body == c.triangle_body;
   };
-  twice_found_.assign(n, 0);
+  twice_found_.assign(contacts_.size(), 0);
   for (int i = 0; i < n; ++i) {
     const Contact& c = contacts_[i];
     if (c.node_corners.count == 2) {  // edges that meet at their ends: nodes that touch

@@ -98,10 +98,11 @@ class BodyContact {
   /// A touch is of two nodes (see dropTwiceFound()) when each side's point puts at least this
   /// weight on a node.
   static constexpr double kOnTheNode = 0.9;
-  /// Two triangles a node is behind are about as near when their depths differ by less than this
-  /// fraction of the pair's tolerance: the node then takes the one it faces more squarely, not
-  /// whichever came first (a block's corner on the edge of the one beside it took its bottom
-  /// face, pressing down a block that stands on the floor).
+  /// Under the one problem, a node behind a triangle by no more than this fraction of the pair's
+  /// tolerance only touches it (as one in front of it does), and two triangles it touches or is
+  /// behind are about as near when their depths differ by less: the node then takes the one it
+  /// faces more squarely, not whichever came first (a block's corner on the edge of the one
+  /// beside it took its bottom face, pressing down a block that stands on the floor).
   static constexpr double kTie = 1.0;
   /// ... and faces one more squarely only by more than this (in cosines): triangles of one face,
   /// bent a little, keep the first found, so a node keeps its triangle from step to step.
@@ -175,7 +176,9 @@ class BodyContact {
   void addContactForces(double dt);
   /// A triangle a node is behind, as findContact() weighs it.
   struct Candidate {
-    int rank = 3;  ///< 0: came through it; 1: ended behind it; 2: touches it (3: none yet)
+    /// 0: came through it; 1: ended behind it; 2: touches it, or (one problem) is behind it by
+    /// no more than kTie of the tolerance; 3: none yet.
+    int rank = 3;
     double depth = std::numeric_limits<double>::infinity();  ///< m, either side
     double facing = -2.0;  ///< how squarely the node faces it: -(its normal . the node's outward)
     bool last = false;     ///< the node touched it last step
