@@ -159,11 +159,15 @@ void SimNode::advance(int steps) {
   long recoveries = 0;  // the watchdog's (core::Simulation::step): counted, warned, diagnosed
   for (size_t b = 0; b < sim().bodies().size(); ++b) {
     recoveries += sim().recoveries(static_cast<int>(b));
-    if (status_.reports[b].recovered) {
+    const core::StepReport& report = status_.reports[b];
+    if (report.recovered) {
+      status_.recovery_from_leap = report.energy_leapt;
       ROS_WARN_THROTTLE(1.0,
-                        "body '%s': step %ld left a non-finite value; the watchdog restored the "
-                        "last good positions and stopped the body",
-                        sim().bodies()[b].name().c_str(), sim().stepCount());
+                        "body '%s': step %ld %s; the watchdog restored the last good positions "
+                        "and stopped the body",
+                        sim().bodies()[b].name().c_str(), sim().stepCount(),
+                        report.energy_leapt ? "gained far more energy than its inputs could give"
+                                            : "left a non-finite value");
     }
   }
   if (recoveries > status_.recoveries) last_recovery_ = ros::WallTime::now();

@@ -33,6 +33,8 @@ TEST(Health, WarnsOfRecoveriesMissedTolerancesAndLostRealTimeInThatOrder) {
   h = health(status);
   EXPECT_FALSE(h.ok);
   EXPECT_EQ(h.summary, "the watchdog undid a step that left a non-finite value");
+  status.recovery_from_leap = true;
+  EXPECT_EQ(health(status).summary, "the watchdog undid a step whose energy leapt past its inputs");
 }
 
 // The costliest part of the last step, summed over the bodies, against the tick's time a step.

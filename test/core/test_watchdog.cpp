@@ -1,6 +1,7 @@
 // The watchdog of Simulation::step: a step that leaves a non-finite value is undone.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -69,5 +70,32 @@ TEST(Watchdog, LeavesGoodStepsAlone) {
     sim.step(reports);
     EXPECT_FALSE(reports[0].recovered);
   }
+  EXPECT_EQ(sim.recoveries(0), 0);
+}
+
+// The energy check (core/session/energy_watch.h) judges a step by what could have put energy in:
+// a clamp yanked 5 cm in one step (its constraint forces work on the beam) and the beam then let
+// go (its elastic energy turning into motion) are inputs and releases, not leaps.
+TEST(Watchdog, EnergyCheckLeavesAYankedClampAndItsReleaseAlone) {
+  dc::Simulation sim = defaultSimulation();
+  dc::Body& body = sim.bodies()[0];
+  std::vector<int> clamp;
+  for (int i = 0; i < body.numNodes(); ++i) {
+    if (body.isConstrained(i)) clamp.push_back(i);
+  }
+  ASSERT_FALSE(clamp.empty());
+  std::vector<Eigen::Vector3d> lifted;
+  for (int i : clamp)
+    lifted.push_back(body.positions().segment<3>(3 * i) + Eigen::Vector3d(0, 0, 0.05));
+  std::vector<dc::StepReport> reports;
+  body.setNodeTargets(clamp, lifted);
+  double most = 0.0;
+  for (int s = 0; s < 100; ++s) {
+    if (s == 10) body.releaseNodes(clamp);
+    sim.step(reports);
+    EXPECT_FALSE(reports[0].recovered) << "step " << s;
+    most = std::max(most, body.elasticEnergy());
+  }
+  EXPECT_GT(most, 1e-3);  // really yanked: the beam bent by it
   EXPECT_EQ(sim.recoveries(0), 0);
 }

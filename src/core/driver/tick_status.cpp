@@ -37,7 +37,9 @@ Health health(const TickStatus& status) {
   }
   health.ok = false;
   if (status.recent_recovery) {
-    health.summary = "the watchdog undid a step that left a non-finite value";
+    health.summary = status.recovery_from_leap
+                         ? "the watchdog undid a step whose energy leapt past its inputs"
+                         : "the watchdog undid a step that left a non-finite value";
   } else if (!converged) {
     health.summary = "a solve did not reach its tolerance";
   } else if (!status.paused && status.slow) {

@@ -105,6 +105,7 @@ Simulation::Simulation(const SceneSpec& spec, std::vector<Mesh> meshes)
   wrench_radii_.reserve(spec.bodies.size());
   for (size_t b = 0; b < spec.bodies.size(); ++b) addBody(spec, b, std::move(meshes[b]));
   if (contact_) contact_step_.emplace(bodies_, *contact_);
+  energy_watch_.emplace(bodies_);
 }
 
 void Simulation::addBody(const SceneSpec& spec, size_t b, Mesh mesh) {
@@ -162,6 +163,7 @@ void Simulation::setDt(double dt) {
 
 void Simulation::step(std::vector<StepReport>& reports) {
   reports.resize(bodies_.size());
+  energy_watch_->before(bodies_, obstacles_, dt_);
   if (contact_step_) contact_step_->begin(obstacles_);
   // Bodies step apart until they meet: on the solver's threads, a body each (a body's own loops
   // then run on one thread; its result is the same bits on any number).
@@ -177,6 +179,13 @@ void Simulation::step(std::vector<StepReport>& reports) {
         contact_step_->forget(static_cast<int>(b));
       }
     }
+  }
+  energy_watch_->after(bodies_);
+  for (int b = 0; b < static_cast<int>(bodies_.size()); ++b) {
+    if (reports[b].recovered || !energy_watch_->leapt(bodies_[b], b, dt_)) continue;
+    undoStep(b, reports[b]);
+    reports[b].energy_leapt = true;
+    if (contact_step_) contact_step_->forget(b);
   }
   ++step_count_;
   time_ += dt_;

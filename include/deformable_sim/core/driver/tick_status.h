@@ -17,6 +17,7 @@ struct TickStatus {
   bool slow = false;                ///< slower than real time for a while (SlowTickWatch)
   long recoveries = 0;              ///< the watchdog's, all bodies, this episode
   bool recent_recovery = false;     ///< one in the last 2 s
+  bool recovery_from_leap = false;  ///< the last one undid an energy leap, not a non-finite value
   std::vector<StepReport> reports;  ///< of the last step, per body
 };
 

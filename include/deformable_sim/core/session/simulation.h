@@ -11,6 +11,7 @@
 #include "deformable_sim/core/contact/body_contact.h"
 #include "deformable_sim/core/contact/contact_step.h"
 #include "deformable_sim/core/elements/mesh.h"
+#include "deformable_sim/core/session/energy_watch.h"
 #include "deformable_sim/core/session/scene.h"
 #include "deformable_sim/core/surface_bodies/embedded_surface.h"
 
@@ -41,8 +42,10 @@ class Simulation {
   /// One step of every body; reports[i] belongs to bodies()[i]. `reports` is resized once.
   /// The watchdog: a body whose step leaves a non-finite position, velocity or constraint force
   /// or whose solve saw a non-finite residual (absurd input that got past validation, an
-  /// overflow) gets its positions from before the step back and stops (velocities zero: infinite
-  /// damping for that step; constraint forces zero), and its report says `recovered`.
+  /// overflow), or whose kinetic energy leaps past what the step could have given it
+  /// (EnergyWatch: a blow-up that is still finite), gets its positions from before the step back
+  /// and stops (velocities zero: infinite damping for that step; constraint forces zero), and its
+  /// report says `recovered` (and `energy_leapt` for a leap).
   void step(std::vector<StepReport>& reports);
   /// Steps of bodies()[index] that the watchdog undid, since construction.
   long recoveries(int index) const { return recoveries_[index]; }
@@ -104,7 +107,8 @@ class Simulation {
   std::optional<ContactSettings> contact_;
   std::optional<ContactStep> contact_step_;  ///< with the contact effect
   std::vector<PlacedShape> obstacles_;
-  std::vector<long> recoveries_;  ///< per body: steps the watchdog undid
+  std::vector<long> recoveries_;             ///< per body: steps the watchdog undid
+  std::optional<EnergyWatch> energy_watch_;  ///< built with the bodies
   /// Per body (sized by setEmbeddedSurface only), its embedded surface if it has one.
   std::vector<std::optional<EmbeddedSurface>> embedded_surfaces_;
 };
