@@ -99,3 +99,19 @@ TEST(Watchdog, EnergyCheckLeavesAYankedClampAndItsReleaseAlone) {
   EXPECT_GT(most, 1e-3);  // really yanked: the beam bent by it
   EXPECT_EQ(sim.recoveries(0), 0);
 }
+
+// A linear body's energy as the energy check takes it (one product with K) is the per-element
+// sum its elastic energy reports, wherever the body does not turn.
+TEST(Watchdog, EnergyCheckTakesALinearBodysEnergyAsItsElementsSumIt) {
+  dc::SceneSpec spec = dc::defaultScene();
+  spec.effects.warping = false;
+  dc::Simulation sim = boxMeshSimulation(spec);
+  std::vector<dc::StepReport> reports;
+  for (int s = 0; s < 20; ++s) sim.step(reports);
+  const dc::Body& body = sim.bodies()[0];
+  ASSERT_FALSE(body.settings().effects.warping);
+  const double elastic = body.elasticEnergy();
+  ASSERT_GT(elastic, 1e-6);  // sagging
+  dc::EnergyWatch watch(sim.bodies());
+  EXPECT_NEAR(watch.energy(body, 0), body.kineticEnergy() + elastic, 1e-3 * elastic);
+}

@@ -5,13 +5,22 @@
 #include <cmath>
 #include <limits>
 
+#include "deformable_sim/core/bodies/finite_element_body.h"
 #include "deformable_sim/core/contact/contact_impulses.h"
 
 namespace deformable_sim::core {
 
 EnergyWatch::EnergyWatch(const BodyList& bodies) {
-  for (const Body& body : bodies) start_velocities_.emplace_back(3 * body.numNodes());
+  for (const Body& body : bodies) {
+    start_velocities_.emplace_back(3 * body.numNodes());
+    start_positions_.emplace_back(3 * body.numNodes());
+    end_positions_.emplace_back(3 * body.numNodes());
+    end_velocities_.emplace_back(3 * body.numNodes());
+    forces_.emplace_back(3 * body.numNodes());
+  }
   start_energies_.assign(bodies.size(), 0.0);
+  end_energies_.assign(bodies.size(), 0.0);
+  judged_.assign(bodies.size(), 0);
 }
 
 void EnergyWatch::before(const BodyList& bodies, const std::vector<PlacedShape>& obstacles,
@@ -20,7 +29,13 @@ void EnergyWatch::before(const BodyList& bodies, const std::vector<PlacedShape>&
   for (size_t b = 0; b < bodies.size(); ++b) {
     const Body& body = bodies[b];
     start_velocities_[b] = body.velocities();
-    start_energies_[b] = body.kineticEnergy() + body.elasticEnergy();
+    start_positions_[b] = body.positions();
+    // The energy the last judgement found, if the body is still in the state it judged (an
+    // elastic energy costs a pass over the elements).
+    const bool as_judged = judged_[b] && body.positions() == end_positions_[b] &&
+                           body.velocities() == end_velocities_[b];
+    start_energies_[b] = as_judged ? end_energies_[b] : energy(body, b);
+    judged_[b] = 0;
     for (int i = 0; i < body.numNodes(); ++i) {
       fastest = std::max(fastest, start_velocities_[b].segment<3>(3 * i).norm());
     }
@@ -59,7 +74,7 @@ double EnergyWatch::obstacleSpeed(const BodyList& bodies, const std::vector<Plac
   return fastest;
 }
 
-void EnergyWatch::after(const BodyList& bodies) {
+void EnergyWatch::heldNodes(const BodyList& bodies) {
   for (const Body& body : bodies) {
     const Eigen::VectorXd& v = body.velocities();
     for (int i = 0; i < body.numNodes(); ++i) {
@@ -68,9 +83,25 @@ void EnergyWatch::after(const BodyList& bodies) {
   }
 }
 
+double EnergyWatch::energy(const Body& body, int b) {
+  const FiniteElementBody* elements = body.finiteElements();
+  if (!elements || body.settings().effects.warping) {
+    return body.kineticEnergy() + body.elasticEnergy();  // a warped body's is kept by its step
+  }
+  // Linear finite elements: the energy their step conserves, 1/2 u^T K u, by one product with K
+  // (elasticEnergy() sums it an element at a time, with a polar decomposition each).
+  const CorotationalElasticity& elasticity = elements->elasticity();
+  const Eigen::VectorXd& x = body.positions();
+  elasticity.stiffness().multiply(x, forces_[b]);
+  forces_[b] += elasticity.forceOffset();  // K x + f0 = K (x - x0)
+  return body.kineticEnergy() + 0.5 * (x - body.restPositions()).dot(forces_[b]);
+}
+
 double EnergyWatch::bound(const Body& body, int b, double dt) const {
   const Eigen::VectorXd& v = body.velocities();
   const Eigen::VectorXd& v0 = start_velocities_[b];
+  const Eigen::VectorXd& x = body.positions();
+  const Eigen::VectorXd& x0 = start_positions_[b];
   const Eigen::VectorXd& loads = body.externalForces();
   const Eigen::VectorXd& reactions = body.reactionForces();
   const bool has_reactions = body.settings().effects.reactions;
@@ -80,7 +111,12 @@ double EnergyWatch::bound(const Body& body, int b, double dt) const {
   double work = 0.0;
   for (int i = 0; i < body.numNodes(); ++i) {
     if (!(mass[i] > 0.0)) continue;
-    double impulse = mass[i] * (v.segment<3>(3 * i) - v0.segment<3>(3 * i)).norm();
+    // Its momentum change, and a move its velocity does not account for (a point put back out
+    // of an obstacle or another body) as the momentum that would have made it.
+    const Eigen::Vector3d put_right =
+        x.segment<3>(3 * i) - x0.segment<3>(3 * i) - dt * v.segment<3>(3 * i);
+    double impulse =
+        mass[i] * ((v.segment<3>(3 * i) - v0.segment<3>(3 * i)).norm() + put_right.norm() / dt);
     if (body.isConstrained(i) && !v.segment<3>(3 * i).isZero(0.0)) {
       // A driven node works on its neighbours with its constraint force, whatever its own
       // momentum does; without reactions computed, that work is unknown.
@@ -93,11 +129,17 @@ double EnergyWatch::bound(const Body& body, int b, double dt) const {
   return start_energies_[b] + work;
 }
 
-bool EnergyWatch::leapt(const Body& body, int b, double dt) const {
+bool EnergyWatch::leapt(const Body& body, int b, double dt) {
   double mass = 0.0;
   for (double m : body.nodalMasses()) mass += m;
   const double floor = 0.5 * mass * kFloorSpeed * kFloorSpeed;
-  return body.kineticEnergy() + body.elasticEnergy() > kLeap * bound(body, b, dt) + floor;
+  const double now = energy(body, b);
+  if (now > kLeap * bound(body, b, dt) + floor) return true;
+  judged_[b] = 1;
+  end_energies_[b] = now;
+  end_positions_[b] = body.positions();
+  end_velocities_[b] = body.velocities();
+  return false;
 }
 
 }  // namespace deformable_sim::core

@@ -180,7 +180,9 @@ void Simulation::step(std::vector<StepReport>& reports) {
       }
     }
   }
-  energy_watch_->after(bodies_);
+  energy_watch_->after(bodies_, dt_, [this](int b) -> const std::vector<ContactLoad>& {
+    return obstacleContacts(b);
+  });
   for (int b = 0; b < static_cast<int>(bodies_.size()); ++b) {
     if (reports[b].recovered || !energy_watch_->leapt(bodies_[b], b, dt_)) continue;
     undoStep(b, reports[b]);
