@@ -1,4 +1,5 @@
-// The watchdog of Simulation::step: a step that leaves a non-finite value is undone.
+// The watchdog of Simulation::step: a step that leaves a non-finite value, or whose energy leaps
+// past what could have put it in, is undone.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """A body whose steps blow up: the watchdog undoes each one, so that what the node publishes stays
 finite where it was; ~stats counts the recoveries, /rosout warns naming the body, and
-/diagnostics goes ERROR saying the watchdog acted and why. Private parameters say which blow-up
+/diagnostics goes WARN saying the watchdog acted and why. Private parameters say which blow-up
 the launch file's scene makes: ~body, ~reason (the warning's words after the step number),
 ~summary (the diagnostics message), ~z_range (the published nodes' lowest and highest z, m, to
 ~z_tolerance)."""

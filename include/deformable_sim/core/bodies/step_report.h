@@ -47,7 +47,7 @@ struct StepReport {
   /// Linear solves contact between bodies took for the body's answers to impulses: three per
   /// node that started touching (core/bodies/implicit_response.h).
   int body_contact_solves = 0;
-  /// The step left a non-finite value, or its kinetic energy leapt (energy_leapt), and was undone
+  /// The step left a non-finite value, or its energy leapt (energy_leapt), and was undone
   /// by Simulation's watchdog: the body is back at its last good positions, at rest.
   bool recovered = false;
   bool energy_leapt = false;

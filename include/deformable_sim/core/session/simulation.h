@@ -42,7 +42,7 @@ class Simulation {
   /// One step of every body; reports[i] belongs to bodies()[i]. `reports` is resized once.
   /// The watchdog: a body whose step leaves a non-finite position, velocity or constraint force
   /// or whose solve saw a non-finite residual (absurd input that got past validation, an
-  /// overflow), or whose kinetic energy leaps past what the step could have given it
+  /// overflow), or whose energy leaps past what the step could have given it
   /// (EnergyWatch: a blow-up that is still finite), gets its positions from before the step back
   /// and stops (velocities zero: infinite damping for that step; constraint forces zero), and its
   /// report says `recovered` (and `energy_leapt` for a leap).
