@@ -41,12 +41,12 @@ ContactOutputs::ContactOutputs(ros::NodeHandle& private_node, const std::vector<
 
 void ContactOutputs::publish(const core::Session& session,
                              const core::LinkedObstacles::FramePose& link_pose,
-                             const ros::Time& now) {
+                             const ros::Time& stamp) {
   const core::Simulation& sim = session.simulation();
   core::touchingPairs(sim, pairs_);
   if (contacts_pub_.getNumSubscribers() > 0) {
     Contacts message;
-    message.header.stamp = now;
+    message.header.stamp = stamp;
     message.header.frame_id = world_frame_;
     message.step = static_cast<uint64_t>(sim.stepCount());
     for (const core::ContactPair& pair : pairs_) message.pairs.push_back(toMessage(pair, sim));
@@ -58,7 +58,7 @@ void ContactOutputs::publish(const core::Session& session,
     if (!pose) continue;
     const core::ContactLoad load = core::loadOnObstacle(pairs_, link);
     const core::Wrench wrench{load.force, load.torque, Eigen::Vector3d::Zero()};
-    publisher.publish(toMessage(wrench, link, *pose, now));
+    publisher.publish(toMessage(wrench, link, *pose, stamp));
   }
 }
 

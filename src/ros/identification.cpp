@@ -48,18 +48,24 @@ LoadedScene loadScene(const identify::FitSpec& fit, const RecordedSession& sessi
   return scene;
 }
 
-// When the measured episode's step 0 was: the node applies a command after `step` steps at
-// about stamp = start + step dt; the median over the episode's commands.
-ros::Time sessionStart(const RecordedSession& session, double dt) {
+// The measured episode's clock: its commands, each stamped at the instant it took effect
+// (after `step` steps), and its states, at the instants they show.
+identify::SessionClock sessionClock(const RecordedSession& session, double dt) {
   const long episode = identify::measuredEpisode(session.recording);
-  std::vector<double> starts;
+  identify::SessionClock clock;
   for (const AppliedStamp& a : session.applied_stamps) {
     if (a.episode == episode)
-      starts.push_back(a.header.stamp.toSec() - static_cast<double>(a.step) * dt);
+      clock.add(static_cast<int64_t>(a.header.stamp.toNSec()), static_cast<double>(a.step) * dt);
   }
-  if (starts.empty()) throw FitSpecError("bag: the recorded log has no command to time it by");
-  std::nth_element(starts.begin(), starts.begin() + starts.size() / 2, starts.end());
-  return ros::Time(starts[starts.size() / 2]);
+  if (clock.empty()) throw FitSpecError("bag: the recorded log has no command to time it by");
+  for (const auto& [key, state] : session.recording.states) {
+    const auto& [state_episode, step, body] = key;
+    if (state_episode == episode) {
+      clock.add(static_cast<int64_t>(session.state_headers[state.source].stamp.toNSec()),
+                static_cast<double>(step) * dt);
+    }
+  }
+  return clock;
 }
 
 identify::RecordedExperiment loadExperiment(const identify::FitSpec& fit, std::string& yaml) {
@@ -75,8 +81,8 @@ identify::RecordedExperiment loadExperiment(const identify::FitSpec& fit, std::s
   LoadedScene scene = loadScene(fit, session);
   yaml = scene.yaml;
   const std::string& world = session.applied_stamps.front().header.frame_id;
-  const ros::Time start = sessionStart(session, scene.spec.dt);
-  Measurements measured = readMeasurements(fit.bag, fit.observations, world, start);
+  const identify::SessionClock clock = sessionClock(session, scene.spec.dt);
+  Measurements measured = readMeasurements(fit.bag, fit.observations, world, clock);
   identify::RecordedExperiment experiment{
       std::move(scene.spec),        std::move(scene.meshes), std::move(scene.surfaces),
       std::move(session.recording), fit.observations,        std::move(measured.sensor_frames),

@@ -29,7 +29,7 @@ void fillBuffer(const rosbag::Bag& bag, tf2::BufferCore& buffer) {
 }
 
 void readFrame(const rosbag::Bag& bag, const ObservationSpec& spec, const std::string& world,
-               const ros::Time& start, identify::MeasuredSeries& series) {
+               const identify::SessionClock& clock, identify::MeasuredSeries& series) {
   bool seen = false;
   for (const rosbag::MessageInstance& m :
        rosbag::View(bag, rosbag::TopicQuery(std::string("/tf")))) {
@@ -42,8 +42,9 @@ void readFrame(const rosbag::Bag& bag, const ObservationSpec& spec, const std::s
         throw FitSpecError(spec.key + ".tf: frame '" + spec.topic + "' is a child of '" +
                            t.header.frame_id + "', not of the world frame '" + world + "'");
       }
-      if (t.header.stamp < start) continue;
-      series.times.push_back((t.header.stamp - start).toSec());
+      const std::optional<double> time = clock.timeAt(t.header.stamp.toNSec());
+      if (!time) continue;
+      series.times.push_back(*time);
       const geometry_msgs::Vector3& p = t.transform.translation;
       series.values.push_back(Eigen::Vector3d(p.x, p.y, p.z));
     }
@@ -64,7 +65,7 @@ Eigen::Isometry3d sensorFrame(const tf2::BufferCore& buffer, const ObservationSp
 }
 
 void readWrench(const rosbag::Bag& bag, const ObservationSpec& spec, const std::string& world,
-                const ros::Time& start, const tf2::BufferCore& buffer,
+                const identify::SessionClock& clock, const tf2::BufferCore& buffer,
                 identify::MeasuredSeries& series, Eigen::Isometry3d& frame) {
   rosbag::View view(bag, rosbag::TopicQuery(spec.topic));
   if (view.size() == 0)
@@ -78,8 +79,9 @@ void readWrench(const rosbag::Bag& bag, const ObservationSpec& spec, const std::
     }
     if (first) frame = sensorFrame(buffer, spec, w->header.frame_id, world, w->header.stamp);
     first = false;
-    if (w->header.stamp < start) continue;
-    series.times.push_back((w->header.stamp - start).toSec());
+    const std::optional<double> time = clock.timeAt(w->header.stamp.toNSec());
+    if (!time) continue;
+    series.times.push_back(*time);
     Eigen::VectorXd value(6);
     value << w->wrench.force.x, w->wrench.force.y, w->wrench.force.z, w->wrench.torque.x,
         w->wrench.torque.y, w->wrench.torque.z;
@@ -91,7 +93,7 @@ void readWrench(const rosbag::Bag& bag, const ObservationSpec& spec, const std::
 
 Measurements readMeasurements(const std::string& path,
                               const std::vector<ObservationSpec>& observations,
-                              const std::string& world_frame, const ros::Time& start) {
+                              const std::string& world_frame, const identify::SessionClock& clock) {
   rosbag::Bag bag(path, rosbag::bagmode::Read);
   tf2::BufferCore buffer(ros::Duration(1.0e6));
   fillBuffer(bag, buffer);
@@ -101,9 +103,9 @@ Measurements readMeasurements(const std::string& path,
   for (std::size_t o = 0; o < observations.size(); ++o) {
     const ObservationSpec& spec = observations[o];
     if (spec.kind == ObservationSpec::Kind::kFrame) {
-      readFrame(bag, spec, world_frame, start, result.series[o]);
+      readFrame(bag, spec, world_frame, clock, result.series[o]);
     } else {
-      readWrench(bag, spec, world_frame, start, buffer, result.series[o], result.sensor_frames[o]);
+      readWrench(bag, spec, world_frame, clock, buffer, result.series[o], result.sensor_frames[o]);
     }
   }
   return result;

@@ -51,40 +51,41 @@ NodeOutputs::NodeOutputs(ros::NodeHandle& node, ros::NodeHandle& private_node,
   diagnostics_.add("simulation", this, &NodeOutputs::diagnose);
 }
 
-bool NodeOutputs::publishState(const core::Session& session, const ros::Time& now) {
+bool NodeOutputs::publishState(const core::Session& session, const ros::Time& stamp) {
   const core::Simulation& sim = session.simulation();
   for (const core::Body& body : sim.bodies()) {
     fillState(body, state_message_);
-    state_message_.header.stamp = now;
+    state_message_.header.stamp = stamp;
     state_message_.header.frame_id = params_.world_frame;
     state_message_.episode = static_cast<uint64_t>(session.episode());
     state_message_.step = static_cast<uint64_t>(sim.stepCount());
     state_pub_.publish(state_message_);
   }
-  const bool send_tf = tf_stamps_.accept(static_cast<int64_t>(now.toNSec()));
+  const bool send_tf = tf_stamps_.accept(static_cast<int64_t>(stamp.toNSec()));
   if (send_tf) {
     broadcaster_.sendTransform(
-        bodyFrames(sim.bodies(), params_.world_frame, params_.frame_prefix, now));
+        bodyFrames(sim.bodies(), params_.world_frame, params_.frame_prefix, stamp));
   }
   for (size_t b = 0; b < sim.bodies().size(); ++b) {
     if (reaction_pubs_[b].getNumSubscribers() == 0) continue;
     const core::Wrench reaction =
         session.commands().fixedReaction(static_cast<int>(b), Eigen::Vector3d::Zero());
     reaction_pubs_[b].publish(
-        toMessage(reaction, params_.world_frame, Eigen::Isometry3d::Identity(), now));
+        toMessage(reaction, params_.world_frame, Eigen::Isometry3d::Identity(), stamp));
   }
   return send_tf;
 }
 
 void NodeOutputs::publishPeriodic(const core::Session& session, const TickStatus& status,
-                                  const core::RefusalLog& refusals, const ros::Time& now) {
+                                  const core::RefusalLog& refusals, const ros::Time& now,
+                                  const ros::Time& stamp) {
   if (marker_schedule_.due(now.toSec())) {
     std_msgs::Header header;
-    header.stamp = now;
+    header.stamp = stamp;
     header.frame_id = params_.world_frame;
     publishMarkers(session, header);
   }
-  if (stats_schedule_.due(now.toSec())) publishStats(session, status, refusals, now);
+  if (stats_schedule_.due(now.toSec())) publishStats(session, status, refusals, stamp);
   session_ = &session;
   status_ = &status;
   refusals_ = &refusals;
@@ -114,10 +115,10 @@ void NodeOutputs::publishMarkers(const core::Session& session, const std_msgs::H
 }
 
 void NodeOutputs::publishStats(const core::Session& session, const TickStatus& status,
-                               const core::RefusalLog& refusals, const ros::Time& now) {
+                               const core::RefusalLog& refusals, const ros::Time& stamp) {
   const core::Simulation& sim = session.simulation();
   Stats stats;
-  stats.header.stamp = now;
+  stats.header.stamp = stamp;
   stats.header.frame_id = params_.world_frame;
   stats.step = static_cast<uint64_t>(sim.stepCount());
   stats.sim_time = sim.time();

@@ -1,5 +1,7 @@
 #include "deformable_sim/ros/sim_node.h"
 
+#include <algorithm>
+
 #include "deformable_sim/Scene.h"
 #include "deformable_sim/core/outputs/body_activity.h"
 #include "deformable_sim/io/scene_file.h"
@@ -15,6 +17,7 @@ SimNode::SimNode(ros::NodeHandle& node, ros::NodeHandle& private_node)
       tf_listener_(tf_buffer_),
       frames_(tf_buffer_, params_.world_frame, params_.frame_prefix),
       robot_links_(params_.scene.urdf_file) {
+  instants_.startEpisode(static_cast<int64_t>(ros::Time::now().toNSec()));
   startSession();
   auto apply = [this](const core::SessionCommand& c) { return this->apply(c); };
   obstacles_.emplace(params_, robot_links_, frames_, apply, private_node);
@@ -65,7 +68,7 @@ void SimNode::startSession() {
   }
   for (const std::string& w : warnings) ROS_WARN("%s", w.c_str());
   session_->setListener([this](const core::AppliedCommand& applied) {
-    recording_.header.stamp = ros::Time::now();
+    recording_.header.stamp = shownInstant();  // the instant it takes effect at
     recording_.header.frame_id = params_.world_frame;
     recording_.episode = static_cast<uint64_t>(applied.episode);
     recording_.step = static_cast<uint64_t>(applied.step);
@@ -125,6 +128,7 @@ void SimNode::onTimer(const ros::TimerEvent&) {
     const int ticks = pacer_.ticksDue(now.toSec());
     if (ticks == 0) return;
     advance(params_.substeps * ticks);
+    instants_.stepped(sim().time(), static_cast<int64_t>(now.toNSec()));
     stepped = true;
   }
   real_time_factor_.sample(now.toSec(), sim().time());
@@ -133,7 +137,7 @@ void SimNode::onTimer(const ros::TimerEvent&) {
   status_.recent_recovery =
       !last_recovery_.isZero() && (ros::WallTime::now() - last_recovery_).toSec() < 2.0;
   publishState(now);
-  outputs_->publishPeriodic(*session_, status_, refusals_, now);
+  outputs_->publishPeriodic(*session_, status_, refusals_, now, shownInstant());
 }
 
 void SimNode::watchRealTime(bool stepped) {
@@ -174,15 +178,24 @@ void SimNode::advance(int steps) {
   status_.recoveries = recoveries;  // a reset starts the count again
 }
 
+ros::Time SimNode::shownInstant() const {
+  ros::Time stamp;
+  // A clock not yet started (simulated time before /clock) has no earlier time to give.
+  stamp.fromNSec(
+      static_cast<uint64_t>(std::max<int64_t>(0, instants_.stamp(session_->simulation().time()))));
+  return stamp;
+}
+
 void SimNode::publishState(const ros::Time& now) {
-  const bool tf_sent = outputs_->publishState(*session_, now);
+  const ros::Time stamp = shownInstant();
+  const bool tf_sent = outputs_->publishState(*session_, stamp);
   if (contact_outputs_) {
     contact_outputs_->publish(
         *session_,
         [this, &now](const std::string& link) { return obstacles_->linkPose(link, now, nullptr); },
-        now);
+        stamp);
   }
-  grasps_->publish(*session_, now, tf_sent ? &outputs_->broadcaster() : nullptr);
+  grasps_->publish(*session_, stamp, tf_sent ? &outputs_->broadcaster() : nullptr);
 }
 
 void SimNode::refuse(const std::string& topic, const std::string& reason) {
@@ -256,6 +269,7 @@ bool SimNode::onSetGrasp(SetGrasp::Request& request, SetGrasp::Response& respons
 }
 
 bool SimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  instants_.startEpisode(static_cast<int64_t>(ros::Time::now().toNSec()));
   apply(core::ResetCommand{});
   wrench_timeouts_.clear();
   grasps_->clear();
@@ -297,8 +311,10 @@ bool SimNode::onStep(Step::Request& request, Step::Response& response) {
   } else if (sim().contact() && !obstacles_->update(ros::Time::now())) {
     response.message = "waiting for tf to place the obstacle links";
   } else {
+    const ros::Time now = ros::Time::now();
     if (request.steps > 0) advance(static_cast<int>(request.steps));
-    publishState(ros::Time::now());
+    instants_.stepped(sim().time(), static_cast<int64_t>(now.toNSec()));
+    publishState(now);
     response.success = true;
     response.message = "took " + std::to_string(request.steps) + " steps";
   }

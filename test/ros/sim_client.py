@@ -22,6 +22,8 @@ class SimClient:
     def __init__(self, node='/deformable_sim'):
         self.node = node
         self._lock = threading.Lock()
+        # Each newest message with the clock time it came: a message is stamped with the
+        # simulated instant it shows, which may be a little before the tick that sent it.
         self._state = None
         self._states = {}  # the newest state of each body (a scene's bodies publish in turn)
         self._stats = None
@@ -36,12 +38,12 @@ class SimClient:
 
     def _on_state(self, message):
         with self._lock:
-            self._state = message
-            self._states[message.body] = message
+            self._state = (message, rospy.Time.now())
+            self._states[message.body] = self._state
 
     def _on_stats(self, message):
         with self._lock:
-            self._stats = message
+            self._stats = (message, rospy.Time.now())
 
     def wait(self, what, predicate=lambda m: True, timeout=10.0, body=None):
         """The newest state (of `body`, if given) or stats message published after this call
@@ -51,11 +53,11 @@ class SimClient:
         while time.time() < deadline and not rospy.is_shutdown():
             with self._lock:
                 if what == 'state':
-                    message = self._state if body is None else self._states.get(body)
+                    newest = self._state if body is None else self._states.get(body)
                 else:
-                    message = self._stats
-            if message is not None and message.header.stamp >= since and predicate(message):
-                return message
+                    newest = self._stats
+            if newest is not None and newest[1] >= since and predicate(newest[0]):
+                return newest[0]
             time.sleep(0.02)
         raise AssertionError('no %s message of the expected kind within %.0f s' % (what, timeout))
 

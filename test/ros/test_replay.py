@@ -173,6 +173,37 @@ class Replay(unittest.TestCase):
                            (first_state - scene_times[0]))
         self.assertGreater(start, first_state - 0.1)
 
+    def test_states_and_frames_are_stamped_at_their_instants_live_and_replayed(self):
+        """Live, each state is stamped at the episode's start plus its simulated time, to the
+        nanosecond, except where the node fell more than 0.25 s behind the clock and its
+        reckoning started again there; the replay stamps its states and frames alike."""
+        with rosbag.Bag(self.bag) as bag:
+            dt = next(bag.read_messages(topics=[NODE + '/scene'])).message.dt
+            live = [(m.episode, m.step, m.header.stamp.to_nsec())
+                    for _, m, _ in bag.read_messages(topics=[NODE + '/state'])]
+        episode = live[-1][0]  # the recorded session starts at a reset
+        states = [(step, stamp) for e, step, stamp in live if e == episode]
+        self.assertGreater(len(states), 300)
+        exact = 0
+        for (step0, stamp0), (step1, stamp1) in zip(states, states[1:]):
+            apart = stamp1 - stamp0 - (round(step1 * dt * 1e9) - round(step0 * dt * 1e9))
+            if apart == 0:
+                exact += 1
+            else:  # the clock ran on past the steps: the reckoning starts again there
+                self.assertGreater(abs(apart), 0.25e9, 'steps %d, %d' % (step0, step1))
+        self.assertGreater(exact, 0.9 * (len(states) - 1))
+        out = os.path.join(self.folder, 'stamped.bag')
+        result = replay(self.bag, '--out', out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with rosbag.Bag(out) as bag:
+            replayed = [(m.episode, m.step, m.header.stamp.to_nsec())
+                        for _, m, _ in bag.read_messages(topics=[NODE + '/state'])]
+            frames = [t.header.stamp.to_nsec() for _, m, _ in bag.read_messages(topics=['/tf'])
+                      for t in m.transforms]
+        self.assertEqual(replayed, [(episode, step, stamp) for step, stamp in states])
+        self.assertGreater(len(frames), 10)
+        self.assertLessEqual(set(frames), {stamp for _, stamp in states})
+
     def test_more_threads_re_simulate_the_same_bits(self):
         # The node ran on one thread; two sum everything in the same order.
         result = replay(self.bag, '--threads', '2')

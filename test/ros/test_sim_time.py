@@ -6,11 +6,13 @@ import unittest
 
 import rospy
 import rostest
+from geometry_msgs.msg import WrenchStamped
 from rosgraph_msgs.msg import Clock
+from std_srvs.srv import Trigger
 from tf2_msgs.msg import TFMessage
 from visualization_msgs.msg import Marker
 
-from deformable_sim.msg import Stats
+from deformable_sim.msg import BodyState, Stats
 
 from sim_client import SimClient, connected
 
@@ -86,6 +88,59 @@ class SimTime(unittest.TestCase):
         for topic, rate in (('mesh', 30.0), ('stats', 10.0)):
             counted = [t for t in stamps[topic] if start < t <= start + 5.0]
             self.assertAlmostEqual(len(counted) / 5.0, rate, delta=0.03 * rate, msg=topic)
+
+    def test_outputs_are_stamped_at_the_simulated_instant_they_show(self):
+        """~state, tf, ~reactions and ~stats are stamped with the episode's start plus the
+        simulated time, to the nanosecond (dt 10 ms), not with the time the tick ran; a reset
+        starts an episode at the clock's time. The clock's ticks come up to 4 ms after the
+        steps' instants, as a timer's callbacks do."""
+        seen = {'state': [], 'tf': [], 'reaction': [], 'stats': []}
+        subscribers = [
+            rospy.Subscriber('/deformable_sim/state', BodyState, lambda m: seen['state'].append(
+                (m.episode, m.step, m.header.stamp.to_nsec())), queue_size=1000),
+            rospy.Subscriber('/tf', TFMessage, lambda m: seen['tf'].extend(
+                t.header.stamp.to_nsec() for t in m.transforms if t.child_frame_id == 'beam'),
+                queue_size=1000),
+            rospy.Subscriber('/deformable_sim/reactions/beam', WrenchStamped,
+                             lambda m: seen['reaction'].append(m.header.stamp.to_nsec()),
+                             queue_size=1000),
+            rospy.Subscriber('/deformable_sim/stats', Stats, lambda m: seen['stats'].append(
+                (m.sim_time, m.header.stamp.to_nsec())), queue_size=1000)]
+        def run_late_clock(seconds):
+            start = self.now
+            for k in range(1, int(round(seconds / 0.01)) + 1):
+                self.tick(start + 0.01 * k + 0.001 * (k % 5) - self.now)  # 0 to 4 ms late
+                time.sleep(0.01)
+            time.sleep(0.3)
+
+        run_late_clock(1.5)
+        rospy.wait_for_service('/deformable_sim/reset')
+        reset_at = self.now
+        self.assertTrue(rospy.ServiceProxy('/deformable_sim/reset', Trigger)().success)
+        run_late_clock(1.0)
+        for subscriber in subscribers:
+            subscriber.unregister()
+
+        episodes = sorted({e for e, _, _ in seen['state']})
+        self.assertGreaterEqual(len(episodes), 2)
+        starts = {}
+        for episode in episodes:
+            states = [(step, stamp) for e, step, stamp in seen['state'] if e == episode]
+            self.assertGreater(len(states), 50)
+            start = {stamp - step * 10**7 for step, stamp in states}
+            self.assertEqual(len(start), 1, 'episode %d: stamps off the instants by %s ns' % (
+                episode, sorted(s - min(start) for s in start)[:10]))
+            starts[episode] = start.pop()
+        # The reset's episode started at the clock's time then.
+        self.assertAlmostEqual(starts[episodes[-1]] * 1e-9, reset_at, delta=0.011)
+        instants = {stamp for _, _, stamp in seen['state']}
+        self.assertGreater(len(seen['tf']), 100)
+        self.assertLessEqual(set(seen['tf']), instants, 'tf stamped off the states\' instants')
+        self.assertGreater(len(seen['reaction']), 100)
+        self.assertLessEqual(set(seen['reaction']), instants, '~reactions off the instants')
+        self.assertGreater(len(seen['stats']), 10)
+        for sim_time, stamp in seen['stats']:
+            self.assertIn(stamp - round(sim_time * 1e9), starts.values())
 
 
 if __name__ == '__main__':

@@ -21,9 +21,10 @@ class ContactOutputs {
   ContactOutputs(ros::NodeHandle& private_node, const std::vector<std::string>& links,
                  std::string world_frame);
 
-  /// For the last step; `link_pose` places the links (one not in tf now gets no wrench).
+  /// For the last step, stamped `stamp` (the instant it shows); `link_pose` places the links
+  /// (one not in tf now gets no wrench).
   void publish(const core::Session& session, const core::LinkedObstacles::FramePose& link_pose,
-               const ros::Time& now);
+               const ros::Time& stamp);
 
  private:
   std::string world_frame_;

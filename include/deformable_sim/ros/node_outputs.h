@@ -30,12 +30,15 @@ class NodeOutputs {
   NodeOutputs(ros::NodeHandle& node, ros::NodeHandle& private_node, const NodeParameters& params,
               const core::Session& session);
 
-  /// ~state, the bodies' tf frames and ~reactions, stamped `now`. tf is sent once a stamp: a
-  /// clock that has not moved since the last tick repeats no transform. True if tf was sent.
-  bool publishState(const core::Session& session, const ros::Time& now);
-  /// ~mesh, ~markers and ~stats when each is due, and /diagnostics.
+  /// ~state, the bodies' tf frames and ~reactions, stamped `stamp`: the clock time of the
+  /// simulated instant they show (core/driver/simulated_instants.h). tf is sent once a stamp: a
+  /// state that has not moved on since the last tick repeats no transform. True if tf was sent.
+  bool publishState(const core::Session& session, const ros::Time& stamp);
+  /// ~mesh, ~markers and ~stats when each is due at clock time `now`, stamped `stamp`; and
+  /// /diagnostics.
   void publishPeriodic(const core::Session& session, const TickStatus& status,
-                       const core::RefusalLog& refusals, const ros::Time& now);
+                       const core::RefusalLog& refusals, const ros::Time& now,
+                       const ros::Time& stamp);
   /// DELETEALL on ~mesh and ~markers.
   void clearMarkers();
 
@@ -44,7 +47,7 @@ class NodeOutputs {
  private:
   void publishMarkers(const core::Session& session, const std_msgs::Header& header);
   void publishStats(const core::Session& session, const TickStatus& status,
-                    const core::RefusalLog& refusals, const ros::Time& now);
+                    const core::RefusalLog& refusals, const ros::Time& stamp);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& out);
 
   const NodeParameters& params_;

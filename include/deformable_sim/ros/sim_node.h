@@ -22,6 +22,7 @@
 #include "deformable_sim/Step.h"
 #include "deformable_sim/core/driver/real_time_factor.h"
 #include "deformable_sim/core/driver/refusal_log.h"
+#include "deformable_sim/core/driver/simulated_instants.h"
 #include "deformable_sim/core/driver/slow_tick_watch.h"
 #include "deformable_sim/core/driver/tick_pacer.h"
 #include "deformable_sim/core/driver/wrench_timeouts.h"
@@ -57,7 +58,9 @@ class SimNode {
   void advance(int steps);
   /// Warns (throttled) while the node has been slower than real time for a while.
   void watchRealTime(bool stepped);
-  /// Hands tf's poses of the obstacles to the simulation; false while tf has not placed them.
+  /// The clock time of the instant the bodies are at: what every output is stamped with.
+  ros::Time shownInstant() const;
+  /// ~state, tf, reactions, contacts and grasps; link poses for the contact wrenches at `now`.
   void publishState(const ros::Time& now);
   void refuse(const std::string& topic, const std::string& reason);
 
@@ -78,6 +81,7 @@ class SimNode {
   TickStatus status_;
   core::RealTimeFactor real_time_factor_;
   core::TickPacer pacer_{1.0};  ///< restarted with the node's period before the first tick
+  core::SimulatedInstants instants_;
   core::SlowTickWatch slow_ticks_;
   core::WrenchTimeouts wrench_timeouts_;
   core::RefusalLog refusals_;
