@@ -192,6 +192,15 @@ FitSpec parseFitSpec(const std::string& yaml_text, const std::string& source,
   spec.bag = r.path(r.required(root, "", "bag"), "bag");
   if (root["scene"].IsDefined()) spec.scene = r.path(root["scene"], "scene");
   spec.fit = readList<FitParameter>(r, root, "fit", readParameter);
+  for (std::size_t i = 0; i < spec.fit.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (spec.fit[i].body == spec.fit[j].body && spec.fit[i].parameter == spec.fit[j].parameter) {
+        r.fail(root["fit"][i], "fit[" + std::to_string(i) + "]",
+               spec.fit[i].parameter + " of '" + spec.fit[i].body + "' again (as fit[" +
+                   std::to_string(j) + "]): a parameter is fitted once");
+      }
+    }
+  }
   spec.observations = readList<ObservationSpec>(r, root, "observations", readObservation);
   spec.out = r.path(r.required(root, "", "out"), "out");
   return spec;

@@ -124,27 +124,42 @@ class ProgressCallback : public ceres::IterationCallback {
   const FitOptions& options_;
 };
 
-// 1 sigma of each value: sqrt of the diagonal of (J^T J)^-1 in the solver's coordinates (the
-// residuals are weighted by their sigma), taken through the log where there is one.
-std::vector<double> standardDeviations(const SimulationCost& cost,
-                                       const std::vector<Coordinate>& coordinates,
-                                       std::vector<double> x) {
+// Each value's 1 sigma and their correlations, into `result`: from (J^T J)^-1 in the solver's
+// coordinates (the residuals are weighted by their sigma), over the parameters that change the
+// residuals at all, scaled by result.sigma_scale, and taken through the log where there is one.
+void uncertainty(const SimulationCost& cost, const std::vector<Coordinate>& coordinates,
+                 std::vector<double> x, FitResult& result) {
   const int m = cost.num_residuals(), n = static_cast<int>(x.size());
+  result.standard_deviations.assign(n, std::numeric_limits<double>::infinity());
+  result.correlations = Eigen::MatrixXd::Identity(n, n);
+  result.no_effect.assign(n, false);
   Eigen::VectorXd r(m);
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(m, n);
   const double* parameters[] = {x.data()};
   double* jacobians[] = {J.data()};
-  std::vector<double> result(n, std::numeric_limits<double>::infinity());
-  if (!cost.Evaluate(parameters, r.data(), jacobians)) return result;
-  const Eigen::MatrixXd information = J.transpose() * J;
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(information);
-  if (ldlt.info() != Eigen::Success) return result;
-  const Eigen::MatrixXd covariance = ldlt.solve(Eigen::MatrixXd::Identity(n, n));
+  if (!cost.Evaluate(parameters, r.data(), jacobians)) return;
+  std::vector<int> effective;
   for (int i = 0; i < n; ++i) {
-    const double s = std::sqrt(std::max(covariance(i, i), 0.0));
-    result[i] = coordinates[i].log ? coordinates[i].to(x[i]) * s : s;
+    result.no_effect[i] = J.col(i).squaredNorm() == 0.0;
+    if (!result.no_effect[i]) effective.push_back(i);
   }
-  return result;
+  const int k = static_cast<int>(effective.size());
+  Eigen::MatrixXd information(k, k);
+  for (int a = 0; a < k; ++a) {
+    for (int b = 0; b < k; ++b) information(a, b) = J.col(effective[a]).dot(J.col(effective[b]));
+  }
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(information);
+  if (ldlt.info() != Eigen::Success) return;
+  const Eigen::MatrixXd covariance = ldlt.solve(Eigen::MatrixXd::Identity(k, k));
+  for (int a = 0; a < k; ++a) {
+    const int i = effective[a];
+    const double s = result.sigma_scale * std::sqrt(std::max(covariance(a, a), 0.0));
+    result.standard_deviations[i] = coordinates[i].log ? coordinates[i].to(x[i]) * s : s;
+    for (int b = 0; b < k; ++b) {
+      result.correlations(i, effective[b]) =
+          covariance(a, b) / std::sqrt(covariance(a, a) * covariance(b, b));
+    }
+  }
 }
 
 }  // namespace
@@ -184,7 +199,18 @@ FitResult fitLeastSquares(const std::vector<FitParameter>& parameters,
   result.initial_cost = summary.initial_cost;
   result.final_cost = summary.final_cost;
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  result.standard_deviations = standardDeviations(*cost, coordinates, x);
+  const long freedom = residual_count - static_cast<long>(x.size());
+  if (freedom > 0) {
+    result.sigma_scale =
+        std::max(1.0, std::sqrt(2.0 * result.final_cost / static_cast<double>(freedom)));
+  }
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    // Within a millionth of its range of a bound is at it.
+    const double room = 1e-6 * (coordinates[i].upper - coordinates[i].lower);
+    result.at_bound.push_back(x[i] <= coordinates[i].lower + room ||
+                              x[i] >= coordinates[i].upper - room);
+  }
+  uncertainty(*cost, coordinates, x, result);
   return result;
 }
 

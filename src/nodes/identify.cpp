@@ -34,12 +34,15 @@ constexpr const char* kUsage =
     "NAME,\n"
     "    out: fitted.yaml        # the scene with the fitted values          # link: NAME\n"
     "  Paths are relative to FIT.yaml. Prints a line per iteration, 'fitted BODY PARAMETER VALUE\n"
-    "  ± STD' per parameter (1 sigma) and the RMS residual of each observation before and after.\n"
+    "  ± STD' per parameter (1 sigma, scaled by the weighted RMS residual where it exceeds 1),\n"
+    "  their correlations and the RMS residual of each observation before and after.\n"
     "  --threads N        re-simulations at once (default: the machine's cores)\n"
     "  --plot FILE.png    draw measured against simulated (first guess, fit) over time\n"
     "  --max-iterations N of the solver (default 30): a fit that needs more did not converge\n"
     "  -h, --help         this text\n"
-    "  Exit status: 0 fitted, 1 input refused, 2 bad arguments, 3 the fit did not converge.\n";
+    "  Exit status: 0 fitted, 1 input refused, 2 bad arguments, 3 the fit did not converge,\n"
+    "  4 fitted but not to be trusted (a parameter at a bound or with no effect on the data,\n"
+    "  or a weighted RMS residual above 3).\n";
 
 bool parseArguments(int argc, char** argv, rl::IdentifyOptions& options, bool& help) {
   for (int i = 1; i < argc; ++i) {

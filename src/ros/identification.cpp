@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 #include "deformable_sim/identify/fit_plot.h"
@@ -120,6 +121,66 @@ void printRms(std::FILE* out, const identify::FitSpec& fit,
   }
 }
 
+/// "beam.youngs_modulus", or "friction" for the scene's.
+std::string parameterName(const identify::FitParameter& p) {
+  return p.body.empty() ? p.parameter : p.body + "." + p.parameter;
+}
+
+void printFitted(std::FILE* out, const identify::FitSpec& fit, const identify::FitResult& result) {
+  for (std::size_t i = 0; i < fit.fit.size(); ++i) {
+    std::fprintf(out, "fitted %s %s %.6g ± %.3g\n", fit.fit[i].body.c_str(),
+                 fit.fit[i].parameter.c_str(), result.values[i], result.standard_deviations[i]);
+  }
+  if (result.sigma_scale > 1.0) {
+    std::fprintf(out,
+                 "  (± scaled by the weighted RMS residual %.3g: the residuals scatter more than "
+                 "their sigmas say)\n",
+                 result.sigma_scale);
+  }
+  for (std::size_t i = 0; i < fit.fit.size(); ++i) {
+    for (std::size_t j = i + 1; j < fit.fit.size(); ++j) {
+      if (result.no_effect[i] || result.no_effect[j]) continue;
+      std::fprintf(out, "correlation %s %s %.3f\n", parameterName(fit.fit[i]).c_str(),
+                   parameterName(fit.fit[j]).c_str(), result.correlations(i, j));
+    }
+  }
+}
+
+/// Why the fit cannot be trusted, one reason a line; empty when it can.
+std::string distrust(const identify::FitSpec& fit, const identify::FitResult& result,
+                     double weighted_rms) {
+  constexpr double kFarAbove = 3.0;  // weighted RMS: noise 3x the sigmas, or a wrong model
+  std::string reasons;
+  for (std::size_t i = 0; i < fit.fit.size(); ++i) {
+    const std::string name = parameterName(fit.fit[i]);
+    if (result.no_effect[i]) {
+      reasons += "  " + name + " has no effect on the data (the residuals do not change with " +
+                 "it): leave it out, or measure what it changes\n";
+    } else if (result.at_bound[i]) {
+      reasons += "  " + name + " ended at a bound of its range: widen [min, max] or check the " +
+                 "scene and the data\n";
+    }
+  }
+  if (weighted_rms > kFarAbove) {
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "  the weighted RMS residual %.3g is far above 1: sigmas below the noise, a "
+                  "local minimum or a scene unlike the experiment\n",
+                  weighted_rms);
+    reasons += line;
+  }
+  return reasons;
+}
+
+/// Refuses an `out` that cannot be written before any time is spent fitting.
+void checkWritable(const std::string& path) {
+  const bool existed = std::filesystem::exists(path);
+  if (!std::ofstream(path, std::ios::app)) {
+    throw FitSpecError("out: cannot write '" + path + "'");
+  }
+  if (!existed) std::filesystem::remove(path);
+}
+
 void writeOut(const identify::FitSpec& fit, const std::string& yaml,
               const std::vector<double>& values) {
   std::ofstream file(fit.out);
@@ -135,6 +196,7 @@ IdentifyResult identify(const IdentifyOptions& options, std::FILE* out) {
   std::optional<identify::Experiment> experiment;
   std::vector<double> guess;
   try {
+    checkWritable(fit.out);
     identify::RecordedExperiment recorded = loadExperiment(fit, yaml);
     guess = identify::firstGuess(recorded.scene, fit.fit);
     experiment.emplace(std::move(recorded), fit.fit);
@@ -157,24 +219,26 @@ IdentifyResult identify(const IdentifyOptions& options, std::FILE* out) {
                                          fit_options);
   result.before = experiment->rms(residuals(guess));
   result.after = experiment->rms(residuals(result.fit.values));
-  for (std::size_t i = 0; i < fit.fit.size(); ++i) {
-    std::fprintf(out, "fitted %s %s %.6g ± %.3g\n", fit.fit[i].body.c_str(),
-                 fit.fit[i].parameter.c_str(), result.fit.values[i],
-                 result.fit.standard_deviations[i]);
-  }
+  printFitted(out, fit, result.fit);
   printRms(out, fit, result.before, result.after);
   // About 1 when the sigmas are the noise; well above it in a local minimum.
-  std::fprintf(
-      out, "weighted RMS residual %.3g (about 1 when the fit is right and sigma the noise)\n",
-      std::sqrt(2.0 * result.fit.final_cost / static_cast<double>(experiment->residualCount())));
+  const double weighted_rms =
+      std::sqrt(2.0 * result.fit.final_cost / static_cast<double>(experiment->residualCount()));
+  std::fprintf(out,
+               "weighted RMS residual %.3g (about 1 when the fit is right and sigma the noise)\n",
+               weighted_rms);
   writeOut(fit, yaml, result.fit.values);
   std::fprintf(out, "wrote %s\n", fit.out.c_str());
   if (!options.plot.empty()) {
     identify::plotFit(*experiment, guess, result.fit.values, options.plot, options.plot_script);
   }
+  const std::string reasons = distrust(fit, result.fit, weighted_rms);
   if (!result.fit.converged) {
     std::fprintf(out, "the fit did not converge: %s\n", result.fit.report.c_str());
     result.exit_code = 3;
+  } else if (!reasons.empty()) {
+    std::fprintf(out, "the fit cannot be trusted:\n%s", reasons.c_str());
+    result.exit_code = 4;
   }
   return result;
 }

@@ -181,6 +181,65 @@ TEST(FitBeam, RefusesWhatTheBagOrTheSceneDoesNotHold) {
   EXPECT_NE(no_log.find("no ~applied"), std::string::npos) << no_log;
 }
 
+TEST(FitBeam, SaysWhenItCannotBeTrusted) {
+  // Friction with nothing to slide on: the data do not change with it (it was "0.5 ± 0").
+  {
+    std::ofstream(beamDirectory() / "contact_guess.yaml") << replaced(
+        beamScene(2.5e6, 0.025), "warping: true", "warping: true, contact: {friction: 0.5}");
+    const FitRun run = identifyBeam(
+        replaced(replaced(kFit, "scene: guess.yaml", "scene: contact_guess.yaml"), "observations:",
+                 "  - {body: beam, parameter: friction, min: 0.0, max: 1.0}\nobservations:"));
+    SCOPED_TRACE(run.printed + run.refusal);
+    EXPECT_EQ(run.result.exit_code, 4);
+    EXPECT_NE(run.printed.find("beam.friction has no effect on the data"), std::string::npos);
+    EXPECT_NE(run.printed.find("fitted beam friction 0.5 ± inf"), std::string::npos);
+  }
+  // Damping held below its truth by the range: it ends at the bound.
+  {
+    std::ofstream(beamDirectory() / "low_guess.yaml") << beamScene(2.5e6, 0.004);
+    const FitRun run = identifyBeam(replaced(
+        replaced(kFit, "scene: guess.yaml", "scene: low_guess.yaml"), "max: 0.05", "max: 0.005"));
+    SCOPED_TRACE(run.printed + run.refusal);
+    EXPECT_EQ(run.result.exit_code, 4);
+    EXPECT_NE(run.printed.find("beam.damping_stiffness ended at a bound"), std::string::npos);
+  }
+  // Markers said to be twenty times better than they are: the residuals scatter far more than
+  // their sigmas, the ± grows with them, and the fit says it cannot be trusted.
+  {
+    const FitRun honest = identifyBeam(kFit);
+    const FitRun run =
+        identifyBeam(replaced(replaced(kFit, "0.02], sigma: 0.001}", "0.02], sigma: 0.00005}"),
+                              "0.04], sigma: 0.001}", "0.04], sigma: 0.00005}"));
+    SCOPED_TRACE(run.printed + run.refusal);
+    EXPECT_EQ(run.result.exit_code, 4);
+    EXPECT_GT(run.result.fit.sigma_scale, 5.0);
+    EXPECT_NE(run.printed.find("± scaled by the weighted RMS residual"), std::string::npos);
+    EXPECT_NE(run.printed.find("is far above 1"), std::string::npos);
+    // Scaled, the ± is no smaller than with the true noise (within the fit's own spread).
+    EXPECT_GT(run.result.fit.standard_deviations[0],
+              0.5 * honest.result.fit.standard_deviations[0]);
+    EXPECT_EQ(honest.result.fit.sigma_scale, 1.0);
+    EXPECT_EQ(honest.result.exit_code, 0) << honest.printed;
+    EXPECT_NE(honest.printed.find("correlation beam.youngs_modulus beam.damping_stiffness "),
+              std::string::npos)
+        << honest.printed;
+  }
+}
+
+TEST(FitBeam, RefusesAParameterTwiceAndAnOutItCannotWrite) {
+  EXPECT_EQ(
+      identifyBeam(replaced(kFit, "observations:",
+                            "  - {body: beam, parameter: youngs_modulus, min: 1.0e5, max: "
+                            "1.0e7}\nobservations:"))
+          .refusal,
+      (beamDirectory() / "fit.yaml").string() +
+          ":6: fit[2]: youngs_modulus of 'beam' again (as fit[0]): a parameter is fitted once");
+  // Refused before the fit, not after it.
+  EXPECT_EQ(
+      refusal(replaced(kFit, "out: fitted.yaml", "out: no_such_folder/fitted.yaml")),
+      "out: cannot write '" + (beamDirectory() / "no_such_folder/fitted.yaml").string() + "'");
+}
+
 // The figure of doc/identify.md, not a pass/fail test: a 20 s session of a 192-element beam, two
 // parameters, the fit's wall time. Run it with
 //   test_identify_fit --gtest_also_run_disabled_tests --gtest_filter='*TwentySecond*'

@@ -1,6 +1,9 @@
 // Bounded nonlinear least squares over a few scene parameters (Ceres Solver): positive
 // parameters on a log scale, the Jacobian by forward differences whose re-simulations run side by
-// side, and each parameter's 1-sigma from the Jacobian at the optimum.
+// side, and each parameter's 1-sigma and their correlations from the Jacobian at the optimum.
+// The sigmas are scaled by the weighted RMS residual where it exceeds 1: residuals that scatter
+// more than the sigmas given say the noise was larger than stated (or the model is off), and a
+// 1-sigma taken from the stated noise alone would claim more than the data holds.
 #pragma once
 
 #include <Eigen/Core>
@@ -25,7 +28,16 @@ struct FitOptions {
 
 struct FitResult {
   std::vector<double> values;
-  std::vector<double> standard_deviations;  ///< 1 sigma, from (J^T J)^-1 at the optimum
+  /// 1 sigma, from (J^T J)^-1 at the optimum times sigma_scale; infinite where no effect.
+  std::vector<double> standard_deviations;
+  /// The weighted RMS residual over the degrees of freedom, sqrt(2 cost / (m - n)), where it
+  /// exceeds 1 (else 1): what the sigmas were scaled by.
+  double sigma_scale = 1.0;
+  Eigen::MatrixXd correlations;  ///< of the values (in the solver's coordinates), n x n
+  /// Per parameter: the residuals do not change with it (a zero column of the Jacobian).
+  std::vector<bool> no_effect;
+  /// Per parameter: it ended at its min or max.
+  std::vector<bool> at_bound;
   bool converged = false;
   std::string report;  ///< the solver's reason for stopping
   double initial_cost = 0.0, final_cost = 0.0;

@@ -23,7 +23,9 @@ struct IdentifyOptions {
 struct IdentifyResult {
   identify::FitResult fit;
   std::vector<identify::ObservationRms> before, after;  ///< per observation
-  int exit_code = 0;                                    ///< 0, or 3 when the fit did not converge
+  /// 0; 3 when the fit did not converge; 4 when it did but cannot be trusted (a parameter at a
+  /// bound or without effect on the data, or residuals far above their sigmas).
+  int exit_code = 0;
 };
 
 /// Reads the fit file, the bag and the scene, fits, prints a line per iteration and the results
