@@ -4,6 +4,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <type_traits>
+#include <variant>
 
 #include "deformable_sim/identify/fit_plot.h"
 #include "deformable_sim/identify/fitted_scene.h"
@@ -49,6 +51,58 @@ LoadedScene loadScene(const identify::FitSpec& fit, const RecordedSession& sessi
   return scene;
 }
 
+/// The body a command names (empty: none, or the scene's only body).
+std::string commandBody(const core::SessionCommand& command) {
+  return std::visit(
+      [](const auto& c) -> std::string {
+        if constexpr (std::is_same_v<std::decay_t<decltype(c)>, core::WrenchCommand> ||
+                      std::is_same_v<std::decay_t<decltype(c)>, core::FixCommand> ||
+                      std::is_same_v<std::decay_t<decltype(c)>, core::GraspCommand> ||
+                      std::is_same_v<std::decay_t<decltype(c)>, core::TuneCommand>) {
+          return c.body;
+        } else {
+          return "";
+        }
+      },
+      command);
+}
+
+// A scene file other than the bag's (another body, mesh or step) would re-simulate another
+// session: its commands dropped or its motion another's. Refused, naming the difference.
+void checkSceneIsTheBags(const RecordedSession& session, const core::SceneSpec& spec,
+                         const std::vector<core::Mesh>& meshes) {
+  std::string names;
+  for (const core::BodySpec& body : spec.bodies) names += (names.empty() ? "" : ", ") + body.name;
+  for (const core::AppliedCommand& applied : session.recording.log) {
+    const std::string body = commandBody(applied.command);
+    const bool known = std::any_of(spec.bodies.begin(), spec.bodies.end(),
+                                   [&](const core::BodySpec& b) { return b.name == body; });
+    if (!body.empty() && !known) {
+      throw FitSpecError(
+          "scene: the bag's log commands body '" + body + "' (episode " +
+          std::to_string(applied.episode) + ", step " + std::to_string(applied.step) +
+          "), which the scene does not have (it has " + names + "): the scene is not the bag's");
+    }
+  }
+  if (session.scene.meshes.empty()) return;  // no ~scene in the bag: nothing more to compare
+  if (std::abs(session.scene.dt - spec.dt) > 1e-12 * spec.dt) {
+    throw FitSpecError("scene: its dt is " + std::to_string(spec.dt) +
+                       " s, the bag's node stepped " + std::to_string(session.scene.dt) +
+                       " s: the scene is not the bag's");
+  }
+  for (const MeshData& recorded : session.scene.meshes) {
+    for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+      if (spec.bodies[b].name != recorded.body) continue;
+      if (static_cast<long>(recorded.node_ids.size()) != meshes[b].numNodes()) {
+        throw FitSpecError("scene: body '" + recorded.body + "' has " +
+                           std::to_string(meshes[b].numNodes()) + " nodes, the bag's " +
+                           std::to_string(recorded.node_ids.size()) +
+                           ": the scene is not the bag's");
+      }
+    }
+  }
+}
+
 // The measured episode's clock: its commands, each stamped at the instant it took effect
 // (after `step` steps), and its states, at the instants they show.
 identify::SessionClock sessionClock(const RecordedSession& session, double dt) {
@@ -80,6 +134,7 @@ identify::RecordedExperiment loadExperiment(const identify::FitSpec& fit, std::s
     throw FitSpecError("bag: " + fit.bag + " has no ~applied message: record the node's ~applied");
   }
   LoadedScene scene = loadScene(fit, session);
+  if (!fit.scene.empty()) checkSceneIsTheBags(session, scene.spec, scene.meshes);
   yaml = scene.yaml;
   const std::string& world = session.applied_stamps.front().header.frame_id;
   const identify::SessionClock clock = sessionClock(session, scene.spec.dt);

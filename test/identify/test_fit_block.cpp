@@ -174,5 +174,37 @@ TEST(FitBlock, StartsFromTheRecordedSceneWithoutASceneFile) {
   EXPECT_DOUBLE_EQ(fitted.contact->friction, run.result.fit.values[0]);
 }
 
+// A scene file that is not the bag's would re-simulate another session: refused, naming what
+// differs (a command for body `beam` against a scene with only `bar` was dropped silently, and
+// the fit ended with an RMS 176 times the noise).
+TEST(FitBlock, RefusesASceneThatIsNotTheBags) {
+  LabRecording lab = blockLab(slopeScene(0.3), 0.3);
+  lab.node_scene_yaml = slopeScene(0.12);
+  lab.sensor_topic.clear();
+  nudgeDownTheSlope(lab);
+  const fs::path directory = recorded("other_scene", lab, "");
+  const auto fit = [](const std::string& body) {
+    return "bag: experiment.bag\nscene: guess.yaml\nfit: [{body: " + body +
+           ", parameter: friction, min: 0.01, max: 1.0}]\nobservations: [{tf: top, body: " + body +
+           ", at: [0, 0, 0.1], sigma: 0.001}]\nout: fitted.yaml\n";
+  };
+  // What follows the fit file's name and the "scene: " key.
+  const auto refusal = [&](const std::string& scene, const std::string& body = "block") {
+    std::ofstream(directory / "guess.yaml") << scene;
+    const std::string message = runFit(directory, fit(body)).refusal;
+    return message.substr(std::min(message.size(), message.find(": ") + 2));
+  };
+  EXPECT_EQ(refusal(replaced(slopeScene(0.12), "name: block", "name: bar"), "bar"),
+            "scene: the bag's log commands body 'block' (episode 0, step 0), which the scene does "
+            "not have (it has bar): the scene is not the bag's");
+  EXPECT_EQ(refusal(replaced(slopeScene(0.12), "dt: 0.01", "dt: 0.005")),
+            "scene: its dt is 0.005000 s, the bag's node stepped 0.010000 s: the scene is not the "
+            "bag's");
+  EXPECT_EQ(refusal(replaced(slopeScene(0.12), "cells: [2, 2, 2]", "cells: [3, 3, 3]")),
+            "scene: body 'block' has 64 nodes, the bag's 27: the scene is not the bag's");
+  // The bag's own scene, from a file: fitted.
+  EXPECT_EQ(refusal(slopeScene(0.12)), "");
+}
+
 }  // namespace
 }  // namespace deformable_sim::test
