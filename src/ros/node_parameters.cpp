@@ -2,6 +2,8 @@
 
 #include <ros/this_node.h>
 
+#include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "deformable_sim/core/session/live_settings.h"
@@ -49,7 +51,19 @@ void readTiming(const ros::NodeHandle& node, NodeParameters& p) {
   param(node, "rate", p.rate_hz);
   require(p.rate_hz >= core::kMinRate && p.rate_hz <= core::kMaxRate,
           "~rate: must be finite and > 0 Hz, at most 1e5 (at least 1e-3)");
+  const double scene_dt = p.scene.dt;
   p.scene.dt = 1.0 / (p.rate_hz * p.substeps);
+  if (std::abs(p.scene.dt - scene_dt) > 1e-9 * scene_dt) {
+    // A ~rate is also what live tuning leaves on the parameter server: say which dt is used.
+    char why[400];
+    std::snprintf(why, sizeof why,
+                  "~rate %g Hz on the parameter server (%s) sets dt %g s, not the scene's %g s; "
+                  "a rate set by an earlier node or its live tuning stays there until "
+                  "`rosparam delete %s`",
+                  p.rate_hz, node.resolveName("rate").c_str(), p.scene.dt, scene_dt,
+                  node.resolveName("rate").c_str());
+    p.rate_note = why;
+  }
   param(node, "start_paused", p.start_paused);
   param(node, "wrench_timeout", p.wrench_timeout_s);
   param(node, "stats_rate", p.stats_rate_hz);

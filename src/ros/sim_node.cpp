@@ -84,6 +84,7 @@ void SimNode::logStart() const {
     ROS_INFO("%s; frame '%s'", core::bodySummary(sim, static_cast<int>(b)).c_str(),
              (params_.frame_prefix + sim.bodies()[b].name()).c_str());
   }
+  if (!params_.rate_note.empty()) ROS_WARN("%s", params_.rate_note.c_str());
   ROS_INFO("stepping %s at %.4g Hz x %d substeps (dt %.4g s) in frame '%s'",
            params_.scene_path.empty() ? "the built-in default scene" : params_.scene_path.c_str(),
            params_.rate_hz, params_.substeps, sim.dt(), params_.world_frame.c_str());

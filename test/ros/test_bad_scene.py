@@ -2,11 +2,16 @@
 """The node refuses to start on a scene with an error: it exits non-zero and the message names the
 key; likewise for a bad parameter."""
 import os
+import signal
 import subprocess
+import threading
 import unittest
 
 import rospkg
+import rospy
 import rostest
+
+from deformable_sim.msg import Scene
 
 SCENES = os.path.join(rospkg.RosPack().get_path('deformable_sim'), 'test', 'data', 'scenes')
 
@@ -46,6 +51,32 @@ class BadScene(unittest.TestCase):
         self.assertEqual(run.returncode, 1)
         self.assertIn('/nonexistent/scene.yaml: cannot open the scene file', run.stderr)
 
+    def test_a_rate_left_on_the_parameter_server_is_named_with_the_dt_it_sets(self):
+        """A ~rate an earlier node's live tuning left behind changes the next node's dt: the
+        node says so at its start, naming the parameter and both steps."""
+        rospy.set_param('/rate_left/rate', 50.0)
+        node = subprocess.Popen(['rosrun', 'deformable_sim', 'deformable_sim_node',
+                                 '__name:=rate_left'], stdout=subprocess.DEVNULL,
+                                stderr=subprocess.PIPE, text=True, start_new_session=True)
+        stop = threading.Timer(30.0, lambda: os.killpg(node.pid, signal.SIGINT))
+        stop.start()
+        warning = ''
+        try:
+            for line in node.stderr:  # warnings come on stderr, unbuffered
+                if '~rate' in line:
+                    warning = line
+                    break
+            scene = rospy.wait_for_message('/rate_left/scene', Scene, timeout=20.0)
+        finally:
+            stop.cancel()
+            os.killpg(node.pid, signal.SIGINT)
+            node.wait(timeout=30)
+            rospy.delete_param('/rate_left/rate')
+        self.assertIn("~rate 50 Hz on the parameter server (/rate_left/rate) sets dt 0.02 s, not "
+                      "the scene's 0.01 s; a rate set by an earlier node or its live tuning stays "
+                      "there until `rosparam delete /rate_left/rate`", warning)
+        self.assertAlmostEqual(scene.dt, 0.02)
+
     def test_bad_rate(self):
         run = start_node('_rate:=-5.0', '__name:=bad_rate')
         self.assertEqual(run.returncode, 1)
@@ -53,4 +84,5 @@ class BadScene(unittest.TestCase):
 
 
 if __name__ == '__main__':
+    rospy.init_node('test_bad_scene')
     rostest.rosrun('deformable_sim', 'bad_scene', BadScene)

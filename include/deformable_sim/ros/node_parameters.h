@@ -18,6 +18,8 @@ struct NodeParameters {
   std::string world_frame = "world";
   std::string frame_prefix;  ///< default: the node's namespace
   double rate_hz = 100.0;
+  /// Why dt is not the scene's (a ~rate that sets another), for a warning; empty when it is.
+  std::string rate_note;
   int substeps = 1;
   bool start_paused = false;
   double wrench_timeout_s = 0.0;  ///< 0: wrenches stay until replaced
