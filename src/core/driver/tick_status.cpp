@@ -18,13 +18,22 @@ std::string costliestPart(const TickStatus& status) {
     parts[3].second += r.times.body_contact;
   }
   std::pair<const char*, double> costliest = parts[0];
+  double work = 0.0;
   for (const auto& part : parts) {
     if (part.second > costliest.second) costliest = part;
+    work += part.second;
   }
   const double step_s = status.steps > 0 ? status.step_time_s / status.steps : 0.0;
-  char text[128];
-  std::snprintf(text, sizeof text, "%s %.3g of %.3g ms a step", costliest.first,
-                1e3 * costliest.second, 1e3 * step_s);
+  char text[160];
+  // Bodies step side by side, and the parts are the last step's against the tick's mean: their
+  // sum may exceed the wall time, and a part is then told against the work, not the wall time.
+  if (work > step_s) {
+    std::snprintf(text, sizeof text, "%s %.3g of %.3g ms of work a step (%.3g ms wall)",
+                  costliest.first, 1e3 * costliest.second, 1e3 * work, 1e3 * step_s);
+  } else {
+    std::snprintf(text, sizeof text, "%s %.3g of %.3g ms a step", costliest.first,
+                  1e3 * costliest.second, 1e3 * step_s);
+  }
   return text;
 }
 
