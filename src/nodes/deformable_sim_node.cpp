@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "deformable_sim/ros/sim_node.h"
+#include "sleeping_openmp_threads.h"
 
 namespace {
 
@@ -50,6 +51,7 @@ void requestStopFromMaster(XmlRpc::XmlRpcValue&, XmlRpc::XmlRpcValue& result) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  deformable_sim::letOpenMpThreadsSleep(argv);
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
       std::fputs(kUsage, stdout);

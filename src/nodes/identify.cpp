@@ -12,6 +12,7 @@
 #include "deformable_sim/identify/fit_spec.h"
 #include "deformable_sim/ros/identification.h"
 #include "deformable_sim/ros/replay.h"
+#include "sleeping_openmp_threads.h"
 
 namespace {
 
@@ -75,6 +76,7 @@ bool parseArguments(int argc, char** argv, rl::IdentifyOptions& options, bool& h
 }  // namespace
 
 int main(int argc, char** argv) {
+  deformable_sim::letOpenMpThreadsSleep(argv);
   rl::IdentifyOptions options;
   options.threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 64u));
   options.plot_script = DEFORMABLE_SIM_PLOT_SCRIPT;

@@ -12,6 +12,8 @@
 #include <string>
 #include <thread>
 
+#include "sleeping_openmp_threads.h"
+
 namespace {
 
 namespace rl = deformable_sim::ros_layer;
@@ -128,6 +130,7 @@ void printReport(const rl::ReplayReport& replay, const rl::ReplayOptions& option
 }  // namespace
 
 int main(int argc, char** argv) {
+  deformable_sim::letOpenMpThreadsSleep(argv);
   Arguments arguments;
   if (!parseArguments(argc, argv, arguments)) {
     std::cerr << kUsage;

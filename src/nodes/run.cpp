@@ -14,6 +14,7 @@
 #include "deformable_sim/core/outputs/body_activity.h"
 #include "deformable_sim/io/mesh_reader.h"
 #include "deformable_sim/io/scene_file.h"
+#include "sleeping_openmp_threads.h"
 
 namespace {
 
@@ -234,6 +235,7 @@ int run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  deformable_sim::letOpenMpThreadsSleep(argv);
   Options options;
   switch (parseArguments(argc, argv, options)) {
     case Parsed::kHelp:

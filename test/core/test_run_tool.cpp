@@ -60,3 +60,18 @@ TEST(RunTool, EveryStepAndTheMeanWhenNotQuiet) {
   EXPECT_NE(run.output.find("step 3 t="), std::string::npos) << run.output;
   EXPECT_GT(meanStepMs(run.output, 3), 0.0) << run.output;
 }
+
+// Offline, OpenMP's threads sleep between loops unless the user chose otherwise: spinning, they
+// took the core a job beside them needed (doc/performance.md, "Beside another job").
+TEST(RunTool, LetsItsOpenMpThreadsSleepUnlessToldOtherwise) {
+  const auto policy = [](const std::string& environment) {
+    const std::string command =
+        "env " + environment + " " + DEFORMABLE_SIM_RUN + " " + DEFORMABLE_SIM_SOURCE_DIR +
+        "/config/scenes/cantilever.yaml --steps 1000000 --quiet "
+        ">/dev/null 2>&1 & p=$!; sleep 1; tr '\\0' '\\n' < /proc/$p/environ "
+        "| grep '^OMP_WAIT_POLICY='; kill $p";
+    return deformable_sim::test::runCommand(command).output;
+  };
+  EXPECT_EQ(policy("-u OMP_WAIT_POLICY"), "OMP_WAIT_POLICY=PASSIVE\n");
+  EXPECT_EQ(policy("OMP_WAIT_POLICY=ACTIVE"), "OMP_WAIT_POLICY=ACTIVE\n");
+}
