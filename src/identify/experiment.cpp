@@ -79,20 +79,30 @@ std::vector<SimulatedSeries> Experiment::simulate(const std::vector<double>& val
   return series;
 }
 
-Eigen::VectorXd Experiment::residuals(const std::vector<SimulatedSeries>& simulated) const {
+Eigen::VectorXd Experiment::residuals(const std::vector<SimulatedSeries>& simulated,
+                                      const std::vector<double>& values, bool plain) const {
   Eigen::VectorXd r(residual_count_);
   Eigen::Index at = 0;
   for (std::size_t o = 0; o < simulated.size(); ++o) {
     const ObservationSpec& spec = recorded_.observations[o];
     const MeasuredSeries& measured = recorded_.measured[o];
+    double offset = spec.time_offset;
+    for (std::size_t p = 0; p < parameters_.size(); ++p) {
+      if (parameters_[p].observation == static_cast<int>(o)) offset = values[p];
+    }
     for (std::size_t s = 0; s < measured.times.size(); ++s) {
-      const Eigen::VectorXd d = simulated[o].at(measured.times[s]) - measured.values[s];
+      const Eigen::VectorXd d = simulated[o].at(measured.times[s] - offset) - measured.values[s];
+      auto sample = r.segment(at, d.size());
       if (d.size() == 3) {
-        r.segment<3>(at) = d / spec.sigma;
+        sample = d / spec.sigma;
       } else {
-        r.segment<3>(at) = d.head<3>() / spec.sigma;
-        r.segment<3>(at + 3) = d.tail<3>() / spec.torque_sigma;
+        sample.head<3>() = d.head<3>() / spec.sigma;
+        sample.tail<3>() = d.tail<3>() / spec.torque_sigma;
       }
+      // Huber's loss on the sample's squared norm q: q within h^2, else 2 h sqrt(q) - h^2, by
+      // scaling the sample so that its square is that.
+      const double q = sample.squaredNorm(), h = spec.huber;
+      if (!plain && h > 0.0 && q > h * h) sample *= std::sqrt((2.0 * h * std::sqrt(q) - h * h) / q);
       at += d.size();
     }
   }

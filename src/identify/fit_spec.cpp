@@ -117,6 +117,31 @@ FitParameter readParameter(const Reader& r, const YAML::Node& node, const std::s
   return p;
 }
 
+// time_offset: S (fixed) or {min: S, max: S} (fitted from 0); loss: {huber: SIGMAS}.
+void readTimingAndLoss(const Reader& r, const YAML::Node& node, const std::string& key,
+                       ObservationSpec& o) {
+  const YAML::Node offset = node["time_offset"];
+  if (offset.IsDefined() && offset.IsMap()) {
+    r.onlyKeys(offset, key + ".time_offset", {"min", "max"});
+    o.fit_time_offset = true;
+    o.offset_min =
+        r.number(r.required(offset, key + ".time_offset", "min"), key + ".time_offset.min");
+    o.offset_max =
+        r.number(r.required(offset, key + ".time_offset", "max"), key + ".time_offset.max");
+    if (!(o.offset_min <= 0.0 && 0.0 <= o.offset_max && o.offset_min < o.offset_max)) {
+      r.fail(offset, key + ".time_offset",
+             "expected min <= 0 <= max, min < max (a fitted offset starts from 0)");
+    }
+  } else if (offset.IsDefined()) {
+    o.time_offset = r.number(offset, key + ".time_offset");
+  }
+  const YAML::Node loss = node["loss"];
+  if (loss.IsDefined()) {
+    r.onlyKeys(loss, key + ".loss", {"huber"});
+    o.huber = r.positive(r.required(loss, key + ".loss", "huber"), key + ".loss.huber");
+  }
+}
+
 void readWrenchSigma(const Reader& r, const YAML::Node& node, const std::string& key,
                      ObservationSpec& o) {
   if (!node.IsSequence() || node.size() != 2) r.fail(node, key, "expected [N, N m]");
@@ -126,7 +151,7 @@ void readWrenchSigma(const Reader& r, const YAML::Node& node, const std::string&
 
 void readWrench(const Reader& r, const YAML::Node& node, const std::string& key,
                 ObservationSpec& o) {
-  r.onlyKeys(node, key, {"wrench", "reactions", "grasp", "link", "sigma"});
+  r.onlyKeys(node, key, {"wrench", "reactions", "grasp", "link", "sigma", "time_offset", "loss"});
   o.kind = ObservationSpec::Kind::kWrench;
   o.topic = r.text(node["wrench"], key + ".wrench");
   int sources = 0;
@@ -140,6 +165,7 @@ void readWrench(const Reader& r, const YAML::Node& node, const std::string& key,
   }
   if (sources != 1) r.fail(node, key, "give exactly one of reactions, grasp or link");
   readWrenchSigma(r, r.required(node, key, "sigma"), key + ".sigma", o);
+  readTimingAndLoss(r, node, key, o);
 }
 
 ObservationSpec readObservation(const Reader& r, const YAML::Node& node, const std::string& key) {
@@ -149,12 +175,13 @@ ObservationSpec readObservation(const Reader& r, const YAML::Node& node, const s
     readWrench(r, node, key, o);
     return o;
   }
-  r.onlyKeys(node, key, {"tf", "body", "at", "sigma"});
+  r.onlyKeys(node, key, {"tf", "body", "at", "sigma", "time_offset", "loss"});
   if (!node["tf"].IsDefined()) r.fail(node, key, "expected a tf or a wrench observation");
   o.topic = r.text(node["tf"], key + ".tf");
   o.body = r.text(r.required(node, key, "body"), key + ".body");
   o.at = r.point(r.required(node, key, "at"), key + ".at");
   o.sigma = r.positive(r.required(node, key, "sigma"), key + ".sigma");
+  readTimingAndLoss(r, node, key, o);
   return o;
 }
 
@@ -202,6 +229,17 @@ FitSpec parseFitSpec(const std::string& yaml_text, const std::string& source,
     }
   }
   spec.observations = readList<ObservationSpec>(r, root, "observations", readObservation);
+  for (std::size_t k = 0; k < spec.observations.size(); ++k) {
+    const ObservationSpec& o = spec.observations[k];
+    if (!o.fit_time_offset) continue;
+    FitParameter offset;
+    offset.parameter = "time_offset";
+    offset.min = o.offset_min;
+    offset.max = o.offset_max;
+    offset.key = o.key + ".time_offset";
+    offset.observation = static_cast<int>(k);
+    spec.fit.push_back(offset);
+  }
   spec.out = r.path(r.required(root, "", "out"), "out");
   return spec;
 }

@@ -40,7 +40,9 @@ std::string fittedSceneYaml(const std::string& scene_yaml,
                             const std::vector<FitParameter>& parameters,
                             const std::vector<double>& values) {
   YAML::Node root = YAML::Load(scene_yaml);
-  for (std::size_t i = 0; i < parameters.size(); ++i) set(root, parameters[i], values[i]);
+  for (std::size_t i = 0; i < parameters.size(); ++i) {
+    if (parameters[i].observation < 0) set(root, parameters[i], values[i]);  // not time offsets
+  }
   YAML::Emitter out;
   out.SetDoublePrecision(9);
   out << root;

@@ -49,6 +49,7 @@ double parameterValue(const core::SceneSpec& scene, const FitParameter& paramete
 }
 
 void setParameter(core::SceneSpec& scene, const FitParameter& parameter, double value) {
+  if (parameter.observation >= 0) return;  // a time offset: the measurements', not the scene's
   core::BodySpec& body = bodyOf(scene, parameter);
   const bool damping = parameter.parameter.rfind("damping_", 0) == 0;
   // Several bodies may share the scene's damping: the fitted body gets its own copy.
@@ -60,6 +61,10 @@ std::vector<double> firstGuess(const core::SceneSpec& scene,
                                const std::vector<FitParameter>& parameters) {
   std::vector<double> guess;
   for (const FitParameter& p : parameters) {
+    if (p.observation >= 0) {  // a time offset starts from none (readFitSpec checked 0 is in)
+      guess.push_back(0.0);
+      continue;
+    }
     const double value = parameterValue(scene, p);
     if (!(value >= p.min && value <= p.max)) {
       std::ostringstream text;

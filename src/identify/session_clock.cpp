@@ -19,7 +19,7 @@ std::optional<double> SessionClock::timeAt(std::int64_t stamp_ns) const {
   const auto after =
       std::upper_bound(pairs_.begin(), pairs_.end(), stamp_ns,
                        [](std::int64_t stamp, const auto& pair) { return stamp < pair.first; });
-  if (pairs_.empty()) return std::nullopt;
+  if (pairs_.empty() || (end_ && stamp_ns > *end_)) return std::nullopt;
   if (after == pairs_.begin()) {  // back from the first pair, to the episode's start
     const double back =
         pairs_.front().second - static_cast<double>(pairs_.front().first - stamp_ns) * 1e-9;

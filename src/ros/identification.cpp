@@ -113,17 +113,21 @@ identify::SessionClock sessionClock(const RecordedSession& session, double dt) {
       clock.add(static_cast<int64_t>(a.header.stamp.toNSec()), static_cast<double>(a.step) * dt);
   }
   if (clock.empty()) throw FitSpecError("bag: the recorded log has no command to time it by");
+  std::optional<int64_t> last_state;
   for (const auto& [key, state] : session.recording.states) {
     const auto& [state_episode, step, body] = key;
-    if (state_episode == episode) {
-      clock.add(static_cast<int64_t>(session.state_headers[state.source].stamp.toNSec()),
-                static_cast<double>(step) * dt);
-    }
+    if (state_episode != episode) continue;
+    const auto stamp = static_cast<int64_t>(session.state_headers[state.source].stamp.toNSec());
+    clock.add(stamp, static_cast<double>(step) * dt);
+    last_state = std::max(last_state.value_or(stamp), stamp);
   }
+  if (last_state) clock.endAt(*last_state);  // the node recorded no further
   return clock;
 }
 
-identify::RecordedExperiment loadExperiment(const identify::FitSpec& fit, std::string& yaml) {
+/// `outside`: per observation, the samples outside the recorded session, left out.
+identify::RecordedExperiment loadExperiment(const identify::FitSpec& fit, std::string& yaml,
+                                            std::vector<long>& outside) {
   RecordedSession session;
   try {
     session = readRecordedSession(fit.bag, "", fit.scene.empty());
@@ -139,6 +143,7 @@ identify::RecordedExperiment loadExperiment(const identify::FitSpec& fit, std::s
   const std::string& world = session.applied_stamps.front().header.frame_id;
   const identify::SessionClock clock = sessionClock(session, scene.spec.dt);
   Measurements measured = readMeasurements(fit.bag, fit.observations, world, clock);
+  outside = measured.outside;
   identify::RecordedExperiment experiment{
       std::move(scene.spec),        std::move(scene.meshes), std::move(scene.surfaces),
       std::move(session.recording), fit.observations,        std::move(measured.sensor_frames),
@@ -176,15 +181,21 @@ void printRms(std::FILE* out, const identify::FitSpec& fit,
   }
 }
 
-/// "beam.youngs_modulus", or "friction" for the scene's.
+/// "beam.youngs_modulus", or "observations[1].time_offset".
 std::string parameterName(const identify::FitParameter& p) {
-  return p.body.empty() ? p.parameter : p.body + "." + p.parameter;
+  return p.observation >= 0 ? p.key : p.body + "." + p.parameter;
 }
 
 void printFitted(std::FILE* out, const identify::FitSpec& fit, const identify::FitResult& result) {
   for (std::size_t i = 0; i < fit.fit.size(); ++i) {
-    std::fprintf(out, "fitted %s %s %.6g ± %.3g\n", fit.fit[i].body.c_str(),
-                 fit.fit[i].parameter.c_str(), result.values[i], result.standard_deviations[i]);
+    const identify::FitParameter& p = fit.fit[i];
+    if (p.observation >= 0) {
+      std::fprintf(out, "fitted %s %.6g s ± %.3g\n", p.key.c_str(), result.values[i],
+                   result.standard_deviations[i]);
+    } else {
+      std::fprintf(out, "fitted %s %s %.6g ± %.3g\n", p.body.c_str(), p.parameter.c_str(),
+                   result.values[i], result.standard_deviations[i]);
+    }
   }
   if (result.sigma_scale > 1.0) {
     std::fprintf(out,
@@ -250,16 +261,22 @@ IdentifyResult identify(const IdentifyOptions& options, std::FILE* out) {
   std::string yaml;
   std::optional<identify::Experiment> experiment;
   std::vector<double> guess;
+  std::vector<long> outside;
   try {
     checkWritable(fit.out);
-    identify::RecordedExperiment recorded = loadExperiment(fit, yaml);
+    identify::RecordedExperiment recorded = loadExperiment(fit, yaml, outside);
     guess = identify::firstGuess(recorded.scene, fit.fit);
     experiment.emplace(std::move(recorded), fit.fit);
   } catch (const FitSpecError& e) {
     throw FitSpecError(options.fit_file + ": " + e.what());
   }
+  for (std::size_t o = 0; o < outside.size(); ++o) {
+    if (outside[o] == 0) continue;
+    std::fprintf(out, "%s (%s): %ld samples outside the recorded session left out\n",
+                 fit.observations[o].key.c_str(), fit.observations[o].topic.c_str(), outside[o]);
+  }
   const auto residuals = [&experiment](const std::vector<double>& values) {
-    return experiment->residuals(experiment->simulate(values));
+    return experiment->residuals(experiment->simulate(values), values);
   };
   identify::FitOptions fit_options;
   fit_options.threads = options.threads;
@@ -272,8 +289,12 @@ IdentifyResult identify(const IdentifyOptions& options, std::FILE* out) {
   IdentifyResult result;
   result.fit = identify::fitLeastSquares(fit.fit, guess, experiment->residualCount(), residuals,
                                          fit_options);
-  result.before = experiment->rms(residuals(guess));
-  result.after = experiment->rms(residuals(result.fit.values));
+  // The RMS of what was measured, not of the loss.
+  const auto plain = [&experiment](const std::vector<double>& values) {
+    return experiment->rms(experiment->residuals(experiment->simulate(values), values, true));
+  };
+  result.before = plain(guess);
+  result.after = plain(result.fit.values);
   printFitted(out, fit, result.fit);
   printRms(out, fit, result.before, result.after);
   // About 1 when the sigmas are the noise; well above it in a local minimum.

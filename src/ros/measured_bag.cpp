@@ -29,7 +29,8 @@ void fillBuffer(const rosbag::Bag& bag, tf2::BufferCore& buffer) {
 }
 
 void readFrame(const rosbag::Bag& bag, const ObservationSpec& spec, const std::string& world,
-               const identify::SessionClock& clock, identify::MeasuredSeries& series) {
+               const identify::SessionClock& clock, identify::MeasuredSeries& series,
+               long& outside) {
   bool seen = false;
   for (const rosbag::MessageInstance& m :
        rosbag::View(bag, rosbag::TopicQuery(std::string("/tf")))) {
@@ -43,7 +44,10 @@ void readFrame(const rosbag::Bag& bag, const ObservationSpec& spec, const std::s
                            t.header.frame_id + "', not of the world frame '" + world + "'");
       }
       const std::optional<double> time = clock.timeAt(t.header.stamp.toNSec());
-      if (!time) continue;
+      if (!time) {
+        ++outside;
+        continue;
+      }
       series.times.push_back(*time);
       const geometry_msgs::Vector3& p = t.transform.translation;
       series.values.push_back(Eigen::Vector3d(p.x, p.y, p.z));
@@ -66,7 +70,7 @@ Eigen::Isometry3d sensorFrame(const tf2::BufferCore& buffer, const ObservationSp
 
 void readWrench(const rosbag::Bag& bag, const ObservationSpec& spec, const std::string& world,
                 const identify::SessionClock& clock, const tf2::BufferCore& buffer,
-                identify::MeasuredSeries& series, Eigen::Isometry3d& frame) {
+                identify::MeasuredSeries& series, Eigen::Isometry3d& frame, long& outside) {
   rosbag::View view(bag, rosbag::TopicQuery(spec.topic));
   if (view.size() == 0)
     throw FitSpecError(spec.key + ".wrench: the bag has no topic '" + spec.topic + "'");
@@ -80,7 +84,10 @@ void readWrench(const rosbag::Bag& bag, const ObservationSpec& spec, const std::
     if (first) frame = sensorFrame(buffer, spec, w->header.frame_id, world, w->header.stamp);
     first = false;
     const std::optional<double> time = clock.timeAt(w->header.stamp.toNSec());
-    if (!time) continue;
+    if (!time) {
+      ++outside;
+      continue;
+    }
     series.times.push_back(*time);
     Eigen::VectorXd value(6);
     value << w->wrench.force.x, w->wrench.force.y, w->wrench.force.z, w->wrench.torque.x,
@@ -100,12 +107,14 @@ Measurements readMeasurements(const std::string& path,
   Measurements result;
   result.series.resize(observations.size());
   result.sensor_frames.assign(observations.size(), Eigen::Isometry3d::Identity());
+  result.outside.assign(observations.size(), 0);
   for (std::size_t o = 0; o < observations.size(); ++o) {
     const ObservationSpec& spec = observations[o];
     if (spec.kind == ObservationSpec::Kind::kFrame) {
-      readFrame(bag, spec, world_frame, clock, result.series[o]);
+      readFrame(bag, spec, world_frame, clock, result.series[o], result.outside[o]);
     } else {
-      readWrench(bag, spec, world_frame, clock, buffer, result.series[o], result.sensor_frames[o]);
+      readWrench(bag, spec, world_frame, clock, buffer, result.series[o], result.sensor_frames[o],
+                 result.outside[o]);
     }
   }
   return result;

@@ -103,7 +103,10 @@ Value interpolate(const std::vector<Value>& steps, double dt, double t) {
 void writeMarkers(const LabRecording& lab, const Truth& truth, double dt, rosbag::Bag& bag,
                   std::mt19937& random) {
   std::normal_distribution<double> noise(0.0, lab.marker_noise);
-  for (double t = 0.0; t <= lab.duration; t += 1.0 / lab.marker_rate) {
+  const long outlier_every = lab.marker_outliers > 0.0 ? std::lround(1.0 / lab.marker_outliers) : 0;
+  long sample = 0;
+  for (double t = 0.0; t <= lab.duration; t += 1.0 / lab.marker_rate, ++sample) {
+    const double glitch = outlier_every > 0 && sample % outlier_every == 0 ? 0.05 : 0.0;
     tf2_msgs::TFMessage message;
     const ros::Time stamp = kStart + ros::Duration(t);
     for (std::size_t m = 0; m < lab.markers.size(); ++m) {
@@ -116,7 +119,7 @@ void writeMarkers(const LabRecording& lab, const Truth& truth, double dt, rosbag
       transform.child_frame_id = lab.markers[m].frame;
       transform.transform.translation.x = p.x() + noise(random);
       transform.transform.translation.y = p.y() + noise(random);
-      transform.transform.translation.z = p.z() + noise(random);
+      transform.transform.translation.z = p.z() + noise(random) + glitch;
       transform.transform.rotation.w = 1.0;
       message.transforms.push_back(transform);
     }
@@ -144,7 +147,7 @@ void writeSensor(const LabRecording& lab, const Truth& truth, double dt, rosbag:
     const core::Wrench seen = core::seenFrom(
         core::Wrench{w.head<3>(), w.tail<3>(), Eigen::Vector3d::Zero()}, lab.sensor_pose);
     geometry_msgs::WrenchStamped message;
-    message.header.stamp = kStart + ros::Duration(t);
+    message.header.stamp = kStart + ros::Duration(t + lab.sensor_clock_offset);
     message.header.frame_id = lab.sensor_frame;
     message.wrench.force.x = seen.force.x() + force(random);
     message.wrench.force.y = seen.force.y() + force(random);

@@ -32,6 +32,8 @@ struct LabRecording {
   std::multimap<long, core::SessionCommand> commands;
   std::vector<TrackedNode> markers;
   double marker_rate = 120.0, marker_noise = 0.001;  ///< Hz, m (1 sigma)
+  /// Every (1 / marker_outliers)-th marker sample a reading 5 cm off in z (a tracker's glitch).
+  double marker_outliers = 0.0;
   /// The body's fixed nodes' reaction (or `sensor_grasp`'s wrench, or the contact wrench on the
   /// obstacle `sensor_link`), in the world frame, torque about its origin, on this topic; empty:
   /// no sensor.
@@ -42,6 +44,7 @@ struct LabRecording {
   std::string sensor_frame = "world";
   Eigen::Isometry3d sensor_pose = Eigen::Isometry3d::Identity();
   double sensor_rate = 1000.0, force_noise = 0.02, torque_noise = 0.002;  ///< Hz, N, N m
+  double sensor_clock_offset = 0.0;  ///< s: the sensor's stamps run this far ahead
   unsigned seed = 7;
 };
 

@@ -30,4 +30,8 @@ TEST(SessionClock, StampsMapToTheInstantsOfTheLatestRecordedOutputBeforeThem) {
   // In the gap the clock ran on and simulated time did not: no later than the next state.
   EXPECT_DOUBLE_EQ(*clock.timeAt(kStart + 2 * kSecond), 1.01);
   EXPECT_DOUBLE_EQ(*clock.timeAt(kStart + 1'005'000'000), 1.005);
+  // With its last state recorded, the session ends there: a sensor's later samples are outside.
+  clock.endAt(kStart + 2 * kSecond + 2'000'000'000);
+  EXPECT_DOUBLE_EQ(*clock.timeAt(kStart + 4 * kSecond), 2.0);
+  EXPECT_FALSE(clock.timeAt(kStart + 4 * kSecond + 1).has_value());
 }

@@ -164,6 +164,10 @@ out: %s_fitted.yaml
                            r'(\S+) N m before', result.stdout)
         self.assertIsNotNone(marker, result.stdout + result.stderr)
         self.assertIsNotNone(sensor, result.stdout + result.stderr)
+        # The test heard the node before the reset the session starts at: those samples are
+        # outside it, counted and left out.
+        self.assertRegex(result.stdout, r'observations\[0\] \(marker_tip\): [0-9]+ samples '
+                         r'outside the recorded session left out')
         for measured, noise in ((marker.group(1), MARKER_NOISE), (sensor.group(1), FORCE_NOISE),
                                 (sensor.group(2), TORQUE_NOISE)):
             self.assertAlmostEqual(float(measured), noise, delta=0.1 * noise, msg=result.stdout)

@@ -46,7 +46,10 @@ class Experiment {
 
   /// Every observation at every step, the scene given `values` of the parameters. Thread-safe.
   std::vector<SimulatedSeries> simulate(const std::vector<double>& values) const;
-  Eigen::VectorXd residuals(const std::vector<SimulatedSeries>& simulated) const;
+  /// The weighted residuals of `simulated` (with the parameters' `values`: time offsets), each
+  /// sample's through its observation's loss unless `plain`.
+  Eigen::VectorXd residuals(const std::vector<SimulatedSeries>& simulated,
+                            const std::vector<double>& values, bool plain = false) const;
   std::vector<ObservationRms> rms(const Eigen::VectorXd& residuals) const;
 
  private:

@@ -24,6 +24,8 @@ struct FitParameter {
   double min = 0.0;
   double max = 0.0;
   std::string key;  ///< "fit[1]", for messages
+  /// A time offset's observation (parameter "time_offset", no body); -1: a scene parameter.
+  int observation = -1;
 };
 
 /// What was measured: a tracked frame on a material point, or a force/torque sensor.
@@ -39,6 +41,14 @@ struct ObservationSpec {
   double sigma = 0.0;         ///< m (tf) or N (wrench)
   double torque_sigma = 0.0;  ///< N m (wrench)
   std::string key;            ///< "observations[0]", for messages
+  /// s: the sensor's clock minus the node's (a sample stamped t was taken at t - offset); fixed,
+  /// or the first guess of one fitted within [offset_min, offset_max].
+  double time_offset = 0.0;
+  bool fit_time_offset = false;
+  double offset_min = 0.0, offset_max = 0.0;
+  /// Huber's loss from this many sigmas on (a sample's weighted residual beyond it counts
+  /// linearly: outliers pull less); 0: plain least squares.
+  double huber = 0.0;
 };
 
 struct FitSpec {

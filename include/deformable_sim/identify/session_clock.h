@@ -21,14 +21,18 @@ class SessionClock {
   /// A recorded output stamped `stamp_ns` shows simulated time `time` (s).
   void add(std::int64_t stamp_ns, double time);
   bool empty() const { return pairs_.empty(); }
+  /// The session ends at `stamp_ns` (its last recorded state): later stamps are outside it.
+  void endAt(std::int64_t stamp_ns) { end_ = stamp_ns; }
   /// The simulated time (s) at clock time `stamp_ns`; before the first pair, back from it; none
-  /// before the episode's start (simulated time 0) or without pairs.
+  /// outside the session (before the episode's start, simulated time 0, or after its end) or
+  /// without pairs.
   std::optional<double> timeAt(std::int64_t stamp_ns) const;
 
  private:
   /// (stamp, time), ordered by stamp once timeAt() is first asked.
   mutable std::vector<std::pair<std::int64_t, double>> pairs_;
   mutable bool sorted_ = true;
+  std::optional<std::int64_t> end_;
 };
 
 }  // namespace deformable_sim::identify

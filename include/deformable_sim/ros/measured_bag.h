@@ -15,6 +15,7 @@ namespace deformable_sim::ros_layer {
 struct Measurements {
   std::vector<identify::MeasuredSeries> series;  ///< per observation, in simulated time
   std::vector<Eigen::Isometry3d> sensor_frames;  ///< per observation: a wrench's frame, world
+  std::vector<long> outside;  ///< per observation: samples outside the session, left out
 };
 
 /// Reads every observation's samples from the bag at `path`, each at the simulated time `clock`
