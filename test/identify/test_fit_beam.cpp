@@ -293,6 +293,37 @@ TEST(FitBeam, HubersLossKeepsOutliersFromPullingTheFit) {
   EXPECT_LT(off(huber), 0.5 * off(plain));
 }
 
+// The coverage figure of doc/identify.md (half a minute; its draws are fixed, so it gives the
+// same counts every run): one session, 20 draws of its noise, each fitted from 2.5x off; how
+// often the truth lies within the printed 2 sigma (95 % of the time for an honest sigma).
+//   test_identify_fit --gtest_filter='*Coverage*'
+TEST(FitBeam, CoverageOfTwoSigmaOverTwentyNoiseSeeds) {
+  int within[2] = {0, 0}, fits = 0;
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    const fs::path directory =
+        beamRecorded("coverage", [seed](LabRecording& lab) { lab.seed = seed; });
+    const FitRun run = runFit(directory, kFit);
+    if (run.result.exit_code != 0) {
+      std::printf("seed %u: exit %d\n%s%s", seed, run.result.exit_code, run.printed.c_str(),
+                  run.refusal.c_str());
+      continue;
+    }
+    ++fits;
+    const std::vector<double> truth{kTrueE, kTrueBeta};
+    std::printf("seed %2u:", seed);
+    for (int i = 0; i < 2; ++i) {
+      const double value = run.result.fit.values[i], sigma = run.result.fit.standard_deviations[i];
+      within[i] += std::abs(value - truth[i]) <= 2.0 * sigma;
+      std::printf("  %.6g ± %.3g (%+.2f sigma)", value, sigma, (value - truth[i]) / sigma);
+    }
+    std::printf("  weighted RMS scale %.3g\n", run.result.fit.sigma_scale);
+  }
+  std::printf("of %d fits, the truth within 2 sigma: E %d, beta %d\n", fits, within[0], within[1]);
+  EXPECT_EQ(fits, 20);
+  EXPECT_GE(within[0], 17);
+  EXPECT_GE(within[1], 17);
+}
+
 // The figure of doc/identify.md, not a pass/fail test: a 20 s session of a 192-element beam, two
 // parameters, the fit's wall time. Run it with
 //   test_identify_fit --gtest_also_run_disabled_tests --gtest_filter='*TwentySecond*'
