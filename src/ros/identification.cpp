@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <type_traits>
 #include <variant>
 
@@ -103,6 +104,36 @@ void checkSceneIsTheBags(const RecordedSession& session, const core::SceneSpec& 
   }
 }
 
+// A wrench compared with a grasp or a link the session never had would be compared with zero:
+// refused, naming what there is.
+void checkSourcesAppear(const identify::FitSpec& fit, const core::Recording& recording,
+                        const core::SceneSpec& spec) {
+  std::set<std::string> grasps, links;
+  for (const core::PlacedShape& obstacle : spec.obstacles) links.insert(obstacle.name);
+  for (const core::AppliedCommand& applied : recording.log) {
+    if (const auto* grasp = std::get_if<core::GraspCommand>(&applied.command)) {
+      grasps.insert(grasp->name);
+    } else if (const auto* set = std::get_if<core::SetObstaclesCommand>(&applied.command)) {
+      for (const core::PlacedShape& obstacle : set->obstacles) links.insert(obstacle.name);
+    }
+  }
+  const auto list = [](const std::set<std::string>& names) {
+    std::string text;
+    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+    return text.empty() ? std::string("none") : text;
+  };
+  for (const identify::ObservationSpec& o : fit.observations) {
+    if (o.source == identify::ObservationSpec::Source::kGrasp && !grasps.count(o.name)) {
+      throw FitSpecError(o.key + ".grasp: the bag's log has no grasp '" + o.name +
+                         "' (its grasps: " + list(grasps) + ")");
+    }
+    if (o.source == identify::ObservationSpec::Source::kLink && !links.count(o.name)) {
+      throw FitSpecError(o.key + ".link: neither the scene nor the bag's log has an obstacle '" +
+                         o.name + "' (they have: " + list(links) + ")");
+    }
+  }
+}
+
 // The measured episode's clock: its commands, each stamped at the instant it took effect
 // (after `step` steps), and its states, at the instants they show.
 identify::SessionClock sessionClock(const RecordedSession& session, double dt) {
@@ -139,6 +170,7 @@ identify::RecordedExperiment loadExperiment(const identify::FitSpec& fit, std::s
   }
   LoadedScene scene = loadScene(fit, session);
   if (!fit.scene.empty()) checkSceneIsTheBags(session, scene.spec, scene.meshes);
+  checkSourcesAppear(fit, session.recording, scene.spec);
   yaml = scene.yaml;
   const std::string& world = session.applied_stamps.front().header.frame_id;
   const identify::SessionClock clock = sessionClock(session, scene.spec.dt);

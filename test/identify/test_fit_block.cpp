@@ -104,6 +104,15 @@ TEST(FitBlock, FindsStiffnessFromAGripsWrench) {
                         "  - {tf: side_y, body: block, at: [0.05, 0.1, 0.05], sigma: 0.001}\n"
                         "  - {wrench: /gripper/wrench, grasp: gripper, sigma: [0.02, 0.002]}\n"));
   expectFitted(run, {5.0e4, 0.35}, {0.03, 0.05});
+  // A grasp the session never had would be compared with zero: refused.
+  const std::string refusal =
+      runFit(directory,
+             squeezeFit("  - {wrench: /gripper/wrench, grasp: hand, sigma: [0.02, 0.002]}\n"))
+          .refusal;
+  EXPECT_NE(refusal.find("observations[0].grasp: the bag's log has no grasp 'hand' (its grasps: "
+                         "gripper)"),
+            std::string::npos)
+      << refusal;
 }
 
 // A 10 cm block on a floor with gravity tilted by 30 degrees: a slope it slides down whenever
@@ -151,6 +160,18 @@ TEST(FitBlock, FindsFrictionFromASlide) {
                             "  - {wrench: /floor/wrench, link: floor, sigma: [0.02, 0.002]}\n"
                             "out: fitted.yaml\n");
   expectFitted(run, {0.3}, {0.03});
+  // A link the session never had would be compared with zero: refused.
+  const std::string refusal =
+      runFit(directory,
+             "bag: experiment.bag\nscene: guess.yaml\n"
+             "fit: [{body: block, parameter: friction, min: 0.01, max: 1.0}]\n"
+             "observations: [{wrench: /floor/wrench, link: table, sigma: [0.02, 0.002]}]\n"
+             "out: fitted.yaml\n")
+          .refusal;
+  EXPECT_NE(refusal.find("observations[0].link: neither the scene nor the bag's log has an "
+                         "obstacle 'table' (they have: floor)"),
+            std::string::npos)
+      << refusal;
 }
 
 // Without `scene:` the fit starts from the bag's ~scene: the scene the node ran with, its
