@@ -16,7 +16,8 @@ NodeObstacles::NodeObstacles(const NodeParameters& params, RobotLinks& links,
       link_delay_s_(params.link_delay_s),
       apply_(std::move(apply)),
       obstacles_(sceneObstacles(params.scene, links)),
-      world_frame_(params.world_frame) {
+      world_frame_(params.world_frame),
+      links_(params.scene.urdf_links) {
   markers_pub_ = private_node.advertise<visualization_msgs::MarkerArray>("obstacles", 1, true);
 }
 
@@ -54,7 +55,7 @@ bool NodeObstacles::update(const ros::Time& now) {
 void NodeObstacles::draw(const std::vector<core::PlacedShape>& obstacles) {
   std_msgs::Header header;
   header.frame_id = world_frame_;  // no stamp: a late subscriber places them with the latest tf
-  markers_pub_.publish(obstacleMarkers(obstacles, header));
+  markers_pub_.publish(obstacleMarkers(obstacles, header, links_));
   drawn_ = obstacles;
   drawn_once_ = true;
 }

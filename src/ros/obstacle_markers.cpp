@@ -2,6 +2,8 @@
 
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <algorithm>
+
 #include "deformable_sim/ros/conversions.h"
 #include "deformable_sim/ros/markers.h"
 
@@ -50,14 +52,16 @@ void setMesh(const core::Shape& shape, Marker& m) {
 }  // namespace
 
 visualization_msgs::MarkerArray obstacleMarkers(const std::vector<core::PlacedShape>& obstacles,
-                                                const std_msgs::Header& header) {
+                                                const std_msgs::Header& header,
+                                                const std::vector<std::string>& links) {
   visualization_msgs::MarkerArray array;
   array.markers.push_back(deleteAllMarker(header));
   for (size_t k = 0; k < obstacles.size(); ++k) {
     const core::PlacedShape& obstacle = obstacles[k];
     Marker m;
     m.header = header;
-    m.ns = "obstacles";
+    const bool link = std::find(links.begin(), links.end(), obstacle.name) != links.end();
+    m.ns = link ? "links" : "obstacles";
     m.id = static_cast<int>(k);
     m.action = Marker::ADD;
     m.pose = tf2::toMsg(obstacle.pose);

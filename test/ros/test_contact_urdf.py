@@ -9,6 +9,7 @@ import numpy as np
 import rospy
 import rostest
 import tf2_ros
+from visualization_msgs.msg import Marker, MarkerArray
 
 from sim_client import SimClient, positions
 
@@ -75,6 +76,12 @@ class ContactWithUrdf(unittest.TestCase):
         self.assertLessEqual(stats.bodies[0].contacts, 25)
         self.assertEqual(stats.bodies[0].fixed_nodes, 0)  # contacts are not fixed nodes
 
+    def test_the_links_among_the_obstacles_are_drawn_in_their_own_namespace(self):
+        """~obstacles draws the table link in namespace 'links', which a config that draws the
+        robot model hides (config/grasp_friction.rviz): not drawn twice, no z-fighting."""
+        array = rospy.wait_for_message('/deformable_sim/obstacles', MarkerArray, timeout=20.0)
+        added = [m for m in array.markers if m.action == Marker.ADD]
+        self.assertEqual([m.ns for m in added], ['links'])
 
 if __name__ == '__main__':
     rostest.rosrun('deformable_sim', 'contact_urdf', ContactWithUrdf)

@@ -49,7 +49,9 @@ class NodeObstacles {
   core::LinkedObstacles obstacles_;
   std::vector<core::PlacedShape> applied_;  ///< as last applied
   std::string world_frame_;
-  ros::Publisher markers_pub_;            ///< ~obstacles
+  std::vector<std::string>
+      links_;                   ///< the robot links among the obstacles (their markers' namespace)
+  ros::Publisher markers_pub_;  ///< ~obstacles
   std::vector<core::PlacedShape> drawn_;  ///< as last published on ~obstacles
   bool drawn_once_ = false;               ///< something was published (an empty set, perhaps)
 };

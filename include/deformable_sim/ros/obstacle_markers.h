@@ -11,11 +11,13 @@
 
 namespace deformable_sim::ros_layer {
 
-/// A DELETEALL (so that obstacles that are gone disappear), then one marker a shape in the
-/// namespace "obstacles", id = its index, in a neutral grey: a CUBE, SPHERE or CYLINDER posed and
-/// sized as the shape, a mesh as a MESH_RESOURCE of its file (scaled as it was read), or as a
-/// TRIANGLE_LIST of its triangles when it has no file.
+/// A DELETEALL (so that obstacles that are gone disappear), then one marker a shape, id = its
+/// index, in a neutral grey: a CUBE, SPHERE or CYLINDER posed and sized as the shape, a mesh as a
+/// MESH_RESOURCE of its file (scaled as it was read), or as a TRIANGLE_LIST of its triangles when
+/// it has no file. In the namespace "links" for a shape of one of `links` (a robot's, which a
+/// RobotModel display draws already: an rviz config hides that namespace), else "obstacles".
 visualization_msgs::MarkerArray obstacleMarkers(const std::vector<core::PlacedShape>& obstacles,
-                                                const std_msgs::Header& header);
+                                                const std_msgs::Header& header,
+                                                const std::vector<std::string>& links = {});
 
 }  // namespace deformable_sim::ros_layer
