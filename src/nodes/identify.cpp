@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <thread>
@@ -45,6 +46,14 @@ constexpr const char* kUsage =
     "  4 fitted but not to be trusted (a parameter at a bound or with no effect on the data,\n"
     "  or a weighted RMS residual above 3).\n";
 
+// scripts/plot_identify.py: installed beside the program; in a build, in the source tree.
+std::string plotScript() {
+  std::error_code error;
+  const std::filesystem::path beside =
+      std::filesystem::read_symlink("/proc/self/exe", error).parent_path() / "plot_identify.py";
+  return !error && std::filesystem::exists(beside) ? beside.string() : DEFORMABLE_SIM_PLOT_SCRIPT;
+}
+
 bool parseArguments(int argc, char** argv, rl::IdentifyOptions& options, bool& help) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -79,7 +88,7 @@ int main(int argc, char** argv) {
   deformable_sim::letOpenMpThreadsSleep(argv);
   rl::IdentifyOptions options;
   options.threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 64u));
-  options.plot_script = DEFORMABLE_SIM_PLOT_SCRIPT;
+  options.plot_script = plotScript();
   bool help = false;
   if (!parseArguments(argc, argv, options, help)) {
     std::cerr << kUsage;
