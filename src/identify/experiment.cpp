@@ -79,6 +79,13 @@ std::vector<SimulatedSeries> Experiment::simulate(const std::vector<double>& val
   return series;
 }
 
+double Experiment::timeOffset(std::size_t o, const std::vector<double>& values) const {
+  for (std::size_t p = 0; p < parameters_.size(); ++p) {
+    if (parameters_[p].observation == static_cast<int>(o)) return values[p];
+  }
+  return recorded_.observations[o].time_offset;
+}
+
 Eigen::VectorXd Experiment::residuals(const std::vector<SimulatedSeries>& simulated,
                                       const std::vector<double>& values, bool plain) const {
   Eigen::VectorXd r(residual_count_);
@@ -86,10 +93,7 @@ Eigen::VectorXd Experiment::residuals(const std::vector<SimulatedSeries>& simula
   for (std::size_t o = 0; o < simulated.size(); ++o) {
     const ObservationSpec& spec = recorded_.observations[o];
     const MeasuredSeries& measured = recorded_.measured[o];
-    double offset = spec.time_offset;
-    for (std::size_t p = 0; p < parameters_.size(); ++p) {
-      if (parameters_[p].observation == static_cast<int>(o)) offset = values[p];
-    }
+    const double offset = timeOffset(o, values);
     for (std::size_t s = 0; s < measured.times.size(); ++s) {
       const Eigen::VectorXd d = simulated[o].at(measured.times[s] - offset) - measured.values[s];
       auto sample = r.segment(at, d.size());

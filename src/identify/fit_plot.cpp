@@ -37,7 +37,8 @@ void writeFitTable(const Experiment& experiment, const std::vector<double>& gues
     const MeasuredSeries& measured = recorded.measured[o];
     for (std::size_t s = 0; s < measured.times.size(); ++s) {
       const double t = measured.times[s];
-      const Eigen::VectorXd a = first[o].at(t), b = last[o].at(t);
+      const Eigen::VectorXd a = first[o].at(t - experiment.timeOffset(o, guess)),
+                            b = last[o].at(t - experiment.timeOffset(o, fitted));
       for (Eigen::Index k = 0; k < a.size(); ++k) {
         csv << name << "," << componentName(spec, static_cast<int>(k)) << "," << t << ","
             << measured.values[s][k] << "," << a[k] << "," << b[k] << "\n";
@@ -49,11 +50,12 @@ void writeFitTable(const Experiment& experiment, const std::vector<double>& gues
 
 void plotFit(const Experiment& experiment, const std::vector<double>& guess,
              const std::vector<double>& fitted, const std::string& png_path,
-             const std::string& script) {
+             const std::string& script, bool residuals) {
   const std::string csv_path = png_path + ".csv";
   writeFitTable(experiment, guess, fitted, csv_path);
-  const std::string command =
-      "/usr/bin/python3 " + quoted(script) + " " + quoted(csv_path) + " " + quoted(png_path);
+  const std::string command = "/usr/bin/python3 " + quoted(script) +
+                              (residuals ? " --residuals " : " ") + quoted(csv_path) + " " +
+                              quoted(png_path);
   if (std::system(command.c_str()) != 0)
     throw std::runtime_error("--plot: " + script + " could not draw " + png_path);
 }

@@ -20,7 +20,7 @@ namespace {
 namespace rl = deformable_sim::ros_layer;
 
 constexpr const char* kUsage =
-    "usage: deformable_sim_identify FIT.yaml [--threads N] [--plot FILE.png]\n"
+    "usage: deformable_sim_identify FIT.yaml [--threads N] [--plot FILE.png [--residuals]]\n"
     "                               [--max-iterations N] [--help]\n"
     "  Fits scene parameters to a recorded session: the bag's ~applied log is re-simulated with\n"
     "  trial values (bounded least squares, Ceres Solver) against the tracked frames (/tf) and\n"
@@ -40,6 +40,7 @@ constexpr const char* kUsage =
     "  their correlations and the RMS residual of each observation before and after.\n"
     "  --threads N        re-simulations at once (default: the machine's cores)\n"
     "  --plot FILE.png    draw measured against simulated (first guess, fit) over time\n"
+    "  --residuals        with --plot: draw simulated minus measured instead\n"
     "  --max-iterations N of the solver (default 30): a fit that needs more did not converge\n"
     "  -h, --help         this text\n"
     "  Exit status: 0 fitted, 1 input refused, 2 bad arguments, 3 the fit did not converge,\n"
@@ -69,6 +70,8 @@ bool parseArguments(int argc, char** argv, rl::IdentifyOptions& options, bool& h
       }
       (arg == "--threads" ? options.threads : options.max_iterations) = static_cast<int>(n);
       ++i;
+    } else if (arg == "--residuals") {
+      options.plot_residuals = true;
     } else if (arg == "--plot" && next) {
       options.plot = next;
       ++i;

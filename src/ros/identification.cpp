@@ -338,7 +338,8 @@ IdentifyResult identify(const IdentifyOptions& options, std::FILE* out) {
   writeOut(fit, yaml, result.fit.values);
   std::fprintf(out, "wrote %s\n", fit.out.c_str());
   if (!options.plot.empty()) {
-    identify::plotFit(*experiment, guess, result.fit.values, options.plot, options.plot_script);
+    identify::plotFit(*experiment, guess, result.fit.values, options.plot, options.plot_script,
+                      options.plot_residuals);
   }
   const std::string reasons = distrust(fit, result.fit, weighted_rms);
   if (!result.fit.converged) {

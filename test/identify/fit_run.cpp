@@ -10,7 +10,7 @@
 namespace deformable_sim::test {
 
 FitRun runFit(const std::filesystem::path& directory, const std::string& fit_text,
-              int max_iterations, const std::string& plot) {
+              int max_iterations, const std::string& plot, bool residuals) {
   ros::Time::init();
   const std::filesystem::path fit_file = directory / "fit.yaml";
   std::ofstream(fit_file) << fit_text;
@@ -19,6 +19,7 @@ FitRun runFit(const std::filesystem::path& directory, const std::string& fit_tex
   options.threads = 2;
   options.max_iterations = max_iterations;
   options.plot = plot;
+  options.plot_residuals = residuals;
   options.plot_script = DEFORMABLE_SIM_SOURCE_DIR "/scripts/plot_identify.py";
   char* text = nullptr;
   std::size_t size = 0;

@@ -17,8 +17,9 @@ struct FitRun {
 };
 
 /// Writes `fit_text` to DIRECTORY/fit.yaml and fits on two threads.
+/// With `plot`, draws it (`residuals`: simulated minus measured).
 FitRun runFit(const std::filesystem::path& directory, const std::string& fit_text,
-              int max_iterations = 30, const std::string& plot = "");
+              int max_iterations = 30, const std::string& plot = "", bool residuals = false);
 
 /// The fit converged, and its i-th value is within `relative[i]` of `truth[i]` and within 3 sigma.
 void expectFitted(const FitRun& run, const std::vector<double>& truth,

@@ -258,8 +258,27 @@ TEST(FitBeam, FindsASensorsClockOffset) {
       beamRecorded("offset", [](LabRecording& lab) { lab.sensor_clock_offset = 0.007; });
   const std::string with_offset = replaced(
       kFit, "sigma: [0.02, 0.002]}", "sigma: [0.02, 0.002], time_offset: {min: -0.05, max: 0.05}}");
-  const FitRun run = runFit(directory, with_offset);
+  const fs::path plot = directory / "residuals.png";
+  fs::remove(plot);
+  const FitRun run = runFit(directory, with_offset, 30, plot.string(), true);
   SCOPED_TRACE(run.printed + run.refusal);
+  // --residuals draws simulated minus measured; its table takes the fitted offset: the sensor's
+  // force z is off by its noise (0.02 N), not by the 7 ms.
+  EXPECT_GT(fs::file_size(plot), 10000u);
+  std::ifstream table(plot.string() + ".csv");
+  double squares = 0.0;
+  long samples = 0;
+  for (std::string line; std::getline(table, line);) {
+    if (line.rfind("observations[2] /ft_sensor/wrench,force z (N),", 0) != 0) continue;
+    const std::size_t fitted = line.rfind(','), guess = line.rfind(',', fitted - 1),
+                      measured = line.rfind(',', guess - 1);
+    const double error = std::stod(line.substr(fitted + 1)) -
+                         std::stod(line.substr(measured + 1, guess - measured - 1));
+    squares += error * error;
+    ++samples;
+  }
+  ASSERT_GT(samples, 2000);
+  EXPECT_LT(std::sqrt(squares / static_cast<double>(samples)), 0.025);
   ASSERT_EQ(run.result.fit.values.size(), 3u);
   EXPECT_NEAR(run.result.fit.values[2], 0.007, 0.001);
   EXPECT_NE(run.printed.find("fitted observations[2].time_offset 0.00"), std::string::npos);

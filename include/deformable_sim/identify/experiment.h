@@ -51,6 +51,8 @@ class Experiment {
   Eigen::VectorXd residuals(const std::vector<SimulatedSeries>& simulated,
                             const std::vector<double>& values, bool plain = false) const;
   std::vector<ObservationRms> rms(const Eigen::VectorXd& residuals) const;
+  /// Observation o's time offset (s) with the parameters' `values`: fitted, or as given.
+  double timeOffset(std::size_t o, const std::vector<double>& values) const;
 
  private:
   core::SceneSpec trialScene(const std::vector<double>& values) const;

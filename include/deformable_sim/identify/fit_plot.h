@@ -13,10 +13,10 @@ namespace deformable_sim::identify {
 void writeFitTable(const Experiment& experiment, const std::vector<double>& guess,
                    const std::vector<double>& fitted, const std::string& csv_path);
 
-/// Writes the table beside `png_path` (.csv) and runs `script` on it; throws std::runtime_error
-/// when the script fails.
+/// Writes the table beside `png_path` (.csv) and runs `script` on it, drawing the values or, with
+/// `residuals`, simulated minus measured; throws std::runtime_error when the script fails.
 void plotFit(const Experiment& experiment, const std::vector<double>& guess,
              const std::vector<double>& fitted, const std::string& png_path,
-             const std::string& script);
+             const std::string& script, bool residuals = false);
 
 }  // namespace deformable_sim::identify

@@ -14,10 +14,11 @@ namespace deformable_sim::ros_layer {
 
 struct IdentifyOptions {
   std::string fit_file;
-  int threads = 1;          ///< re-simulations at once
-  int max_iterations = 30;  ///< of the solver: a fit that needs more has not converged
-  std::string plot;         ///< PNG to draw measured against simulated; empty: none
-  std::string plot_script;  ///< the script that draws it (scripts/plot_identify.py)
+  int threads = 1;              ///< re-simulations at once
+  int max_iterations = 30;      ///< of the solver: a fit that needs more has not converged
+  std::string plot;             ///< PNG to draw measured against simulated; empty: none
+  std::string plot_script;      ///< the script that draws it (scripts/plot_identify.py)
+  bool plot_residuals = false;  ///< draw simulated minus measured instead of the values
 };
 
 struct IdentifyResult {
