@@ -13,8 +13,12 @@ namespace {
 std::vector<ObservationModel> models(const RecordedExperiment& recorded,
                                      const core::Simulation& simulation) {
   std::vector<ObservationModel> list;
-  for (std::size_t o = 0; o < recorded.observations.size(); ++o)
-    list.emplace_back(recorded.observations[o], simulation, recorded.sensor_frames[o]);
+  for (std::size_t o = 0; o < recorded.observations.size(); ++o) {
+    // A moving sensor's wrench is predicted in the world and seen from its frame per sample.
+    const bool moving = !recorded.measured[o].frames.empty();
+    list.emplace_back(recorded.observations[o], simulation,
+                      moving ? Eigen::Isometry3d::Identity() : recorded.sensor_frames[o]);
+  }
   return list;
 }
 
@@ -86,6 +90,18 @@ double Experiment::timeOffset(std::size_t o, const std::vector<double>& values) 
   return recorded_.observations[o].time_offset;
 }
 
+Eigen::VectorXd Experiment::predicted(std::size_t o, std::size_t s,
+                                      const SimulatedSeries& simulated,
+                                      const std::vector<double>& values) const {
+  const MeasuredSeries& measured = recorded_.measured[o];
+  Eigen::VectorXd value = simulated.at(measured.times[s] - timeOffset(o, values));
+  if (measured.frames.empty()) return value;
+  const core::Wrench seen = core::seenFrom(
+      core::Wrench{value.head<3>(), value.tail<3>(), Eigen::Vector3d::Zero()}, measured.frames[s]);
+  value << seen.force, seen.torque;
+  return value;
+}
+
 Eigen::VectorXd Experiment::residuals(const std::vector<SimulatedSeries>& simulated,
                                       const std::vector<double>& values, bool plain) const {
   Eigen::VectorXd r(residual_count_);
@@ -93,9 +109,8 @@ Eigen::VectorXd Experiment::residuals(const std::vector<SimulatedSeries>& simula
   for (std::size_t o = 0; o < simulated.size(); ++o) {
     const ObservationSpec& spec = recorded_.observations[o];
     const MeasuredSeries& measured = recorded_.measured[o];
-    const double offset = timeOffset(o, values);
     for (std::size_t s = 0; s < measured.times.size(); ++s) {
-      const Eigen::VectorXd d = simulated[o].at(measured.times[s] - offset) - measured.values[s];
+      const Eigen::VectorXd d = predicted(o, s, simulated[o], values) - measured.values[s];
       auto sample = r.segment(at, d.size());
       if (d.size() == 3) {
         sample = d / spec.sigma;

@@ -37,8 +37,8 @@ void writeFitTable(const Experiment& experiment, const std::vector<double>& gues
     const MeasuredSeries& measured = recorded.measured[o];
     for (std::size_t s = 0; s < measured.times.size(); ++s) {
       const double t = measured.times[s];
-      const Eigen::VectorXd a = first[o].at(t - experiment.timeOffset(o, guess)),
-                            b = last[o].at(t - experiment.timeOffset(o, fitted));
+      const Eigen::VectorXd a = experiment.predicted(o, s, first[o], guess),
+                            b = experiment.predicted(o, s, last[o], fitted);
       for (Eigen::Index k = 0; k < a.size(); ++k) {
         csv << name << "," << componentName(spec, static_cast<int>(k)) << "," << t << ","
             << measured.values[s][k] << "," << a[k] << "," << b[k] << "\n";

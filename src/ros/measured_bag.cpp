@@ -56,6 +56,10 @@ void readFrame(const rosbag::Bag& bag, const ObservationSpec& spec, const std::s
   if (!seen) throw FitSpecError(spec.key + ".tf: the bag's /tf has no frame '" + spec.topic + "'");
 }
 
+std::string withoutSlash(const std::string& frame) {
+  return !frame.empty() && frame[0] == '/' ? frame.substr(1) : frame;
+}
+
 Eigen::Isometry3d sensorFrame(const tf2::BufferCore& buffer, const ObservationSpec& spec,
                               const std::string& frame, const std::string& world,
                               const ros::Time& stamp) {
@@ -83,12 +87,18 @@ void readWrench(const rosbag::Bag& bag, const ObservationSpec& spec, const std::
     }
     if (first) frame = sensorFrame(buffer, spec, w->header.frame_id, world, w->header.stamp);
     first = false;
+    const bool moves = !w->header.frame_id.empty() && withoutSlash(w->header.frame_id) != world;
     const std::optional<double> time = clock.timeAt(w->header.stamp.toNSec());
     if (!time) {
       ++outside;
       continue;
     }
     series.times.push_back(*time);
+    // Its frame where it was at this sample (a sensor on a moving link; a fixed one stays put).
+    if (moves) {
+      series.frames.push_back(
+          sensorFrame(buffer, spec, w->header.frame_id, world, w->header.stamp));
+    }
     Eigen::VectorXd value(6);
     value << w->wrench.force.x, w->wrench.force.y, w->wrench.force.z, w->wrench.torque.x,
         w->wrench.torque.y, w->wrench.torque.z;

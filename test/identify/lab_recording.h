@@ -45,6 +45,9 @@ struct LabRecording {
   Eigen::Isometry3d sensor_pose = Eigen::Isometry3d::Identity();
   double sensor_rate = 1000.0, force_noise = 0.02, torque_noise = 0.002;  ///< Hz, N, N m
   double sensor_clock_offset = 0.0;  ///< s: the sensor's stamps run this far ahead
+  /// rad/s: the sensor's frame turns about the world's z at its origin (a sensor on a moving
+  /// link), on /tf at every sample; 0: still, on /tf_static.
+  double sensor_turn_rate = 0.0;
   unsigned seed = 7;
 };
 

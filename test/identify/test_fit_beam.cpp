@@ -292,6 +292,17 @@ TEST(FitBeam, FindsASensorsClockOffset) {
   EXPECT_LT(told.result.after[2].first, 1.1 * run.result.after[2].first) << told.printed;
 }
 
+// A sensor on a link that turns (2 rad/s about the world's z at the clamp, 5 rad over the
+// session): its readings are compared in its frame where it was at each sample, not at the first.
+TEST(FitBeam, FollowsASensorThatMoves) {
+  const fs::path directory =
+      beamRecorded("turning", [](LabRecording& lab) { lab.sensor_turn_rate = 2.0; });
+  const FitRun run = runFit(directory, kFit);
+  expectFitted(run, {kTrueE, kTrueBeta}, {0.03, 0.2});
+  EXPECT_LT(run.result.after[2].first, 0.025) << run.printed;  // the force's noise: 0.02 N
+  EXPECT_LT(run.result.after[2].second, 0.0025) << run.printed;
+}
+
 // One marker sample in 25 a tracker's glitch 5 cm off: with Huber's loss from 3 sigmas they pull
 // the fit far less than in plain least squares.
 TEST(FitBeam, HubersLossKeepsOutliersFromPullingTheFit) {

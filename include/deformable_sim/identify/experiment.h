@@ -53,6 +53,10 @@ class Experiment {
   std::vector<ObservationRms> rms(const Eigen::VectorXd& residuals) const;
   /// Observation o's time offset (s) with the parameters' `values`: fitted, or as given.
   double timeOffset(std::size_t o, const std::vector<double>& values) const;
+  /// What observation o's sample s is compared with: `simulated` at its time less the offset,
+  /// in its frame then (a moving sensor's).
+  Eigen::VectorXd predicted(std::size_t o, std::size_t s, const SimulatedSeries& simulated,
+                            const std::vector<double>& values) const;
 
  private:
   core::SceneSpec trialScene(const std::vector<double>& values) const;

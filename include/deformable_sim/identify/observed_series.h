@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <vector>
 
 namespace deformable_sim::identify {
@@ -12,6 +13,9 @@ namespace deformable_sim::identify {
 struct MeasuredSeries {
   std::vector<double> times;
   std::vector<Eigen::VectorXd> values;
+  /// A wrench's: per sample, its frame's pose in the world then (a sensor that moves); empty:
+  /// the observation's one frame.
+  std::vector<Eigen::Isometry3d> frames;
 };
 
 /// The simulated values at every step k, at time k dt.
