@@ -3,15 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <fstream>
-#include <set>
-#include <type_traits>
-#include <variant>
 
 #include "deformable_sim/identify/fit_plot.h"
 #include "deformable_sim/identify/fitted_scene.h"
 #include "deformable_sim/identify/scene_parameter.h"
 #include "deformable_sim/io/scene_file.h"
+#include "deformable_sim/ros/fit_checks.h"
 #include "deformable_sim/ros/measured_bag.h"
 #include "deformable_sim/ros/recorded_session.h"
 #include "deformable_sim/ros/replay.h"
@@ -50,88 +49,6 @@ LoadedScene loadScene(const identify::FitSpec& fit, const RecordedSession& sessi
     throw FitSpecError(std::string("scene: ") + e.what());
   }
   return scene;
-}
-
-/// The body a command names (empty: none, or the scene's only body).
-std::string commandBody(const core::SessionCommand& command) {
-  return std::visit(
-      [](const auto& c) -> std::string {
-        if constexpr (std::is_same_v<std::decay_t<decltype(c)>, core::WrenchCommand> ||
-                      std::is_same_v<std::decay_t<decltype(c)>, core::FixCommand> ||
-                      std::is_same_v<std::decay_t<decltype(c)>, core::GraspCommand> ||
-                      std::is_same_v<std::decay_t<decltype(c)>, core::TuneCommand>) {
-          return c.body;
-        } else {
-          return "";
-        }
-      },
-      command);
-}
-
-// A scene file other than the bag's (another body, mesh or step) would re-simulate another
-// session: its commands dropped or its motion another's. Refused, naming the difference.
-void checkSceneIsTheBags(const RecordedSession& session, const core::SceneSpec& spec,
-                         const std::vector<core::Mesh>& meshes) {
-  std::string names;
-  for (const core::BodySpec& body : spec.bodies) names += (names.empty() ? "" : ", ") + body.name;
-  for (const core::AppliedCommand& applied : session.recording.log) {
-    const std::string body = commandBody(applied.command);
-    const bool known = std::any_of(spec.bodies.begin(), spec.bodies.end(),
-                                   [&](const core::BodySpec& b) { return b.name == body; });
-    if (!body.empty() && !known) {
-      throw FitSpecError(
-          "scene: the bag's log commands body '" + body + "' (episode " +
-          std::to_string(applied.episode) + ", step " + std::to_string(applied.step) +
-          "), which the scene does not have (it has " + names + "): the scene is not the bag's");
-    }
-  }
-  if (session.scene.meshes.empty()) return;  // no ~scene in the bag: nothing more to compare
-  if (std::abs(session.scene.dt - spec.dt) > 1e-12 * spec.dt) {
-    throw FitSpecError("scene: its dt is " + std::to_string(spec.dt) +
-                       " s, the bag's node stepped " + std::to_string(session.scene.dt) +
-                       " s: the scene is not the bag's");
-  }
-  for (const MeshData& recorded : session.scene.meshes) {
-    for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
-      if (spec.bodies[b].name != recorded.body) continue;
-      if (static_cast<long>(recorded.node_ids.size()) != meshes[b].numNodes()) {
-        throw FitSpecError("scene: body '" + recorded.body + "' has " +
-                           std::to_string(meshes[b].numNodes()) + " nodes, the bag's " +
-                           std::to_string(recorded.node_ids.size()) +
-                           ": the scene is not the bag's");
-      }
-    }
-  }
-}
-
-// A wrench compared with a grasp or a link the session never had would be compared with zero:
-// refused, naming what there is.
-void checkSourcesAppear(const identify::FitSpec& fit, const core::Recording& recording,
-                        const core::SceneSpec& spec) {
-  std::set<std::string> grasps, links;
-  for (const core::PlacedShape& obstacle : spec.obstacles) links.insert(obstacle.name);
-  for (const core::AppliedCommand& applied : recording.log) {
-    if (const auto* grasp = std::get_if<core::GraspCommand>(&applied.command)) {
-      grasps.insert(grasp->name);
-    } else if (const auto* set = std::get_if<core::SetObstaclesCommand>(&applied.command)) {
-      for (const core::PlacedShape& obstacle : set->obstacles) links.insert(obstacle.name);
-    }
-  }
-  const auto list = [](const std::set<std::string>& names) {
-    std::string text;
-    for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
-    return text.empty() ? std::string("none") : text;
-  };
-  for (const identify::ObservationSpec& o : fit.observations) {
-    if (o.source == identify::ObservationSpec::Source::kGrasp && !grasps.count(o.name)) {
-      throw FitSpecError(o.key + ".grasp: the bag's log has no grasp '" + o.name +
-                         "' (its grasps: " + list(grasps) + ")");
-    }
-    if (o.source == identify::ObservationSpec::Source::kLink && !links.count(o.name)) {
-      throw FitSpecError(o.key + ".link: neither the scene nor the bag's log has an obstacle '" +
-                         o.name + "' (they have: " + list(links) + ")");
-    }
-  }
 }
 
 // The measured episode's clock: its commands, each stamped at the instant it took effect
@@ -210,6 +127,14 @@ void printRms(std::FILE* out, const identify::FitSpec& fit,
                    spec.key.c_str(), spec.topic.c_str(), before[o].first, before[o].second,
                    after[o].first, after[o].second);
     }
+  }
+}
+
+void printOutside(std::FILE* out, const identify::FitSpec& fit, const std::vector<long>& outside) {
+  for (std::size_t o = 0; o < outside.size(); ++o) {
+    if (outside[o] == 0) continue;
+    std::fprintf(out, "%s (%s): %ld samples outside the recorded session left out\n",
+                 fit.observations[o].key.c_str(), fit.observations[o].topic.c_str(), outside[o]);
   }
 }
 
@@ -302,11 +227,7 @@ IdentifyResult identify(const IdentifyOptions& options, std::FILE* out) {
   } catch (const FitSpecError& e) {
     throw FitSpecError(options.fit_file + ": " + e.what());
   }
-  for (std::size_t o = 0; o < outside.size(); ++o) {
-    if (outside[o] == 0) continue;
-    std::fprintf(out, "%s (%s): %ld samples outside the recorded session left out\n",
-                 fit.observations[o].key.c_str(), fit.observations[o].topic.c_str(), outside[o]);
-  }
+  printOutside(out, fit, outside);
   const auto residuals = [&experiment](const std::vector<double>& values) {
     return experiment->residuals(experiment->simulate(values), values);
   };
