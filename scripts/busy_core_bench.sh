@@ -4,6 +4,10 @@
 # ratio. Usage: scripts/busy_core_bench.sh [N=3] [extra deformable_sim_run arguments]
 # Needs the workspace sourced (rosrun finds deformable_sim_run).
 set -euo pipefail
+if [[ "${1:-}" == "-h" || "${1:-}" == "--help" ]]; then
+  sed -n '2,5s/^# \{0,1\}//p' "$0"
+  exit 0
+fi
 runs=${1:-3}
 shift || true
 scene=$(rospack find deformable_sim)/config/scenes/pile.yaml
