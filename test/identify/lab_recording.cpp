@@ -127,38 +127,30 @@ void writeMarkers(const LabRecording& lab, const Truth& truth, double dt, rosbag
   }
 }
 
-// The sensor's frame on /tf_static, as a robot's description would put it there.
-void writeSensorFrame(const LabRecording& lab, rosbag::Bag& bag) {
-  geometry_msgs::TransformStamped transform = tf2::eigenToTransform(lab.sensor_pose);
-  transform.header.stamp = kStart;
-  transform.header.frame_id = kWorld;
-  transform.child_frame_id = lab.sensor_frame;
-  tf2_msgs::TFMessage message;
-  message.transforms.push_back(transform);
-  bag.write("/tf_static", kStart, message);
-}
-
-// Where a turning sensor's frame is at time t, and the /tf message that says so.
+// Where a turning sensor's frame is at time t (still: lab.sensor_pose).
 Eigen::Isometry3d sensorPose(const LabRecording& lab, double t) {
   return Eigen::Translation3d(lab.sensor_pose.translation()) *
          Eigen::AngleAxisd(lab.sensor_turn_rate * t, Eigen::Vector3d::UnitZ()) *
          Eigen::Isometry3d(lab.sensor_pose.linear());
 }
 
-void writeSensorPose(const LabRecording& lab, double t, const ros::Time& stamp, rosbag::Bag& bag) {
+// The sensor's frame at time t on `topic`: /tf_static once for a still one, as a robot's
+// description would put it there; /tf at every sample for a turning one.
+void writeSensorFrame(const LabRecording& lab, double t, const ros::Time& stamp,
+                      const std::string& topic, rosbag::Bag& bag) {
   geometry_msgs::TransformStamped transform = tf2::eigenToTransform(sensorPose(lab, t));
   transform.header.stamp = stamp;
   transform.header.frame_id = kWorld;
   transform.child_frame_id = lab.sensor_frame;
   tf2_msgs::TFMessage message;
   message.transforms.push_back(transform);
-  bag.write("/tf", stamp, message);
+  bag.write(topic, stamp, message);
 }
 
 void writeSensor(const LabRecording& lab, const Truth& truth, double dt, rosbag::Bag& bag,
                  std::mt19937& random) {
   const bool turns = lab.sensor_turn_rate != 0.0;
-  if (lab.sensor_frame != kWorld && !turns) writeSensorFrame(lab, bag);
+  if (lab.sensor_frame != kWorld && !turns) writeSensorFrame(lab, 0.0, kStart, "/tf_static", bag);
   std::normal_distribution<double> force(0.0, lab.force_noise), torque(0.0, lab.torque_noise);
   for (double t = 0.0; t <= lab.duration; t += 1.0 / lab.sensor_rate) {
     const Eigen::Matrix<double, 6, 1> w = interpolate(truth.wrench, dt, t);
@@ -167,7 +159,7 @@ void writeSensor(const LabRecording& lab, const Truth& truth, double dt, rosbag:
                        turns ? sensorPose(lab, t) : lab.sensor_pose);
     geometry_msgs::WrenchStamped message;
     message.header.stamp = kStart + ros::Duration(t + lab.sensor_clock_offset);
-    if (turns) writeSensorPose(lab, t, message.header.stamp, bag);
+    if (turns) writeSensorFrame(lab, t, message.header.stamp, "/tf", bag);
     message.header.frame_id = lab.sensor_frame;
     message.wrench.force.x = seen.force.x() + force(random);
     message.wrench.force.y = seen.force.y() + force(random);
