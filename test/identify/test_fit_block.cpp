@@ -176,12 +176,18 @@ TEST(FitBlock, FindsFrictionFromASlide) {
 
 // Without `scene:` the fit starts from the bag's ~scene: the scene the node ran with, its
 // friction the nominal 0.12, and writes `out` from that scene's text.
-TEST(FitBlock, StartsFromTheRecordedSceneWithoutASceneFile) {
-  LabRecording lab = blockLab(slopeScene(0.3), 1.0);
+// The slide (friction 0.3) recorded for `duration` s by a node whose ~scene says 0.12, with a
+// marker and no sensor, into a folder `name`.
+fs::path slideWithNodeScene(const std::string& name, double duration) {
+  LabRecording lab = blockLab(slopeScene(0.3), duration);
   lab.node_scene_yaml = slopeScene(0.12);
   lab.sensor_topic.clear();
   nudgeDownTheSlope(lab);
-  const fs::path directory = recorded("recorded_scene", lab, "");
+  return recorded(name, lab, "");
+}
+
+TEST(FitBlock, StartsFromTheRecordedSceneWithoutASceneFile) {
+  const fs::path directory = slideWithNodeScene("recorded_scene", 1.0);
   const FitRun run =
       runFit(directory,
              "bag: experiment.bag\n"
@@ -199,11 +205,7 @@ TEST(FitBlock, StartsFromTheRecordedSceneWithoutASceneFile) {
 // differs (a command for body `beam` against a scene with only `bar` was dropped silently, and
 // the fit ended with an RMS 176 times the noise).
 TEST(FitBlock, RefusesASceneThatIsNotTheBags) {
-  LabRecording lab = blockLab(slopeScene(0.3), 0.3);
-  lab.node_scene_yaml = slopeScene(0.12);
-  lab.sensor_topic.clear();
-  nudgeDownTheSlope(lab);
-  const fs::path directory = recorded("other_scene", lab, "");
+  const fs::path directory = slideWithNodeScene("other_scene", 0.3);
   const auto fit = [](const std::string& body) {
     return "bag: experiment.bag\nscene: guess.yaml\nfit: [{body: " + body +
            ", parameter: friction, min: 0.01, max: 1.0}]\nobservations: [{tf: top, body: " + body +
