@@ -182,7 +182,9 @@ out: %s_fitted.yaml
                                     ('damping_mass', TRUE_MASS_DAMPING, 0.2)):
             value, sigma = fitted[name]
             self.assertAlmostEqual(value / truth, 1.0, delta=within, msg=result.stdout)
-            self.assertLessEqual(abs(value - truth), 2.0 * sigma, msg=result.stdout)
+            # A session driven in real time differs run to run: one value in 20 misses 2 sigma
+            # by chance (the coverage test counts that on fixed draws); 3 sigma here.
+            self.assertLessEqual(abs(value - truth), 3.0 * sigma, msg=result.stdout)
 
 
 if __name__ == '__main__':
