@@ -19,9 +19,9 @@ namespace fs = std::filesystem;
 namespace {
 
 /// The core's folders, lowest first: a folder may include its own and the earlier ones.
-const std::vector<std::string> kOrder = {"base",           "solvers", "geometry", "elements",
-                                         "surface_bodies", "bodies",  "contact",  "session",
-                                         "outputs",        "driver"};
+const std::vector<std::string> kOrder = {"base",      "solvers",        "geometry", "elements",
+                                         "materials", "surface_bodies", "bodies",   "contact",
+                                         "session",   "outputs",        "driver"};
 constexpr int kMaxFiles = 15;
 constexpr int kMaxPublicMethods = 25;
 
