@@ -9,6 +9,7 @@
 
 #include "deformable_sim/core/base/wall_clock.h"
 #include "deformable_sim/core/bodies/elastic_participant.h"
+#include "deformable_sim/core/materials/neo_hookean_elasticity.h"
 
 namespace deformable_sim::core {
 
@@ -20,6 +21,14 @@ using Clock = WallClock;
 /// keep the node within a thousandth of its way off the plane, soft enough for block-Jacobi.
 constexpr double kPlaneStiffness = 1e3;
 
+std::unique_ptr<ElasticModel> elasticModelFor(const Mesh& mesh,
+                                              const LinearElasticMaterial& material) {
+  if (material.law == ElasticLaw::kNeoHookean) {
+    return std::make_unique<NeoHookeanElasticity>(mesh, material);
+  }
+  return std::make_unique<CorotationalElasticity>(mesh, material);
+}
+
 }  // namespace
 
 FiniteElementBody::FiniteElementBody(std::string name, Mesh mesh,
@@ -27,16 +36,22 @@ FiniteElementBody::FiniteElementBody(std::string name, Mesh mesh,
                                      const BodyEffects& effects, const SolverSettings& solver)
     : Body(std::move(name), std::move(mesh),
            BodySettings{BodyModel::kFiniteElement, material, effects, solver}),
-      elasticity_(mesh_, material),
+      elasticity_(elasticModelFor(mesh_, material)),
       step_start_(x0_),
       step_forces_(Eigen::VectorXd::Zero(x0_.size())) {
   plane_holds_.reserve(mesh_.numNodes());
   rhs_.resize(x0_.size());
   next_.resize(x0_.size());
   scratch_.resize(x0_.size());
+  newton_iterate_ = Eigen::VectorXd::Zero(x0_.size());
   for (Eigen::VectorXd& v : v_history_) v = Eigen::VectorXd::Zero(x0_.size());
   if (solver.method == SolverSettings::Method::kDirect) direct_ = std::make_unique<DirectSolver>();
-  elasticity_.setThreads(solver.threads);
+  elasticity_->setThreads(solver.threads);
+  corotational_ = dynamic_cast<const CorotationalElasticity*>(elasticity_.get());
+  if (effects.plasticity && !corotational_) {
+    throw std::invalid_argument(where() +
+                                "plasticity works with the warped stiffness only, not Neo-Hookean");
+  }
   if (effects.plasticity) {
     try {
       plasticity_.emplace(mesh_, *effects.plasticity);
@@ -52,7 +67,7 @@ std::unique_ptr<ContactParticipant> FiniteElementBody::contactParticipant() {
 }
 
 void FiniteElementBody::changeMaterial(const LinearElasticMaterial& material) {
-  elasticity_.setMaterial(material);
+  elasticity_->setMaterial(material);
   stiffness_current_ = false;
   matrixChanged();
   ++matrix_version_;
@@ -120,7 +135,7 @@ void FiniteElementBody::preparePlaneHolds(double dt) {
   if (plane_holds_.empty()) return;
   const RayleighDamping damping = settings_.effects.damping.value_or(RayleighDamping{});
   const double c_m = 1.0 + dt * damping.mass, c_k = dt * damping.stiffness + dt * dt;
-  const BlockSparseMatrix& k = elasticity_.stiffness();
+  const BlockSparseMatrix& k = elasticity_->stiffness();
   for (PlaneHold& hold : plane_holds_) {
     const int i = hold.node;
     const double diagonal = c_m * mass_[i] + c_k * k.blocks()[k.diagonalIndex(i)].trace() / 3.0;
@@ -167,8 +182,8 @@ void FiniteElementBody::addConstraintForces(const Eigen::VectorXd& dv) {
 
 int FiniteElementBody::updateStiffness(StepTimes* times) {
   const auto start = Clock::now();
-  if (settings_.effects.warping && !rotations_current_) {
-    const CorotationalElasticity::RotationUpdate update = elasticity_.updateRotations(x_);
+  if (followsPositions() && !rotations_current_) {
+    const ElasticModel::Update update = elasticity_->linearizeAt(x_);
     inverted_elements_ = update.inverted;
     elastic_energy_ = update.energy;
     rotations_current_ = true;
@@ -176,7 +191,7 @@ int FiniteElementBody::updateStiffness(StepTimes* times) {
   }
   const auto rotated = Clock::now();
   if (!stiffness_current_) {  // without warping: once, and after a change of material
-    elasticity_.assemble();
+    elasticity_->assemble();
     stiffness_current_ = true;
     matrix_changed_ = true;
   }
@@ -190,7 +205,7 @@ int FiniteElementBody::updateStiffness(StepTimes* times) {
 SystemMatrix FiniteElementBody::systemMatrix(double mass_coefficient,
                                              double stiffness_coefficient) const {
   SystemMatrix a;
-  a.stiffness = &elasticity_.stiffness();
+  a.stiffness = &elasticity_->stiffness();
   a.nodal_mass = &mass_;
   a.mass_coefficient = mass_coefficient;
   a.stiffness_coefficient = stiffness_coefficient;
@@ -243,16 +258,57 @@ void FiniteElementBody::predictVelocity(Eigen::VectorXd& guess) const {
   }
 }
 
+Eigen::Vector3d FiniteElementBody::stepLoad(int i) const {
+  Eigen::Vector3d load = external_forces_.segment<3>(3 * i);
+  if (settings_.effects.gravity) load += mass_[i] * *settings_.effects.gravity;
+  if (plasticity_) load += plastic_forces_.segment<3>(3 * i);
+  if (has_step_forces_) load += step_forces_.segment<3>(3 * i);
+  return load;
+}
+
+double FiniteElementBody::stepPotential(const Eigen::VectorXd& v, double h) {
+  const double mass_damping = settings_.effects.damping ? settings_.effects.damping->mass : 0.0;
+  double potential = 0.0;
+  for (int i = 0; i < numNodes(); ++i) {
+    const Eigen::Vector3d vi = v.segment<3>(3 * i);
+    potential +=
+        0.5 * mass_[i] *
+            ((vi - v_.segment<3>(3 * i)).squaredNorm() + h * mass_damping * vi.squaredNorm()) -
+        h * stepLoad(i).dot(vi);
+  }
+  for (const PlaneHold& hold : plane_holds_) {
+    const double off = hold.normal.dot(v.segment<3>(3 * hold.node)) - hold.velocity;
+    potential += 0.5 * hold.stiffness * off * off;
+  }
+  end_positions_ = x_ + h * v;
+  return potential + elasticity_->lawEnergy(end_positions_);
+}
+
+void FiniteElementBody::searchLine(double h, bool first, RotationSettling& settling) {
+  constexpr int kMaxHalvings = 12;
+  if (first) {  // the first linearization was at the step's start: x + h 0
+    newton_iterate_.setZero();
+    for (int i = 0; i < numNodes(); ++i) {
+      if (constrained_[i]) newton_iterate_.segment<3>(3 * i) = next_.segment<3>(3 * i);
+    }
+    settling.potential = stepPotential(newton_iterate_, h);
+  }
+  double potential = stepPotential(next_, h);
+  for (int halving = 0; halving < kMaxHalvings && !(potential <= settling.potential); ++halving) {
+    next_ = 0.5 * (next_ + newton_iterate_);
+    potential = stepPotential(next_, h);
+  }
+  newton_iterate_ = next_;
+  settling.potential = potential;
+}
+
 double FiniteElementBody::setStepRightHandSide(double h) {
   // b = M v - h (K' x + f0' - f_ext - M g); K' x on the solver's threads.
   systemMatrix(0.0, 1.0).multiply(x_, scratch_);
-  const Eigen::VectorXd& f0 = elasticity_.forceOffset();
+  const Eigen::VectorXd& f0 = elasticity_->forceOffset();
   double free_load2 = 0.0;
   for (int i = 0; i < numNodes(); ++i) {
-    Eigen::Vector3d load = external_forces_.segment<3>(3 * i);
-    if (settings_.effects.gravity) load += mass_[i] * *settings_.effects.gravity;
-    if (plasticity_) load += plastic_forces_.segment<3>(3 * i);
-    if (has_step_forces_) load += step_forces_.segment<3>(3 * i);
+    const Eigen::Vector3d load = stepLoad(i);
     if (!constrained_[i]) free_load2 += load.squaredNorm();
     rhs_.segment<3>(3 * i) = mass_[i] * v_.segment<3>(3 * i) -
                              h * (scratch_.segment<3>(3 * i) + f0.segment<3>(3 * i) - load);
@@ -271,7 +327,7 @@ StepReport FiniteElementBody::step(double dt) {
   response_factored_ = false;  // the step's matrix is new
   report.inverted_elements = updateStiffness(&report.times);
   if (plasticity_) {
-    plasticity_->step(mesh_, elasticity_, x_, dt, plastic_forces_);
+    plasticity_->step(mesh_, *corotational_, x_, dt, plastic_forces_);
     ++counters_.plasticity;
   }
   if (settings_.effects.damping) ++counters_.damping;
@@ -311,10 +367,12 @@ void FiniteElementBody::advance(double h, int depth, StepReport& report) {
   settling.solve_start_energy = settling.start_energy;
   for (int solves = 1;; ++solves) {
     solveVelocity(a, h, solves == 1, report);
-    if (!settings_.effects.warping) break;
-    const CorotationalElasticity::RotationUpdate end = rotateToEnd(h, report);
+    if (!followsPositions()) break;
+    if (!corotational_) searchLine(h, solves == 1, settling);
+    const ElasticModel::Update end = rotateToEnd(h, report);
     if (settings_.solver.max_rotation_updates == 0) break;
-    const EnergyCheck check = checkRotationEnergy(a, end, settling);
+    const EnergyCheck check =
+        corotational_ ? checkRotationEnergy(a, end, settling) : checkNewtonResidual(end, h);
     if (!check.gains) break;
     // Converging, the excess shrinks several times over from one solve to the next; where it
     // does not, more solves will not settle it either.
@@ -332,10 +390,10 @@ void FiniteElementBody::advance(double h, int depth, StepReport& report) {
       return;
     }
     const auto assembly_start = Clock::now();
-    elasticity_.assemble();
+    elasticity_->assemble();
     matrix_changed_ = true;
     settling.product_is_current = false;
-    settling.solve_start_energy = elasticity_.elasticEnergy(x_);
+    settling.solve_start_energy = elasticity_->elasticEnergy(x_);
     report.times.assembly += secondsSince(assembly_start);
   }
   finishAdvance(a, h, settling.product_is_current);
@@ -356,11 +414,10 @@ void FiniteElementBody::solveVelocity(const SystemMatrix& a, double h, bool step
   ++report.solves;
 }
 
-CorotationalElasticity::RotationUpdate FiniteElementBody::rotateToEnd(double h,
-                                                                      StepReport& report) {
+ElasticModel::Update FiniteElementBody::rotateToEnd(double h, StepReport& report) {
   end_positions_ = x_ + h * next_;
   const auto rotations_start = Clock::now();
-  const CorotationalElasticity::RotationUpdate end = elasticity_.updateRotations(end_positions_);
+  const ElasticModel::Update end = elasticity_->linearizeAt(end_positions_);
   report.times.rotations += secondsSince(rotations_start);
   end_inverted_elements_ = end.inverted;
   elastic_energy_ = end.energy;
@@ -369,8 +426,7 @@ CorotationalElasticity::RotationUpdate FiniteElementBody::rotateToEnd(double h,
 }
 
 FiniteElementBody::EnergyCheck FiniteElementBody::checkRotationEnergy(
-    const SystemMatrix& a, const CorotationalElasticity::RotationUpdate& end,
-    RotationSettling& settling) {
+    const SystemMatrix& a, const ElasticModel::Update& end, RotationSettling& settling) {
   // What the step dissipates, 1/2 dv^T M dv + 1/2 h^2 v+^T K' v+ (+ damping's h v+^T C v+, left
   // out), against what the change of rotations adds at its start and end. The stiffness part
   // costs a product with A: only when the mass part does not cover the gain already.
@@ -398,6 +454,21 @@ FiniteElementBody::EnergyCheck FiniteElementBody::checkRotationEnergy(
   return {gained > dissipated + roundoff, gained - dissipated};
 }
 
+FiniteElementBody::EnergyCheck FiniteElementBody::checkNewtonResidual(
+    const ElasticModel::Update& end, double h) const {
+  // The solve met implicit Euler's equations with the linearized force; with the law's, they are
+  // off by h times the difference of the two at the end.
+  constexpr double kNewtonTolerance = 1e-6;
+  double momentum = 0.0;
+  for (int i = 0; i < numNodes(); ++i) {
+    momentum = std::max(
+        momentum,
+        mass_[i] * (next_.segment<3>(3 * i) - v_.segment<3>(3 * i)).lpNorm<Eigen::Infinity>());
+  }
+  const double excess = h * end.force_mismatch;
+  return {excess > kNewtonTolerance * (momentum + h * end.largest_force) + 1e-300, excess};
+}
+
 void FiniteElementBody::finishAdvance(const SystemMatrix& a, double h, bool product_is_current) {
   // A v+ - b = h (M (v+ - v) / h - f_ext - f_elastic - f_damping): h times the constraint force.
   if (settings_.effects.reactions) {
@@ -413,7 +484,7 @@ void FiniteElementBody::finishAdvance(const SystemMatrix& a, double h, bool prod
       reaction_.segment<3>(3 * p.node) = p.stiffness * lag / h * p.normal;
     }
   }
-  if (settings_.effects.warping) {
+  if (followsPositions()) {
     // x+ is end_positions_ (bit for bit: the same sum); its rotations are already computed.
     std::swap(x_, end_positions_);
     rotations_current_ = true;
@@ -453,10 +524,10 @@ StaticReport FiniteElementBody::solveStaticChecked(const StaticSettings& setting
                                             : std::min(1.0, 1.25 * relaxation);
       previous_change = change;
       relaxTowardsNext(relaxation);
-      if (!settings_.effects.warping || report.last_change <= settings.tolerance) break;
+      if (!followsPositions() || report.last_change <= settings.tolerance) break;
     }
     report.converged = report.last_solve.converged &&
-                       (!settings_.effects.warping || report.last_change <= settings.tolerance);
+                       (!followsPositions() || report.last_change <= settings.tolerance);
   }
   v_.setZero();
   restartWarmStart();
@@ -471,8 +542,8 @@ double FiniteElementBody::staticIteration(const SystemMatrix& a, const Eigen::Ve
   // Solve K' dx = f - f0' - K' x for the change dx, so that CG's relative tolerance is
   // measured against the out-of-balance force, not against K' x (for a stiff body far larger
   // than the load: CG then stopped at once with no displacement at all).
-  elasticity_.stiffness().multiply(x_, scratch_);
-  rhs_ = fraction * load - elasticity_.forceOffset() - scratch_;
+  elasticity_->stiffness().multiply(x_, scratch_);
+  rhs_ = fraction * load - elasticity_->forceOffset() - scratch_;
   next_.setZero();
   for (int i = 0; i < numNodes(); ++i) {
     if (constrained_[i]) {
@@ -505,12 +576,12 @@ void FiniteElementBody::relaxTowardsNext(double relaxation) {
 void FiniteElementBody::setStaticReactions(const Eigen::VectorXd& load) {
   // Reactions at equilibrium, with the stiffness of the final configuration.
   updateStiffness();
-  elasticity_.stiffness().multiply(x_, scratch_);
+  elasticity_->stiffness().multiply(x_, scratch_);
   for (int i = 0; i < numNodes(); ++i) {
     reaction_.segment<3>(3 * i) =
         constrained_[i]
             ? Eigen::Vector3d(scratch_.segment<3>(3 * i) +
-                              elasticity_.forceOffset().segment<3>(3 * i) - load.segment<3>(3 * i))
+                              elasticity_->forceOffset().segment<3>(3 * i) - load.segment<3>(3 * i))
             : Eigen::Vector3d::Zero();
   }
 }
@@ -523,9 +594,8 @@ double FiniteElementBody::kineticEnergy() const {
 }
 
 double FiniteElementBody::elasticEnergy() const {
-  if (settings_.effects.warping && rotations_current_)
-    return elastic_energy_;  // computed with them
-  return elasticity_.elasticEnergy(x_);
+  if (followsPositions() && rotations_current_) return elastic_energy_;  // computed with them
+  return elasticity_->elasticEnergy(x_);
 }
 
 }  // namespace deformable_sim::core

@@ -184,8 +184,8 @@ Eigen::Matrix3d CorotationalElasticity::elementDeformationGradient(int e,
   const int num_tetrahedra = static_cast<int>(tetrahedra_.size());
   if (e < num_tetrahedra) {
     const Tetrahedron& t = tetrahedra_[e];
-    return deformationGradient(rest_[e], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
-                               x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
+    return core::deformationGradient(rest_[e], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
+                                     x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
   }
   // Other cells: F at the centre.
   const CellElement& cell = cells_[e - num_tetrahedra];

@@ -53,31 +53,58 @@ Eigen::Matrix3d HyperelasticElements::deformationGradient(const Element& element
   return f;
 }
 
-double HyperelasticElements::energy(const Eigen::VectorXd& x) const {
+double HyperelasticElements::elementEnergy(int e, const Eigen::VectorXd& x, int& inverted) const {
+  const Element& element = elements_[e];
   double sum = 0.0;
-  for (const Element& element : elements_) {
-    for (int q = element.first_point; q < element.first_point + element.points; ++q) {
-      sum += points_[q].volume * law_.energyDensity(deformationGradient(element, points_[q], x));
-    }
+  for (int q = element.first_point; q < element.first_point + element.points; ++q) {
+    const Eigen::Matrix3d f = deformationGradient(element, points_[q], x);
+    inverted += !(f.determinant() > 0.0);
+    sum += points_[q].volume * law_.energyDensity(f);
   }
   return sum;
 }
 
-void HyperelasticElements::addForces(const Eigen::VectorXd& x, Eigen::VectorXd& forces) const {
-  for (const Element& element : elements_) {
-    for (int q = element.first_point; q < element.first_point + element.points; ++q) {
-      const Point& point = points_[q];
-      const Eigen::Matrix3d p = law_.firstPiola(deformationGradient(element, point, x));
-      for (int k = 0; k < element.size; ++k) {
-        forces.segment<3>(3 * element.nodes[k]) -= point.volume * (p * point.gradients[k]);
-      }
+Eigen::Matrix3d HyperelasticElements::elementDeformationGradient(int e,
+                                                                 const Eigen::VectorXd& x) const {
+  return deformationGradient(elements_[e], points_[elements_[e].first_point], x);
+}
+
+Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * HyperelasticElements::kMaxNodes, 1>
+HyperelasticElements::elementForces(int e, const Eigen::VectorXd& x) const {
+  const Element& element = elements_[e];
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kMaxNodes, 1> forces =
+      Eigen::VectorXd::Zero(3 * element.size);
+  for (int q = element.first_point; q < element.first_point + element.points; ++q) {
+    const Point& point = points_[q];
+    const Eigen::Matrix3d p = law_.firstPiola(deformationGradient(element, point, x));
+    for (int k = 0; k < element.size; ++k) {
+      forces.segment<3>(3 * k) -= point.volume * (p * point.gradients[k]);
     }
+  }
+  return forces;
+}
+
+double HyperelasticElements::energy(const Eigen::VectorXd& x) const {
+  double sum = 0.0;
+  int inverted = 0;
+  for (int e = 0; e < numElements(); ++e) sum += elementEnergy(e, x, inverted);
+  return sum;
+}
+
+void HyperelasticElements::addForces(const Eigen::VectorXd& x, Eigen::VectorXd& forces) const {
+  for (int e = 0; e < numElements(); ++e) {
+    const Element& element = elements_[e];
+    const auto f = elementForces(e, x);
+    for (int k = 0; k < element.size; ++k)
+      forces.segment<3>(3 * element.nodes[k]) += f.segment<3>(3 * k);
   }
 }
 
-HyperelasticElements::ElementMatrix HyperelasticElements::elementTangent(
-    const Element& element, const Eigen::VectorXd& x) const {
+HyperelasticElements::ElementMatrix HyperelasticElements::elementTangent(int e,
+                                                                         const Eigen::VectorXd& x,
+                                                                         bool projected) const {
   // vec(F) = B x_e with B(3 c + r, 3 k + r) = (grad N_k)_c, so K_e = sum_q V_q B^T (dP/dF) B.
+  const Element& element = elements_[e];
   const int n = 3 * element.size;
   ElementMatrix k = ElementMatrix::Zero(n, n);
   Eigen::Matrix<double, 9, Eigen::Dynamic, 0, 9, 3 * kMaxNodes> b(9, n);
@@ -93,19 +120,19 @@ HyperelasticElements::ElementMatrix HyperelasticElements::elementTangent(
         law_.firstPiolaDerivative(deformationGradient(element, point, x));
     k.noalias() += point.volume * (b.transpose() * a * b);
   }
-  return 0.5 * (k + k.transpose());  // symmetric to round-off; exactly so for the projection
+  k = 0.5 * (k + k.transpose()).eval();  // symmetric to round-off; exactly so for the projection
+  if (!projected) return k;
+  const Eigen::SelfAdjointEigenSolver<ElementMatrix> eigen(k);
+  return eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() *
+         eigen.eigenvectors().transpose();
 }
 
 Eigen::SparseMatrix<double> HyperelasticElements::tangent(const Eigen::VectorXd& x,
                                                           bool projected) const {
   std::vector<Eigen::Triplet<double>> entries;
-  for (const Element& element : elements_) {
-    ElementMatrix k = elementTangent(element, x);
-    if (projected) {
-      const Eigen::SelfAdjointEigenSolver<ElementMatrix> eigen(k);
-      k = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() *
-          eigen.eigenvectors().transpose();
-    }
+  for (int e = 0; e < numElements(); ++e) {
+    const Element& element = elements_[e];
+    const ElementMatrix k = elementTangent(e, x, projected);
     for (int i = 0; i < element.size; ++i) {
       for (int j = 0; j < element.size; ++j) {
         for (int r = 0; r < 3; ++r) {

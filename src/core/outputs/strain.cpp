@@ -48,32 +48,26 @@ void nodalStrain(const Body& body, std::vector<double>& strain) {
   }
   strain.assign(body.numNodes(), 0.0);
   const Eigen::VectorXd& x = body.positions();
-  const std::vector<TetrahedronRest>& rest = elements->elasticity().restData();
+  const ElasticModel& elasticity = elements->elasticity();
   const std::vector<Tetrahedron>& tetrahedra = body.mesh().tetrahedra;
   // Tetrahedra a batch of rotations at a time.
   const int num_tetrahedra = static_cast<int>(tetrahedra.size());
   for (int first = 0; first < num_tetrahedra; first += kRotationBatch) {
     const int count = std::min(kRotationBatch, num_tetrahedra - first);
     std::array<Eigen::Matrix3d, kRotationBatch> f, r;
-    for (int k = 0; k < count; ++k) {
-      const Tetrahedron& t = tetrahedra[first + k];
-      f[k] = deformationGradient(rest[first + k], x.segment<3>(3 * t[0]), x.segment<3>(3 * t[1]),
-                                 x.segment<3>(3 * t[2]), x.segment<3>(3 * t[3]));
-    }
+    for (int k = 0; k < count; ++k) f[k] = elasticity.deformationGradient(first + k, x);
     extractRotations(f.data(), r.data(), count);
     for (int k = 0; k < count; ++k) {
       const double magnitude = strainMagnitude(f[k], r[k]);
       for (int i : tetrahedra[first + k]) strain[i] = std::max(strain[i], magnitude);
     }
   }
-  // Cells: the strain at the centre, from the rest data the elasticity keeps.
+  // Cells: the strain where the elasticity takes their deformation gradient.
   const std::vector<Cell>& cells = body.mesh().cells;
   for (size_t c = 0; c < cells.size(); ++c) {
     const Cell& cell = cells[c];
-    const CellRest& rest = elements->elasticity().cellRestData(static_cast<int>(c));
-    CellVectors corners;
-    for (int k = 0; k < cell.size(); ++k) corners[k] = x.segment<3>(3 * cell.nodes[k]);
-    const double magnitude = strainMagnitude(cellDeformationGradient(rest, cell.size(), corners));
+    const double magnitude =
+        strainMagnitude(elasticity.deformationGradient(num_tetrahedra + static_cast<int>(c), x));
     for (int k = 0; k < cell.size(); ++k) {
       strain[cell.nodes[k]] = std::max(strain[cell.nodes[k]], magnitude);
     }

@@ -85,12 +85,12 @@ void EnergyWatch::heldNodes(const BodyList& bodies) {
 
 double EnergyWatch::energy(const Body& body, int b) {
   const FiniteElementBody* elements = body.finiteElements();
-  if (!elements || body.settings().effects.warping) {
+  if (!elements || body.settings().effects.warping || elements->elasticity().followsPositions()) {
     return body.kineticEnergy() + body.elasticEnergy();  // a warped body's is kept by its step
   }
   // Linear finite elements: the energy their step conserves, 1/2 u^T K u, by one product with K
   // (elasticEnergy() sums it an element at a time, with a polar decomposition each).
-  const CorotationalElasticity& elasticity = elements->elasticity();
+  const ElasticModel& elasticity = elements->elasticity();
   const Eigen::VectorXd& x = body.positions();
   elasticity.stiffness().multiply(x, forces_[b]);
   forces_[b] += elasticity.forceOffset();  // K x + f0 = K (x - x0)

@@ -11,6 +11,7 @@
 
 #include "deformable_sim/core/bodies/body.h"
 #include "deformable_sim/core/elements/corotational_elasticity.h"
+#include "deformable_sim/core/elements/elastic_model.h"
 #include "deformable_sim/core/elements/plasticity.h"
 
 namespace deformable_sim::core {
@@ -43,7 +44,8 @@ class FiniteElementBody : public Body {
   FiniteElementBody* finiteElements() override { return this; }
   const FiniteElementBody* finiteElements() const override { return this; }
 
-  const CorotationalElasticity& elasticity() const { return elasticity_; }
+  /// The law the body steps through (core/elements/elastic_model.h).
+  const ElasticModel& elasticity() const { return *elasticity_; }
   /// The plasticity effect's state, or null when the body has none.
   const Plasticity* plasticity() const { return plasticity_ ? &*plasticity_ : nullptr; }
 
@@ -112,6 +114,7 @@ class FiniteElementBody : public Body {
     double solve_start_energy = 0.0;  ///< at x with the rotations of the solve
     bool product_is_current = false;  ///< scratch_ = A v+ for the last solve
     double last_excess = std::numeric_limits<double>::infinity();  ///< gained - dissipated
+    double potential = 0.0;  ///< Newton's: the step's potential at its last iterate
   };
   /// Whether the change of rotations gains more energy than the solve dissipated, and by how much.
   struct EnergyCheck {
@@ -121,10 +124,22 @@ class FiniteElementBody : public Body {
   /// next_ = A^-1 rhs_ for the step's right-hand side, counted in `report`.
   void solveVelocity(const SystemMatrix& a, double h, bool step_start, StepReport& report);
   /// The rotations (and elastic energy) at the end position x + h v+.
-  CorotationalElasticity::RotationUpdate rotateToEnd(double h, StepReport& report);
-  EnergyCheck checkRotationEnergy(const SystemMatrix& a,
-                                  const CorotationalElasticity::RotationUpdate& end,
+  ElasticModel::Update rotateToEnd(double h, StepReport& report);
+  EnergyCheck checkRotationEnergy(const SystemMatrix& a, const ElasticModel::Update& end,
                                   RotationSettling& settling);
+  /// For a law that follows the positions (Neo-Hookean): whether the solve's linearization was
+  /// off the law at the end by more than kNewtonTolerance of the step's impulses, so that another
+  /// Newton iteration is needed; the excess is that impulse, N s.
+  EnergyCheck checkNewtonResidual(const ElasticModel::Update& end, double h) const;
+  /// Implicit Euler's incremental potential at the velocity v (the law's energy at x + h v, the
+  /// kinetic energy of the change, the loads' work and mass damping; Rayleigh's stiffness part
+  /// left out), J.
+  double stepPotential(const Eigen::VectorXd& v, double h);
+  /// Newton's line search: next_ becomes the point between the last iterate and the solve's
+  /// answer, the first of 1, 1/2, 1/4, ... of the way that lowers the step's potential.
+  void searchLine(double h, bool first, RotationSettling& settling);
+  /// The load on node i in a step: applied, gravity, plastic and the step's own forces.
+  Eigen::Vector3d stepLoad(int i) const;
   /// Reactions, x+ and the velocity history once next_ holds the step's v+.
   void finishAdvance(const SystemMatrix& a, double h, bool product_is_current);
   /// One corotational iteration of solveStatic() towards `fraction` of `load` and of the
@@ -153,7 +168,14 @@ class FiniteElementBody : public Body {
   /// rest by other means than a step).
   void restartWarmStart();
 
-  CorotationalElasticity elasticity_;
+  /// Whether the law is linearized again wherever the body moves: warping, or a law that must.
+  bool followsPositions() const {
+    return settings_.effects.warping || elasticity_->followsPositions();
+  }
+
+  std::unique_ptr<ElasticModel> elasticity_;
+  /// The same object when the law is the warped stiffness (plasticity needs it), else null.
+  const CorotationalElasticity* corotational_ = nullptr;
   std::optional<Plasticity> plasticity_;  ///< only with the effect; then also its forces
   Eigen::VectorXd plastic_forces_;
   Eigen::VectorXd step_start_;
@@ -179,6 +201,7 @@ class FiniteElementBody : public Body {
   std::unique_ptr<DirectSolver> response_direct_;
   bool response_factored_ = false;
   Eigen::VectorXd rhs_, next_, scratch_;
+  Eigen::VectorXd newton_iterate_;  ///< Newton's last iterate (a law that follows positions)
   /// The velocities of the last steps, newest first, for the solver's initial guess.
   std::array<Eigen::VectorXd, 3> v_history_;
   int history_size_ = 0;

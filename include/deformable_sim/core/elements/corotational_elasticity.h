@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "deformable_sim/core/elements/cell.h"
+#include "deformable_sim/core/elements/elastic_model.h"
 #include "deformable_sim/core/elements/material.h"
 #include "deformable_sim/core/elements/mesh.h"
 #include "deformable_sim/core/elements/tetrahedron.h"
@@ -17,7 +18,7 @@
 
 namespace deformable_sim::core {
 
-class CorotationalElasticity {
+class CorotationalElasticity : public ElasticModel {
  public:
   /// Validates the material (std::invalid_argument) and precomputes every element's rest data and
   /// its block indices in the global pattern.
@@ -25,34 +26,37 @@ class CorotationalElasticity {
 
   /// A new material (validated first) for the next update; the rest shape, the pattern and the
   /// block indices stay.
-  void setMaterial(const LinearElasticMaterial& material);
+  void setMaterial(const LinearElasticMaterial& material) override;
+  /// Linear elasticity is its own linearization: only warping follows the positions.
+  bool followsPositions() const override { return false; }
 
   /// Sets the element rotations from positions x (3n): polar rotations of F when warping, the
   /// identity otherwise; then fills K' and f0' in place. Returns the number of inverted or flat
   /// elements (det F <= 0). Allocates nothing.
   int update(const Eigen::VectorXd& x, bool warping);
 
-  /// What updateRotations found at x.
-  struct RotationUpdate {
-    int inverted = 0;             ///< elements with det F <= 0
-    double largest_change = 0.0;  ///< largest angle by which an element's rotation changed, rad
-    double energy = 0.0;          ///< elastic energy at x with the new rotations (the true one), J
-    double energy_before = 0.0;   ///< elastic energy at x with the rotations before, J
-  };
+  /// What updateRotations found at x: its energy with the new rotations (the true one) and with
+  /// those before.
+  using RotationUpdate = ElasticModel::Update;
   /// The two halves of update(): the rotations from x, then K' and f0' from the rotations.
   RotationUpdate updateRotations(const Eigen::VectorXd& x);
-  void assemble();
+  void assemble() override;
+  Update linearizeAt(const Eigen::VectorXd& x) override { return updateRotations(x); }
 
   /// Threads for the element and row loops (1: none started). K' is assembled row by row on any
   /// count, every block summing its elements in element order, so the results are identical.
-  void setThreads(int threads);
+  void setThreads(int threads) override;
 
-  double lambda() const { return lambda_; }                          ///< Lame's first parameter, Pa
-  double mu() const { return mu_; }                                  ///< shear modulus, Pa
-  const BlockSparseMatrix& stiffness() const { return stiffness_; }  ///< K', N/m
-  const Eigen::VectorXd& forceOffset() const { return force_offset_; }  ///< f0', N
+  double lambda() const { return lambda_; }  ///< Lame's first parameter, Pa
+  double mu() const { return mu_; }          ///< shear modulus, Pa
+  const BlockSparseMatrix& stiffness() const override { return stiffness_; }     ///< K', N/m
+  const Eigen::VectorXd& forceOffset() const override { return force_offset_; }  ///< f0', N
   /// Per element, the tetrahedra first, then the cells.
-  const std::vector<Eigen::Matrix3d>& rotations() const { return rotations_; }
+  const std::vector<Eigen::Matrix3d>& rotations() const override { return rotations_; }
+  /// A cell's at its centre, where its rotation is taken.
+  Eigen::Matrix3d deformationGradient(int e, const Eigen::VectorXd& x) const override {
+    return elementDeformationGradient(e, x);
+  }
   const std::vector<TetrahedronRest>& restData() const { return rest_; }
   const CellRest& cellRestData(int c) const { return cells_[c].rest; }  ///< of Mesh::cells[c]
 
@@ -63,7 +67,7 @@ class CorotationalElasticity {
   /// Elastic energy with the rotations of the last update: sum_e 1/2 u_e^T Ke u_e with
   /// u_e,i = Re^T x_i - x0_i, J. The same sum on any thread count. Not for concurrent calls on
   /// one object (it sums into a buffer of the object).
-  double elasticEnergy(const Eigen::VectorXd& x) const;
+  double elasticEnergy(const Eigen::VectorXd& x) const override;
 
  private:
   void setRestForces();

@@ -5,10 +5,16 @@
 
 namespace deformable_sim::core {
 
+/// The law a finite-element body's E and nu go into: the warped stiffness (linear elasticity,
+/// warped by the elements' rotations with the warping effect), or Neo-Hookean
+/// (core/materials/neo_hookean.h), which gives the same linear law at small strain.
+enum class ElasticLaw { kWarpedStiffness, kNeoHookean };
+
 struct LinearElasticMaterial {
   double youngs_modulus = 1.0e6;  ///< E, Pa; must be > 0
   double poisson_ratio = 0.3;     ///< nu, dimensionless; must be in (-1, 0.5)
   double density = 1000.0;        ///< rho, kg/m^3; must be > 0
+  ElasticLaw law = ElasticLaw::kWarpedStiffness;
 };
 
 /// Throws std::invalid_argument naming the bad value and its admissible range.

@@ -22,12 +22,18 @@ namespace deformable_sim::core {
 
 class HyperelasticElements {
  public:
+  static constexpr int kMaxNodes = 8;
+  /// An element's matrix, 3 x 3 blocks of its nodes in its order; never on the heap.
+  using ElementMatrix =
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kMaxNodes, 3 * kMaxNodes>;
+
   /// Rest data for every element of `mesh`. Throws std::invalid_argument naming the element
   /// when one is inverted or flat at an integration point.
   HyperelasticElements(const Mesh& mesh, const NeoHookean& law);
 
   int numNodes() const { return num_nodes_; }
   const NeoHookean& law() const { return law_; }
+  void setLaw(const NeoHookean& law) { law_ = law; }
 
   /// The elastic energy at node positions x (3 per node, node-major), J.
   double energy(const Eigen::VectorXd& x) const;
@@ -37,10 +43,21 @@ class HyperelasticElements {
   /// non-negative eigenvalues when `projected`.
   Eigen::SparseMatrix<double> tangent(const Eigen::VectorXd& x, bool projected) const;
 
+  /// Element by element (the mesh's tetrahedra, then its cells), for an assembly of one's own.
+  int numElements() const { return static_cast<int>(elements_.size()); }
+  const std::array<int, kMaxNodes>& elementNodes(int e) const { return elements_[e].nodes; }
+  int elementSize(int e) const { return elements_[e].size; }
+  /// Element e's energy at x, J; `inverted` gains its integration points with det F <= 0.
+  double elementEnergy(int e, const Eigen::VectorXd& x, int& inverted) const;
+  /// F at element e's first integration point (its only one for a tetrahedron).
+  Eigen::Matrix3d elementDeformationGradient(int e, const Eigen::VectorXd& x) const;
+  /// Element e's forces (3 per node, its order), N.
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kMaxNodes, 1> elementForces(
+      int e, const Eigen::VectorXd& x) const;
+  /// Element e's tangent block, projected onto its non-negative eigenvalues when `projected`.
+  ElementMatrix elementTangent(int e, const Eigen::VectorXd& x, bool projected) const;
+
  private:
-  static constexpr int kMaxNodes = 8;
-  using ElementMatrix =
-      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kMaxNodes, 3 * kMaxNodes>;
   struct Point {
     std::array<Eigen::Vector3d, kMaxNodes> gradients;  ///< grad N_i at rest, 1/m
     double volume;                                     ///< the rest volume it stands for, m^3
@@ -59,8 +76,6 @@ class HyperelasticElements {
   /// F at a point of an element for positions x.
   Eigen::Matrix3d deformationGradient(const Element& element, const Point& point,
                                       const Eigen::VectorXd& x) const;
-  /// The element's tangent block (3 size x 3 size, its node order).
-  ElementMatrix elementTangent(const Element& element, const Eigen::VectorXd& x) const;
 
   NeoHookean law_;
   int num_nodes_ = 0;

@@ -1,0 +1,65 @@
+// What a finite-element body steps through, whatever its material law: at positions x the law is
+// linearized, forces f(x) + K (x' - x) near x, and handed over as a stiffness K in the mesh's
+// block pattern and an offset f0 with K x + f0 = -f(x), so that the elastic force of the
+// linearization at any x' is -(K x' + f0). The warped stiffness (corotational_elasticity.h) is
+// one such law, linearized by its elements' rotations; Neo-Hookean
+// (materials/neo_hookean_elasticity.h) another, by its tangent. The body's implicit step solves
+// with the linearization at the step's start, re-linearizes at the end, and solves again while the
+// energy of the law there exceeds that of the linearization by more than the step dissipates: a
+// Newton iteration judged by energy (core/bodies/finite_element_body.h).
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "deformable_sim/core/elements/material.h"
+#include "deformable_sim/core/solvers/block_sparse_matrix.h"
+
+namespace deformable_sim::core {
+
+class ElasticModel {
+ public:
+  virtual ~ElasticModel() = default;
+
+  /// What linearizeAt() found at x.
+  struct Update {
+    int inverted = 0;             ///< elements with det F <= 0
+    double largest_change = 0.0;  ///< largest angle by which an element's rotation changed, rad
+    double energy = 0.0;          ///< elastic energy of the law at x, J
+    double energy_before = 0.0;   ///< elastic energy at x of the linearization before, J
+    /// For a law that follows the positions: the largest nodal difference between its force
+    /// at x and the last linearization's there (how far that was from the law), and the
+    /// largest nodal force of the law at x, N. Zero for the warped stiffness.
+    double force_mismatch = 0.0;
+    double largest_force = 0.0;
+  };
+
+  /// A new material (validated first) for the next assembly; rest shape and pattern stay.
+  virtual void setMaterial(const LinearElasticMaterial& material) = 0;
+  /// Threads for the element loops; results are the same on any count.
+  virtual void setThreads(int threads) = 0;
+  /// Whether the law must be linearized again wherever the body moves (else only with the
+  /// warping effect: linear elasticity is its own linearization).
+  virtual bool followsPositions() const = 0;
+
+  /// Linearizes the law at x (rotations, deformation gradients), without assembling yet.
+  virtual Update linearizeAt(const Eigen::VectorXd& x) = 0;
+  /// K and f0 of the last linearizeAt(). Allocates nothing.
+  virtual void assemble() = 0;
+  virtual const BlockSparseMatrix& stiffness() const = 0;  ///< K, N/m
+  virtual const Eigen::VectorXd& forceOffset() const = 0;  ///< f0, N
+  /// The energy of the last assembled linearization at x, J: the law's own at the positions it
+  /// was linearized at. Not for concurrent calls on one object.
+  virtual double elasticEnergy(const Eigen::VectorXd& x) const = 0;
+  /// The law's own energy at x, J (for a line search; the warped stiffness's with the rotations
+  /// of the last linearization).
+  virtual double lawEnergy(const Eigen::VectorXd& x) const { return elasticEnergy(x); }
+  /// Per element (tetrahedra first, then cells), the rotation of the last linearizeAt(): how far
+  /// each has turned (a body keeps answers to impulses while these change little).
+  virtual const std::vector<Eigen::Matrix3d>& rotations() const = 0;
+  /// Element e's deformation gradient at x (tetrahedra first, then cells; a cell's at a point
+  /// of its own: the centre, or its first integration point).
+  virtual Eigen::Matrix3d deformationGradient(int e, const Eigen::VectorXd& x) const = 0;
+};
+
+}  // namespace deformable_sim::core
