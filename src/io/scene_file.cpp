@@ -416,6 +416,9 @@ class SceneParser {
     }
     if (!node["material"]) fail(node, key + ".material", "missing");
     parseMaterial(node["material"], key + ".material", body.material);
+    if (const YAML::Node law = node["material"]["law"]) {
+      parseLaw(law, key + ".material.law", node["effects"], scene_effects, body);
+    }
     parseFixed(node["fixed"], key + ".fixed", body.fixed);
     parseGroups(node["groups"], key + ".groups", body.groups);
     if (node["wrench_radius"]) {
@@ -583,13 +586,38 @@ class SceneParser {
   void parseMaterial(const YAML::Node& node, const std::string& key,
                      core::LinearElasticMaterial& material) const {
     expectMap(node, key);
-    checkKeys(node, key, {"youngs_modulus", "poisson_ratio", "density"});
+    checkKeys(node, key, {"law", "youngs_modulus", "poisson_ratio", "density"});
     const auto read = [&](const char* name, core::Parameter p, double& value) {
       if (node[name]) value = parameter(node[name], key + "." + name, p);
     };
     read("youngs_modulus", core::Parameter::kYoungsModulus, material.youngs_modulus);
     read("poisson_ratio", core::Parameter::kPoissonRatio, material.poisson_ratio);
     read("density", core::Parameter::kDensity, material.density);
+  }
+
+  // material.law: corotational and linear are the warped stiffness with the body's warping on
+  // and off (the default follows effects.warping); neo_hookean is for finite elements.
+  void parseLaw(const YAML::Node& node, const std::string& key, const YAML::Node& body_effects,
+                const core::BodyEffects& scene_effects, core::BodySpec& body) const {
+    enum class Law { kCorotational, kLinear, kNeoHookean };
+    const Law law = choice<Law>(node, key,
+                                {{"corotational", Law::kCorotational},
+                                 {"linear", Law::kLinear},
+                                 {"neo_hookean", Law::kNeoHookean}});
+    if (body.model != core::BodyModel::kFiniteElement) {
+      fail(node, key, "a material law is for a body of model: fem");
+    }
+    if (law == Law::kNeoHookean) {
+      body.material.law = core::ElasticLaw::kNeoHookean;
+      return;
+    }
+    const bool warping = law == Law::kCorotational;
+    if (body_effects && body_effects["warping"] && body.effects->warping != warping) {
+      fail(node, key,
+           std::string("contradicts the body's effects.warping: ") + (warping ? "false" : "true"));
+    }
+    if (!body.effects) body.effects = scene_effects;
+    body.effects->warping = warping;
   }
 
   // A map with exactly one of nodes / box / sphere (other keys are checked by the caller).

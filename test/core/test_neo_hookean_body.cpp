@@ -126,3 +126,26 @@ TEST(NeoHookeanBody, PlasticityIsRefusedByName) {
 }
 
 }  // namespace
+
+namespace {
+
+// Live tuning changes E, nu and density, not the law (a tuning message carries none): a stiffer
+// block sags half as far under a light load.
+TEST(NeoHookeanBody, LiveTuningChangesTheModulusAndKeepsTheLaw) {
+  const dt::CalculixReference reference = dt::readCalculixReference("block_hex_nu030");
+  const auto body =
+      dc::makeBody("block", reference.mesh, settingsFor(dc::ElasticLaw::kNeoHookean, 3.0e4, 0.3));
+  body->fixNodes(reference.fixed);
+  body->externalForces() = 0.01 * reference.loads;  // small strain: sag in proportion to 1 / E
+  ASSERT_TRUE(body->solveStatic({1, 200, 1e-12}).converged);
+  const double soft = (body->positions() - body->restPositions()).cwiseAbs().maxCoeff();
+  dc::BodyTuning tuning;
+  tuning.material = dc::LinearElasticMaterial{6.0e4, 0.3, 100.0};  // law: the default
+  body->tune(tuning);
+  EXPECT_EQ(body->settings().material.law, dc::ElasticLaw::kNeoHookean);
+  ASSERT_TRUE(body->solveStatic({1, 200, 1e-12}).converged);
+  const double stiff = (body->positions() - body->restPositions()).cwiseAbs().maxCoeff();
+  EXPECT_NEAR(stiff / soft, 0.5, 0.01);
+}
+
+}  // namespace

@@ -162,7 +162,7 @@ TEST(SceneFile, ParametersAreRefusedAsTheBodiesAndLiveTuningRefuseThem) {
 TEST(SceneFile, ErrorsNameTheFileLineAndKey) {
   EXPECT_EQ(errorOf(replaced(kScene, "youngs_modulus", "youngs_modulu")),
             "test.yaml:10: bodies[0].material.youngs_modulu: unknown key (expected one of: "
-            "density, poisson_ratio, youngs_modulus)");
+            "density, law, poisson_ratio, youngs_modulus)");
   EXPECT_EQ(errorOf(replaced(kScene, "density: 800.0", "density: heavy")),
             "test.yaml:10: bodies[0].material.density: expected a number");
   EXPECT_EQ(errorOf(replaced(kScene, "poisson_ratio: 0.25", "poisson_ratio: 0.5")),
@@ -523,4 +523,44 @@ TEST(SceneFile, MeshObstaclesKeepTheirFileForViewers) {
   ASSERT_EQ(spec.obstacles.size(), 1u);
   EXPECT_EQ(spec.obstacles[0].shape.mesh_uri, "file://" + data + "/meshes/cube_binary.stl");
   EXPECT_EQ(spec.obstacles[0].shape.mesh_scale, Eigen::Vector3d(1, 2, 0.1));
+}
+
+// material.law: the warped stiffness with the body's warping on (corotational) or off (linear),
+// or Neo-Hookean; without it, the scene's effects.warping decides as before.
+TEST(SceneFile, MaterialLawChoosesTheElasticModel) {
+  const auto withLaw = [](const std::string& law) {
+    return dio::parseScene(replaced(kScene, "material: {", "material: {law: " + law + ", "), "t",
+                           ".");
+  };
+  const dc::SceneSpec plain = dio::parseScene(kScene, "t", ".");
+  EXPECT_EQ(plain.bodies[0].material.law, dc::ElasticLaw::kWarpedStiffness);
+  EXPECT_FALSE(plain.bodies[0].effects.has_value());
+  const dc::SceneSpec neo = withLaw("neo_hookean");
+  EXPECT_EQ(neo.bodies[0].material.law, dc::ElasticLaw::kNeoHookean);
+  const dc::SceneSpec linear = withLaw("linear");
+  EXPECT_EQ(linear.bodies[0].material.law, dc::ElasticLaw::kWarpedStiffness);
+  ASSERT_TRUE(linear.bodies[0].effects.has_value());
+  EXPECT_FALSE(linear.bodies[0].effects->warping);
+  EXPECT_TRUE(linear.bodies[0].effects->gravity.has_value());  // the rest as the scene's
+  const dc::SceneSpec corotational = withLaw("corotational");
+  ASSERT_TRUE(corotational.bodies[0].effects.has_value());
+  EXPECT_TRUE(corotational.bodies[0].effects->warping);
+  // The Neo-Hookean scene builds and steps.
+  dc::Simulation sim = dio::buildSimulation(neo, nullptr);
+  std::vector<dc::StepReport> reports;
+  for (int s = 0; s < 5; ++s) sim.step(reports);
+  EXPECT_TRUE(sim.bodies()[0].stateIsFinite());
+  EXPECT_GT(reports[0].solves, 0);
+}
+
+TEST(SceneFile, MaterialLawErrorsNameFileLineAndKey) {
+  EXPECT_EQ(errorOf(replaced(kScene, "material: {", "material: {law: rubber, ")),
+            "test.yaml:10: bodies[0].material.law: 'rubber' is not one of: corotational, linear, "
+            "neo_hookean");
+  EXPECT_EQ(errorOf(replaced(replaced(kScene, "material: {", "material: {law: neo_hookean, "),
+                             "model: fem", "model: rigid")),
+            "test.yaml:10: bodies[0].material.law: a material law is for a body of model: fem");
+  EXPECT_EQ(errorOf(replaced(kScene, "material: {",
+                             "effects: {warping: true}\n    material: {law: linear, ")),
+            "test.yaml:11: bodies[0].material.law: contradicts the body's effects.warping: true");
 }

@@ -149,9 +149,12 @@ void Body::tune(const BodyTuning& tuning) {
   if (tuning.damping) checkDamping(tuning.damping->mass, tuning.damping->stiffness, where());
   checkSolverLimits(tolerance, max_iterations, where());
   if (tuning.material) {
-    changeMaterial(*tuning.material);
-    settings_.material = *tuning.material;
-    mass_ = lumpedMasses(mesh_, tuning.material->density);
+    // E, nu and density change; the law is the body's own (a tuning message carries none).
+    LinearElasticMaterial material = *tuning.material;
+    material.law = settings_.material.law;
+    changeMaterial(material);
+    settings_.material = material;
+    mass_ = lumpedMasses(mesh_, material.density);
   }
   if (tuning.damping) settings_.effects.damping = tuning.damping;
   solver.tolerance = tolerance;
