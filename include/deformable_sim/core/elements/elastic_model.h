@@ -1,12 +1,13 @@
 // What a finite-element body steps through, whatever its material law: at positions x the law is
-// linearized, forces f(x) + K (x' - x) near x, and handed over as a stiffness K in the mesh's
+// linearized, forces f(x) - K (x' - x) near x, and handed over as a stiffness K in the mesh's
 // block pattern and an offset f0 with K x + f0 = -f(x), so that the elastic force of the
 // linearization at any x' is -(K x' + f0). The warped stiffness (corotational_elasticity.h) is
 // one such law, linearized by its elements' rotations; Neo-Hookean
 // (materials/neo_hookean_elasticity.h) another, by its tangent. The body's implicit step solves
-// with the linearization at the step's start, re-linearizes at the end, and solves again while the
-// energy of the law there exceeds that of the linearization by more than the step dissipates: a
-// Newton iteration judged by energy (core/bodies/finite_element_body.h).
+// with the linearization at the step's start, re-linearizes at the end and solves again: for the
+// warped stiffness while the change of rotations gains more energy than the step dissipates, for
+// a law that follows the positions by Newton's iterations with a line search, until its force
+// at the end is the linearization's (core/bodies/finite_element_body.h).
 #pragma once
 
 #include <Eigen/Core>
