@@ -1,7 +1,8 @@
-// A finite-element body: every node free, warped-stiffness elasticity over the mesh's elements,
-// the implicit Euler step and the quasi-static solve of core/bodies/body.h. Contact reaches its
-// nodes directly: holds within a step, nodes held on a plane, forces for the next step only, and
-// the step's own matrix to answer impulses.
+// A finite-element body: every node free, its elements' elasticity through an elastic model (the
+// warped stiffness or Neo-Hookean: core/elements/elastic_model.h), the implicit Euler step and
+// the quasi-static solve of core/bodies/body.h. Contact reaches its nodes directly: holds within
+// a step, nodes held on a plane, forces for the next step only, and the step's own matrix to
+// answer impulses.
 #pragma once
 
 #include <array>
