@@ -27,6 +27,10 @@
 // Each variant is a one-body Simulation, stepped as the node steps it: the base includes what
 // every step pays (the step's copy of where it began, for the watchdog, and its finiteness checks).
 //
+// LawStep/<law>/<mesh>: Step with the two-level preconditioner on one thread, under warped
+// stiffness (0) or Neo-Hookean elasticity (1; core/materials), on the two smaller meshes; its
+// solves counter is Newton's iterations per step.
+//
 // ModelStep/<model>/<mesh>: a step of a free rigid (0) or pseudo-rigid (1) body of the cantilever's
 // mesh under gravity and the tip load, on 1.5k and 98k tetrahedra: the same cost for both.
 //
@@ -111,15 +115,17 @@ struct Swinging {
   double bytes_per_tetrahedron = 0.0;
 };
 
-// One swinging body per (mesh, preconditioner, threads), kept across benchmarks and repetitions
-// (its buffers and coarse space are made once); Step restarts its swing on every run.
-Swinging& swinging(int mesh, core::SolverSettings::Preconditioner preconditioner, int threads) {
-  static std::map<std::tuple<int, int, int>, Swinging> bodies;
-  Swinging& s = bodies[{mesh, static_cast<int>(preconditioner), threads}];
+// One swinging body per (mesh, preconditioner, threads, law), kept across benchmarks and
+// repetitions (its buffers and coarse space are made once); Step restarts its swing on every run.
+Swinging& swinging(int mesh, core::SolverSettings::Preconditioner preconditioner, int threads,
+                   core::ElasticLaw law = core::ElasticLaw::kWarpedStiffness) {
+  static std::map<std::tuple<int, int, int, int>, Swinging> bodies;
+  Swinging& s = bodies[{mesh, static_cast<int>(preconditioner), threads, static_cast<int>(law)}];
   if (!s.body) {
     perf::Cantilever cantilever = perf::makeCantilever(kCells[mesh]);
     cantilever.solver.preconditioner = preconditioner;
     cantilever.solver.threads = threads;
+    cantilever.material.law = law;
     const std::size_t before = deformable_sim::bench::liveHeapBytes();
     s.body = std::make_unique<core::FiniteElementBody>(perf::makeCantileverBody(cantilever));
     s.body->step(cantilever.dt);  // buffers and the coarse space are made in the first step
@@ -137,13 +143,11 @@ void restartSwing(core::Body& body) {
   for (int k = 0; k < kWarmUpSteps; ++k) body.step(0.01);
 }
 
-void Step(benchmark::State& state) {
-  const auto preconditioner = static_cast<core::SolverSettings::Preconditioner>(state.range(1));
-  Swinging& s =
-      swinging(static_cast<int>(state.range(0)), preconditioner, static_cast<int>(state.range(2)));
+// Times the steps of `s`'s swing; counters as the comment at the top says.
+void timeSwingSteps(benchmark::State& state, Swinging& s) {
   restartSwing(*s.body);
   core::StepTimes sum;
-  double iterations = 0.0, solves = 0.0;
+  double iterations = 0.0, solves = 0.0, splits = 0.0;
   bool converged = true;
   for (auto _ : state) {
     const core::StepReport report = s.body->step(0.01);
@@ -154,6 +158,7 @@ void Step(benchmark::State& state) {
     sum.total += report.times.total;
     iterations += report.solve.iterations;
     solves += report.solves;
+    splits += report.splits;
     converged = converged && report.solve.converged;
   }
   const double steps = static_cast<double>(state.iterations());
@@ -164,9 +169,24 @@ void Step(benchmark::State& state) {
   state.counters["cg_ms"] = 1e3 * (sum.solve - sum.preconditioner) / steps;
   state.counters["rest_ms"] = 1e3 * (sum.total - sum.rotations - sum.assembly - sum.solve) / steps;
   state.counters["cg_iterations"] = iterations / steps;
-  state.counters["solves"] = solves / steps;  // more than one: steps solved with end rotations
+  // More than one: steps solved again with end rotations, or Newton iterations of a hyperelastic
+  // law.
+  state.counters["solves"] = solves / steps;
+  state.counters["splits"] = splits / steps;
   state.counters["bytes_per_tet"] = s.bytes_per_tetrahedron;
   if (!converged) state.SkipWithError("a solve missed its tolerance");
+}
+
+void Step(benchmark::State& state) {
+  const auto preconditioner = static_cast<core::SolverSettings::Preconditioner>(state.range(1));
+  timeSwingSteps(state, swinging(static_cast<int>(state.range(0)), preconditioner,
+                                 static_cast<int>(state.range(2))));
+}
+
+void LawStep(benchmark::State& state) {
+  timeSwingSteps(state, swinging(static_cast<int>(state.range(1)),
+                                 core::SolverSettings::Preconditioner::kTwoLevel, 1,
+                                 static_cast<core::ElasticLaw>(state.range(0))));
 }
 
 void MatVec(benchmark::State& state) {
@@ -402,6 +422,13 @@ BENCHMARK(Step)
     ->Iterations(kTimedSteps)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+BENCHMARK(LawStep)
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->ArgNames({"law", "mesh"})
+    ->Iterations(kTimedSteps)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 BENCHMARK(BulletStep)
     ->Args({0, 0})
     ->Args({0, 1})

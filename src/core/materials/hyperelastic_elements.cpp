@@ -69,19 +69,30 @@ Eigen::Matrix3d HyperelasticElements::elementDeformationGradient(int e,
   return deformationGradient(elements_[e], points_[elements_[e].first_point], x);
 }
 
-Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * HyperelasticElements::kMaxNodes, 1>
-HyperelasticElements::elementForces(int e, const Eigen::VectorXd& x) const {
+HyperelasticElements::ElementVector HyperelasticElements::elementForces(
+    int e, const Eigen::VectorXd& x) const {
+  ElementVector forces;
+  int inverted = 0;
+  elementEnergyAndForces(e, x, inverted, forces);
+  return forces;
+}
+
+double HyperelasticElements::elementEnergyAndForces(int e, const Eigen::VectorXd& x, int& inverted,
+                                                    ElementVector& forces) const {
   const Element& element = elements_[e];
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kMaxNodes, 1> forces =
-      Eigen::VectorXd::Zero(3 * element.size);
+  forces.setZero(3 * element.size);
+  double sum = 0.0;
   for (int q = element.first_point; q < element.first_point + element.points; ++q) {
     const Point& point = points_[q];
-    const Eigen::Matrix3d p = law_.firstPiola(deformationGradient(element, point, x));
+    const Eigen::Matrix3d f = deformationGradient(element, point, x);
+    inverted += !(f.determinant() > 0.0);
+    const NeoHookean::EnergyAndStress w = law_.energyAndStress(f);
+    sum += point.volume * w.energy;
     for (int k = 0; k < element.size; ++k) {
-      forces.segment<3>(3 * k) -= point.volume * (p * point.gradients[k]);
+      forces.segment<3>(3 * k).noalias() -= point.volume * (w.piola * point.gradients[k]);
     }
   }
-  return forces;
+  return sum;
 }
 
 double HyperelasticElements::energy(const Eigen::VectorXd& x) const {

@@ -164,9 +164,9 @@ double total(const std::vector<double>& partials) {
 // team's chunks that share the thread's scalars, the barrier and the partial sums, so that the
 // threads take the same branches and meet at the same barriers in the same order.
 void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMask& constrained,
-                                      const Eigen::VectorXd& b, const SolverSettings& settings,
-                                      double reference, int min_iterations, Eigen::VectorXd& x,
-                                      SolveReport& report) {
+                                      double forcing, const Eigen::VectorXd& b,
+                                      const SolverSettings& settings, double reference,
+                                      int min_iterations, Eigen::VectorXd& x, SolveReport& report) {
   // Run by every thread of the team with its own copy of the scalars: each sums the same
   // partials in the same order, so all take the same branches and meet at the same barriers.
   const int num_nodes = a.stiffness->numBlockRows();
@@ -235,7 +235,8 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
   });
   double rz = total(rz_partials_);
   double residual = std::sqrt(total(rr_partials_)) / reference;
-  while ((residual > settings.tolerance || iterations < min_iterations) &&
+  const double tolerance = std::max(settings.tolerance, forcing * residual);
+  while ((residual > tolerance || iterations < min_iterations) &&
          iterations < settings.max_iterations) {
     // q = A p (zero on constrained rows), and p . q.
     shareLoop(barrier, 0, num_chunks, [&](int c) {
@@ -270,13 +271,14 @@ void ConjugateGradientSolver::iterate(const SystemMatrix& a, const ConstraintMas
   if (first_thread) {
     report.iterations = iterations;
     report.relative_residual = residual;
+    report.converged = residual <= tolerance;
   }
 }
 
 SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const ConstraintMask& constrained,
                                            const Eigen::VectorXd& b, const SolverSettings& settings,
                                            Eigen::VectorXd& x, bool in_sequence,
-                                           double reference_floor) {
+                                           double reference_floor, double forcing) {
   resizeWorkspace(a.stiffness->numBlockRows(), b.size());
   if (settings.preconditioner != SolverSettings::Preconditioner::kTwoLevel) coarse_.reset();
   if (settings.preconditioner != SolverSettings::Preconditioner::kFactorization) {
@@ -309,8 +311,7 @@ SolveReport ConjugateGradientSolver::solve(const SystemMatrix& a, const Constrai
                        settings.warm_start == SolverSettings::WarmStart::kProjected &&
                        settings.previous_solutions > 0;
   const bool projected = project && guessFromPreviousSolutions(a, constrained, settings, x);
-  iterateInTeam(a, constrained, b, settings, reference, projected ? 1 : 0, x, report);
-  report.converged = report.relative_residual <= settings.tolerance;
+  iterateInTeam(a, constrained, forcing, b, settings, reference, projected ? 1 : 0, x, report);
   if (project && report.converged) previous_.add(x, constrained);
   return report;
 }
@@ -366,7 +367,7 @@ bool ConjugateGradientSolver::guessFromPreviousSolutions(const SystemMatrix& a,
 }
 
 void ConjugateGradientSolver::iterateInTeam(const SystemMatrix& a,
-                                            const ConstraintMask& constrained,
+                                            const ConstraintMask& constrained, double forcing,
                                             const Eigen::VectorXd& b,
                                             const SolverSettings& settings, double reference,
                                             int min_iterations, Eigen::VectorXd& x,
@@ -379,11 +380,11 @@ void ConjugateGradientSolver::iterateInTeam(const SystemMatrix& a,
       // The team OpenMP gave (it may be smaller than asked) is the one the barrier waits for.
 #pragma omp single
       team_->barrier.reset(teamSize());
-      iterate(a, constrained, b, settings, reference, min_iterations, x, report);
+      iterate(a, constrained, forcing, b, settings, reference, min_iterations, x, report);
     }
   } else {
     team_->barrier.reset(1);
-    iterate(a, constrained, b, settings, reference, min_iterations, x, report);
+    iterate(a, constrained, forcing, b, settings, reference, min_iterations, x, report);
   }
 }
 

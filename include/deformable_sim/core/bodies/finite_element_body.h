@@ -114,7 +114,8 @@ class FiniteElementBody : public Body {
     double start_energy = 0.0;        ///< at x with its own rotations
     double solve_start_energy = 0.0;  ///< at x with the rotations of the solve
     bool product_is_current = false;  ///< scratch_ = A v+ for the last solve
-    double last_excess = std::numeric_limits<double>::infinity();  ///< gained - dissipated
+    /// gained - dissipated (J), or Newton's residual (N s)
+    double last_excess = std::numeric_limits<double>::infinity();
     double potential = 0.0;  ///< Newton's: the step's potential at its last iterate
   };
   /// Whether the change of rotations gains more energy than the solve dissipated, and by how much.
@@ -129,8 +130,8 @@ class FiniteElementBody : public Body {
   EnergyCheck checkRotationEnergy(const SystemMatrix& a, const ElasticModel::Update& end,
                                   RotationSettling& settling);
   /// For a law that follows the positions (Neo-Hookean): whether the solve's linearization was
-  /// off the law at the end by more than kNewtonTolerance of the step's impulses, so that another
-  /// Newton iteration is needed; the excess is that impulse, N s.
+  /// off the law at the end, on a free node, by more than kNewtonTolerance of the step's
+  /// impulses, so that another Newton iteration is needed; the excess is that impulse, N s.
   EnergyCheck checkNewtonResidual(const ElasticModel::Update& end, double h) const;
   /// Implicit Euler's incremental potential at the velocity v (the law's energy at x + h v, the
   /// kinetic energy of the change, the loads' work and mass damping; Rayleigh's stiffness part
@@ -156,7 +157,7 @@ class FiniteElementBody : public Body {
   /// first solve of a step (ConjugateGradientSolver's sequence of systems); `reference_floor`:
   /// the least norm CG measures its residual against.
   SolveReport solve(const SystemMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                    bool step_start = false, double reference_floor = 0.0);
+                    bool step_start = false, double reference_floor = 0.0, double forcing = 0.0);
   SystemMatrix systemMatrix(double mass_coefficient, double stiffness_coefficient) const;
   /// The matrix of a step of h s (damping and the springs of nodes held on planes included).
   SystemMatrix stepMatrix(double h) const;

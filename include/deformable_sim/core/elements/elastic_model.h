@@ -28,10 +28,7 @@ class ElasticModel {
     double largest_change = 0.0;  ///< largest angle by which an element's rotation changed, rad
     double energy = 0.0;          ///< elastic energy of the law at x, J
     double energy_before = 0.0;   ///< elastic energy at x of the linearization before, J
-    /// For a law that follows the positions: the largest nodal difference between its force
-    /// at x and the last linearization's there (how far that was from the law), and the
-    /// largest nodal force of the law at x, N. Zero for the warped stiffness.
-    double force_mismatch = 0.0;
+    /// For a law that follows the positions: its largest nodal force at x, N (else zero).
     double largest_force = 0.0;
   };
 
@@ -43,8 +40,21 @@ class ElasticModel {
   /// warping effect: linear elasticity is its own linearization).
   virtual bool followsPositions() const = 0;
 
+  /// Which matrix the next assemble() builds, where the law has a choice: its exact tangent
+  /// (Newton's method), or a cheaper one as good at moderate strains (a quasi-Newton method,
+  /// slower to converge at large ones). The warped stiffness has one matrix, its own.
+  virtual void useExactTangent(bool exact) { (void)exact; }
+  virtual bool usesExactTangent() const { return true; }
+
   /// Linearizes the law at x (rotations, deformation gradients), without assembling yet.
   virtual Update linearizeAt(const Eigen::VectorXd& x) = 0;
+  /// For a law that follows the positions: per node, its force at the last linearizeAt()'s x
+  /// less the force of the linearization before it there (how far that was off the law), N.
+  /// Empty for the warped stiffness, its own linearization.
+  virtual const Eigen::VectorXd& forceMismatch() const {
+    static const Eigen::VectorXd kNone;
+    return kNone;
+  }
   /// K and f0 of the last linearizeAt(). Allocates nothing.
   virtual void assemble() = 0;
   virtual const BlockSparseMatrix& stiffness() const = 0;  ///< K, N/m

@@ -51,9 +51,13 @@ class HyperelasticElements {
   double elementEnergy(int e, const Eigen::VectorXd& x, int& inverted) const;
   /// F at element e's first integration point (its only one for a tetrahedron).
   Eigen::Matrix3d elementDeformationGradient(int e, const Eigen::VectorXd& x) const;
+  /// An element's vector, 3 entries per node in its order; never on the heap.
+  using ElementVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kMaxNodes, 1>;
   /// Element e's forces (3 per node, its order), N.
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kMaxNodes, 1> elementForces(
-      int e, const Eigen::VectorXd& x) const;
+  ElementVector elementForces(int e, const Eigen::VectorXd& x) const;
+  /// Element e's energy (J, returned) and forces (N) at x in one pass; `inverted` as above.
+  double elementEnergyAndForces(int e, const Eigen::VectorXd& x, int& inverted,
+                                ElementVector& forces) const;
   /// Element e's tangent block, projected onto its non-negative eigenvalues when `projected`.
   ElementMatrix elementTangent(int e, const Eigen::VectorXd& x, bool projected) const;
 

@@ -35,6 +35,12 @@ class NeoHookean {
   double energyDensity(const Eigen::Matrix3d& f) const;
   /// The first Piola-Kirchhoff stress P = dW/dF, Pa.
   Eigen::Matrix3d firstPiola(const Eigen::Matrix3d& f) const;
+  /// W(F) and P(F) together, sharing J and cof F: what a force evaluation needs.
+  struct EnergyAndStress {
+    double energy;          ///< J/m^3
+    Eigen::Matrix3d piola;  ///< Pa
+  };
+  EnergyAndStress energyAndStress(const Eigen::Matrix3d& f) const;
   /// dP/dF as a 9x9 matrix on column-major vec(F): entry (3 c + r, 3 d + s) = dP_rc / dF_sd.
   Eigen::Matrix<double, 9, 9> firstPiolaDerivative(const Eigen::Matrix3d& f) const;
 

@@ -1,14 +1,23 @@
-// The Neo-Hookean law (neo_hookean.h) as a body steps through it (elements/elastic_model.h):
-// linearized at x by its tangent, each element's block projected onto its non-negative
-// eigenvalues so that the step's matrix stays positive definite, in the same block pattern as
-// the warped stiffness. The linearization's energy, E(x0) - f(x0).(x - x0) + 1/2 (x - x0)^T K
-// (x - x0), is what the body's step weighs against the law's own at the step's end.
+// The Neo-Hookean law (neo_hookean.h) as a body steps through it (elements/elastic_model.h): at x
+// its forces and energy, and one of two matrices in the warped stiffness's block pattern.
+// - The warped stiffness of the same elements (corotational_elasticity.h), rotated by the
+//   elements' rotations at x: the law's tangent at rest and, for moderate strains, close to it
+//   (it leaves out the stress's own stiffness and the law's change of stiffness with strain). A
+//   step's Newton iterations with it converge linearly, a strain's worth at a time, and cost a
+//   rotation update and the warped assembly, no eigen-decomposition.
+// - The exact tangent, each element's block projected onto its non-negative eigenvalues so that
+//   the step's matrix stays positive definite: quadratic convergence at any strain, at several
+//   times the cost.
+// Either way the linearization's energy, E(x0) - f(x0).(x - x0) + 1/2 (x - x0)^T K (x - x0), is
+// what the body's step weighs against the law's own at the step's end; the law's forces decide
+// when the iterations have converged, so both matrices reach the same answer.
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
 #include <vector>
 
+#include "deformable_sim/core/elements/corotational_elasticity.h"
 #include "deformable_sim/core/elements/elastic_model.h"
 #include "deformable_sim/core/elements/mesh.h"
 #include "deformable_sim/core/materials/hyperelastic_elements.h"
@@ -21,15 +30,21 @@ class NeoHookeanElasticity : public ElasticModel {
   NeoHookeanElasticity(const Mesh& mesh, const LinearElasticMaterial& material);
 
   void setMaterial(const LinearElasticMaterial& material) override;
-  void setThreads(int threads) override { threads_ = threads; }
+  void setThreads(int threads) override;
   bool followsPositions() const override { return true; }
+  /// The exact tangent (true) or the warped stiffness (false, the default).
+  void useExactTangent(bool exact) override { exact_tangent_ = exact; }
+  bool usesExactTangent() const override { return exact_tangent_; }
   Update linearizeAt(const Eigen::VectorXd& x) override;
+  /// The law's forces at x less -(K x + f0) of the linearization before (infinite before any).
+  const Eigen::VectorXd& forceMismatch() const override { return mismatch_; }
   void assemble() override;
   const BlockSparseMatrix& stiffness() const override { return stiffness_; }
   const Eigen::VectorXd& forceOffset() const override { return force_offset_; }
   double elasticEnergy(const Eigen::VectorXd& x) const override;
   double lawEnergy(const Eigen::VectorXd& x) const override { return elements_.energy(x); }
-  const std::vector<Eigen::Matrix3d>& rotations() const override { return rotations_; }
+  /// The elements' polar rotations (a cell's at its centre).
+  const std::vector<Eigen::Matrix3d>& rotations() const override { return warped_.rotations(); }
   /// A cell's at its first integration point.
   Eigen::Matrix3d deformationGradient(int e, const Eigen::VectorXd& x) const override {
     return elements_.elementDeformationGradient(e, x);
@@ -38,20 +53,24 @@ class NeoHookeanElasticity : public ElasticModel {
   const HyperelasticElements& elements() const { return elements_; }
 
  private:
+  /// stiffness_ = the exact tangent at linearized_at_, each element's block projected.
+  void assembleExactTangent();
+
   HyperelasticElements elements_;
-  int threads_ = 1;
-  BlockSparseMatrix stiffness_;
+  CorotationalElasticity warped_;  ///< the other matrix, and the elements' rotations
+  bool exact_tangent_ = false;
+  BlockSparseMatrix stiffness_;  ///< K: one object whichever matrix, as the body points at it
   /// Per element, the slot in stiffness_ of its block (i, j) at kMaxNodes i + j.
   std::vector<std::array<int, HyperelasticElements::kMaxNodes * HyperelasticElements::kMaxNodes>>
       block_index_;
   Eigen::VectorXd force_offset_;
-  std::vector<Eigen::Matrix3d> rotations_;
   Eigen::VectorXd linearized_at_;    ///< x0 of the last linearizeAt()
   double energy_at_ = 0.0;           ///< E(x0)
   bool assembled_ = false;           ///< K, f0 and the energy's constant are of linearized_at_
   double energy_constant_ = 0.0;     ///< c in 1/2 x^T K x + f0.x + c
   mutable Eigen::VectorXd product_;  ///< K x, for elasticEnergy()
   Eigen::VectorXd forces_;           ///< the law's forces at the last linearizeAt()
+  Eigen::VectorXd mismatch_;         ///< forceMismatch()
 };
 
 }  // namespace deformable_sim::core

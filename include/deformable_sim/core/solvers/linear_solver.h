@@ -114,10 +114,12 @@ class ConjugateGradientSolver {
   /// constrained nodes starts a new sequence. `reference_floor`: the residual is measured
   /// against max(||b_free||, reference_floor). A body at rest under load has a right-hand side
   /// of rounding errors (its forces cancel); relative to that alone, CG would chase the
-  /// rounding for dozens of iterations a step.
+  /// rounding for dozens of iterations a step. `forcing`: CG may also stop once the residual is
+  /// below this fraction of its first (an inexact Newton iteration needs no more; Eisenstat and
+  /// Walker's forcing term).
   SolveReport solve(const SystemMatrix& a, const ConstraintMask& constrained,
                     const Eigen::VectorXd& b, const SolverSettings& settings, Eigen::VectorXd& x,
-                    bool in_sequence = false, double reference_floor = 0.0);
+                    bool in_sequence = false, double reference_floor = 0.0, double forcing = 0.0);
   /// Forgets the stored solutions (the body was moved, or its material changed).
   void clearPreviousSolutions() { previous_.clear(); }
 
@@ -135,14 +137,14 @@ class ConjugateGradientSolver {
   bool guessFromPreviousSolutions(const SystemMatrix& a, const ConstraintMask& constrained,
                                   const SolverSettings& settings, Eigen::VectorXd& x);
   /// iterate() on a team of a.threads threads (one parallel region), or on this one.
-  void iterateInTeam(const SystemMatrix& a, const ConstraintMask& constrained,
+  void iterateInTeam(const SystemMatrix& a, const ConstraintMask& constrained, double forcing,
                      const Eigen::VectorXd& b, const SolverSettings& settings, double reference,
                      int min_iterations, Eigen::VectorXd& x, SolveReport& report);
   /// The first residual r = b - A x and the iterations from it; run by each thread of a
   /// parallel region.
-  void iterate(const SystemMatrix& a, const ConstraintMask& constrained, const Eigen::VectorXd& b,
-               const SolverSettings& settings, double reference, int min_iterations,
-               Eigen::VectorXd& x, SolveReport& report);
+  void iterate(const SystemMatrix& a, const ConstraintMask& constrained, double forcing,
+               const Eigen::VectorXd& b, const SolverSettings& settings, double reference,
+               int min_iterations, Eigen::VectorXd& x, SolveReport& report);
 
   static constexpr int kChunkNodes = 32;  ///< nodes per partial sum of a dot product
 
