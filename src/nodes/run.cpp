@@ -150,11 +150,24 @@ void printContacts(const deformable_sim::core::StepReport& r) {
   if (r.self_contacts > 0) std::printf(", %d with itself", r.self_contacts);
 }
 
+// Each body's linear solves a step: for a Neo-Hookean body, its Newton iterations.
+void printSolvesPerStep(const Simulation& sim, const std::vector<long>& solves, long steps) {
+  for (size_t b = 0; b < solves.size(); ++b) {
+    const deformable_sim::core::Body& body = sim.bodies()[b];
+    const bool newton =
+        body.settings().material.law == deformable_sim::core::ElasticLaw::kNeoHookean;
+    std::printf("%s: %.2f %s per step (mean)\n", body.name().c_str(),
+                static_cast<double>(solves[b]) / static_cast<double>(steps),
+                newton ? "Newton iterations" : "solves");
+  }
+}
+
 // Takes the steps and prints each (unless quiet), then the mean time per step and the energies;
 // true when every solve converged.
 bool stepDynamically(Simulation& sim, const Options& options) {
   bool converged = true;
   std::vector<deformable_sim::core::StepReport> reports;
+  std::vector<long> solves(sim.bodies().size(), 0);
   double total_ms = 0.0;
   for (long s = 0; s < options.steps; ++s) {
     const auto start = Clock::now();
@@ -163,11 +176,14 @@ bool stepDynamically(Simulation& sim, const Options& options) {
     total_ms += ms;
     for (size_t b = 0; b < reports.size(); ++b) {
       converged = converged && reports[b].solve.converged;
+      solves[b] += reports[b].solves;
       if (options.quiet) continue;
       std::printf("step %ld t=%.6g s %s: %.3f ms, %d iterations, residual %.3g%s", sim.stepCount(),
                   sim.time(), sim.bodies()[b].name().c_str(), ms, reports[b].solve.iterations,
                   reports[b].solve.relative_residual,
                   reports[b].inverted_elements ? ", inverted elements" : "");
+      if (reports[b].solves > 1) std::printf(", %d solves", reports[b].solves);
+      if (reports[b].splits > 0) std::printf(", %d splits", reports[b].splits);
       printContacts(reports[b]);
       std::printf("\n");
     }
@@ -175,6 +191,7 @@ bool stepDynamically(Simulation& sim, const Options& options) {
   if (options.steps > 0) {
     std::printf("%ld steps in %.1f ms: %.3f ms per step (mean)\n", options.steps, total_ms,
                 total_ms / static_cast<double>(options.steps));
+    printSolvesPerStep(sim, solves, options.steps);
   }
   for (const auto& body : sim.bodies()) {
     std::printf("after %ld steps %s: kinetic %.6g J, elastic %.6g J\n", sim.stepCount(),

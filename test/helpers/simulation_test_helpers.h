@@ -18,8 +18,8 @@ namespace deformable_sim::test {
 
 /// The simulation of `spec`, each body's mesh made from its box_mesh (which each must have).
 /// The material law a test binary runs its scenes with: DEFORMABLE_SIM_TEST_LAW=neo_hookean
-/// puts every body of the warped stiffness on Neo-Hookean (CMake runs the hard cases so, once
-/// per law); unset, scenes keep their own.
+/// puts every body of the warped stiffness on Neo-Hookean (CMake runs test_core_body so, as
+/// test_core_body_neo_hookean); unset, scenes keep their own.
 inline void applyLawUnderTest(core::SceneSpec& spec) {
   const char* law = std::getenv("DEFORMABLE_SIM_TEST_LAW");
   if (!law || std::string(law) != "neo_hookean") return;

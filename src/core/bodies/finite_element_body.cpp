@@ -44,6 +44,7 @@ FiniteElementBody::FiniteElementBody(std::string name, Mesh mesh,
   next_.resize(x0_.size());
   scratch_.resize(x0_.size());
   newton_iterate_ = Eigen::VectorXd::Zero(x0_.size());
+  damping_product_ = Eigen::VectorXd::Zero(x0_.size());
   for (Eigen::VectorXd& v : v_history_) v = Eigen::VectorXd::Zero(x0_.size());
   if (solver.method == SolverSettings::Method::kDirect) direct_ = std::make_unique<DirectSolver>();
   elasticity_->setThreads(solver.threads);
@@ -268,9 +269,9 @@ Eigen::Vector3d FiniteElementBody::stepLoad(int i) const {
   return load;
 }
 
-double FiniteElementBody::stepPotential(const Eigen::VectorXd& v, double h) {
+double FiniteElementBody::stepPotential(const Eigen::VectorXd& v, double h, double elastic_energy) {
   const double mass_damping = settings_.effects.damping ? settings_.effects.damping->mass : 0.0;
-  double potential = 0.0;
+  double potential = elastic_energy;
   for (int i = 0; i < numNodes(); ++i) {
     const Eigen::Vector3d vi = v.segment<3>(3 * i);
     potential +=
@@ -282,26 +283,59 @@ double FiniteElementBody::stepPotential(const Eigen::VectorXd& v, double h) {
     const double off = hold.normal.dot(v.segment<3>(3 * hold.node)) - hold.velocity;
     potential += 0.5 * hold.stiffness * off * off;
   }
-  end_positions_ = x_ + h * v;
-  return potential + elasticity_->lawEnergy(end_positions_);
+  // Rayleigh's stiffness part, with the linearization's K: left out, the potential's minimum is
+  // not the step's answer, and a search from near that answer would halve its way back.
+  const double stiffness_damping =
+      settings_.effects.damping ? settings_.effects.damping->stiffness : 0.0;
+  if (stiffness_damping > 0.0) {
+    elasticity_->stiffness().multiply(v, damping_product_);
+    potential += 0.5 * h * stiffness_damping * v.dot(damping_product_);
+  }
+  return potential;
 }
 
-void FiniteElementBody::searchLine(double h, bool first, RotationSettling& settling) {
-  constexpr int kMaxHalvings = 12;
-  if (first) {  // the first linearization was at the step's start: x + h 0
-    newton_iterate_.setZero();
-    for (int i = 0; i < numNodes(); ++i) {
-      if (constrained_[i]) newton_iterate_.segment<3>(3 * i) = next_.segment<3>(3 * i);
-    }
-    settling.potential = stepPotential(newton_iterate_, h);
+void FiniteElementBody::linearizeAtPrediction(double h, RotationSettling& settling,
+                                              StepReport& report) {
+  // The prediction, or x itself (held nodes at their velocities), whichever lowers the step's
+  // potential more: a straight-line prediction of a fast spin stretches the body.
+  const ElasticModel::Update predicted = rotateToEnd(h, report);  // at x + h next_
+  const double at_prediction = stepPotential(next_, h, predicted.energy);
+  newton_iterate_.setZero();
+  bool held_move = false;
+  for (int i = 0; i < numNodes(); ++i) {
+    if (!constrained_[i]) continue;
+    newton_iterate_.segment<3>(3 * i) = next_.segment<3>(3 * i);
+    held_move = held_move || !next_.segment<3>(3 * i).isZero(0.0);
   }
-  double potential = stepPotential(next_, h);
+  if (held_move) end_positions_.noalias() = x_ + h * newton_iterate_;  // in place: no allocation
+  const double start_energy =
+      held_move ? elasticity_->lawEnergy(end_positions_) : settling.start_energy;
+  const double at_start = stepPotential(newton_iterate_, h, start_energy);
+  if (at_start < at_prediction) {
+    next_ = newton_iterate_;
+    rotateToEnd(h, report);
+  }
+  const auto assembly_start = Clock::now();
+  elasticity_->assembleOffset();  // the matrix stays the one of x
+  report.times.assembly += secondsSince(assembly_start);
+  newton_iterate_ = next_;
+  settling.potential = std::min(at_start, at_prediction);
+}
+
+ElasticModel::Update FiniteElementBody::searchLine(double h, RotationSettling& settling,
+                                                   const ElasticModel::Update& end,
+                                                   StepReport& report) {
+  constexpr int kMaxHalvings = 12;
+  ElasticModel::Update at = end;
+  double potential = stepPotential(next_, h, at.energy);
   for (int halving = 0; halving < kMaxHalvings && !(potential <= settling.potential); ++halving) {
     next_ = 0.5 * (next_ + newton_iterate_);
-    potential = stepPotential(next_, h);
+    at = rotateToEnd(h, report);
+    potential = stepPotential(next_, h, at.energy);
   }
   newton_iterate_ = next_;
   settling.potential = potential;
+  return at;
 }
 
 double FiniteElementBody::setStepRightHandSide(double h) {
@@ -368,15 +402,22 @@ void FiniteElementBody::advance(double h, int depth, StepReport& report) {
   RotationSettling settling;
   settling.start_energy = elastic_energy_;
   settling.solve_start_energy = settling.start_energy;
-  int matrix_since = 0;  // solves before the current choice of matrix
+  // A law that follows the positions starts Newton's iterations at the predicted velocity: the
+  // first solve is then only the prediction's error off the law, not the whole step's motion.
+  if (!corotational_ && followsPositions()) linearizeAtPrediction(h, settling, report);
+  int matrix_since = 0;  // solves before the current matrix
+  // Matrices of a law that follows the positions assembled within the step (the corotational
+  // law's escalation is the split alone).
+  int refreshes = corotational_ || elasticity_->usesExactTangent() ? 2 : 0;
   for (int solves = 1;; ++solves) {
     solveVelocity(a, h, solves == 1, report);
     if (!followsPositions()) break;
-    if (!corotational_) searchLine(h, solves == 1, settling);
-    const ElasticModel::Update end = rotateToEnd(h, report);
+    ElasticModel::Update end = rotateToEnd(h, report);
+    if (!corotational_) end = searchLine(h, settling, end, report);
     if (settings_.solver.max_rotation_updates == 0) break;
     const EnergyCheck check =
-        corotational_ ? checkRotationEnergy(a, end, settling) : checkNewtonResidual(end, h);
+        corotational_ ? checkRotationEnergy(a, end, settling) : checkNewtonResidual(a, end, h);
+    if (!corotational_) settling.product_is_current = true;  // the check's A v+
     if (!check.gains) break;
     // Converging, the excess shrinks several times over from one solve to the next; where it
     // does not, more solves will not settle it either.
@@ -384,8 +425,12 @@ void FiniteElementBody::advance(double h, int depth, StepReport& report) {
     settling.last_excess = check.excess;
     if (report.solves >= kMaxSolves) break;  // keep the last solution: a step's time is bounded
     const bool slow = stalled || solves - matrix_since > settings_.solver.max_rotation_updates;
-    if (slow && !elasticity_->usesExactTangent()) {
-      elasticity_->useExactTangent(true);  // the quasi-Newton iterations crawl: Newton's own
+    bool new_matrix = corotational_;
+    if (slow && refreshes < 2) {
+      // The iterations crawl with the step's matrix: the warped stiffness rotated to this
+      // iterate (the body turned within the step), then the law's own tangent.
+      if (refreshes++ == 1) elasticity_->useExactTangent(true);
+      new_matrix = true;
       settling.last_excess = std::numeric_limits<double>::infinity();
       matrix_since = solves;
     } else if (slow) {
@@ -399,10 +444,16 @@ void FiniteElementBody::advance(double h, int depth, StepReport& report) {
       return;
     }
     const auto assembly_start = Clock::now();
-    elasticity_->assemble();
-    matrix_changed_ = true;
+    // A law that follows the positions keeps one matrix from one iteration to the next (its
+    // Rayleigh damping, which takes K, then damps alike in all): only its offset follows.
+    if (new_matrix) {
+      elasticity_->assemble();
+      matrix_changed_ = true;
+    } else {
+      elasticity_->assembleOffset();
+    }
     settling.product_is_current = false;
-    settling.solve_start_energy = elasticity_->elasticEnergy(x_);
+    if (corotational_) settling.solve_start_energy = elasticity_->elasticEnergy(x_);
     report.times.assembly += secondsSince(assembly_start);
   }
   finishAdvance(a, h, settling.product_is_current);
@@ -412,13 +463,13 @@ void FiniteElementBody::solveVelocity(const SystemMatrix& a, double h, bool step
                                       StepReport& report) {
   // Where the loads balance the elastic forces (a body at rest), b is what rounding leaves of
   // them: CG's residual is measured against the loads' impulse there instead.
-  const double load_impulse = setStepRightHandSide(h);
+  load_impulse_ = setStepRightHandSide(h);
   const auto solve_start = Clock::now();
   // A Newton iteration after the first starts from the last, already close: CG need only take a
   // fraction of the law's residual out there (inexact Newton), the next iteration sees the rest.
   constexpr double kNewtonForcing = 0.05;
-  const double forcing = step_start || corotational_ ? 0.0 : kNewtonForcing;
-  const SolveReport solved = solve(a, rhs_, next_, step_start, load_impulse, forcing);
+  const double forcing = corotational_ ? 0.0 : kNewtonForcing;
+  const SolveReport solved = solve(a, rhs_, next_, step_start, load_impulse_, forcing);
   report.times.solve += secondsSince(solve_start);
   report.times.preconditioner += solved.preconditioner_seconds;
   report.solve.iterations += solved.iterations;
@@ -468,23 +519,33 @@ FiniteElementBody::EnergyCheck FiniteElementBody::checkRotationEnergy(
 }
 
 FiniteElementBody::EnergyCheck FiniteElementBody::checkNewtonResidual(
-    const ElasticModel::Update& end, double h) const {
-  // The solve met implicit Euler's equations with the linearized force; with the law's, the free
-  // rows are off by h times the difference of the two at the end. Measured against the step's
-  // own change of momentum and elastic impulse, not its momentum: a spinning body's momentum
-  // would hide errors of its spin (momentum a step is what the step has to get right).
+    const SystemMatrix& a, const ElasticModel::Update& end, double h) {
+  // On the free rows, implicit Euler's residual with the law's force is A v - b (what CG left,
+  // and the line search, with the linearization's force) less h (f - f_linearized) at the end.
+  // Done when the law's part is on every free node below kNewtonTolerance of the step's change
+  // of momentum and elastic impulse (not of its momentum: a spinning body's would hide errors of
+  // its spin), and CG's part is within CG's own tolerance or that bound (a solve cut short, as a
+  // later iteration's are, leaves more).
   constexpr double kNewtonTolerance = 1e-6;
+  a.multiply(next_, scratch_);
   const Eigen::VectorXd& mismatch = elasticity_->forceMismatch();
-  double residual = 0.0, momentum = 0.0;
+  double law = 0.0, solve = 0.0, solve2 = 0.0, reference2 = 0.0, momentum = 0.0;
   for (int i = 0; i < numNodes(); ++i) {
     if (constrained_[i]) continue;
-    residual = std::max(residual, mismatch.segment<3>(3 * i).lpNorm<Eigen::Infinity>());
+    const Eigen::Vector3d left = scratch_.segment<3>(3 * i) - rhs_.segment<3>(3 * i);
+    law = std::max(law, h * mismatch.segment<3>(3 * i).lpNorm<Eigen::Infinity>());
+    solve = std::max(solve, left.lpNorm<Eigen::Infinity>());
+    solve2 += left.squaredNorm();
+    reference2 += rhs_.segment<3>(3 * i).squaredNorm();
     momentum = std::max(
         momentum,
         mass_[i] * (next_.segment<3>(3 * i) - v_.segment<3>(3 * i)).lpNorm<Eigen::Infinity>());
   }
-  const double excess = h * residual;
-  return {!(excess <= kNewtonTolerance * (momentum + h * end.largest_force)), excess};
+  const double bound = kNewtonTolerance * (momentum + h * end.largest_force);
+  const double cg_bound =
+      settings_.solver.tolerance * std::max(std::sqrt(reference2), load_impulse_);
+  const bool done = law <= bound && (solve <= bound || std::sqrt(solve2) <= cg_bound);
+  return {!done, std::max(law, solve)};
 }
 
 void FiniteElementBody::finishAdvance(const SystemMatrix& a, double h, bool product_is_current) {

@@ -39,7 +39,7 @@ NeoHookeanElasticity::NeoHookeanElasticity(const Mesh& mesh, const LinearElastic
 void NeoHookeanElasticity::setMaterial(const LinearElasticMaterial& material) {
   elements_.setLaw(lawOf(material));
   warped_.setMaterial(material);
-  assembled_ = false;
+  has_matrix_ = false;
   const Eigen::VectorXd at = linearized_at_;  // the same positions, under the new law
   linearizeAt(at);
 }
@@ -47,8 +47,7 @@ void NeoHookeanElasticity::setMaterial(const LinearElasticMaterial& material) {
 void NeoHookeanElasticity::setThreads(int threads) { warped_.setThreads(threads); }
 
 ElasticModel::Update NeoHookeanElasticity::linearizeAt(const Eigen::VectorXd& x) {
-  Update update;
-  update.largest_change = warped_.linearizeAt(x).largest_change;
+  Update update;  // the elements' rotations wait for a warped assembly
   // The law's energy and forces at x, one pass over the elements.
   forces_.setZero();
   HyperelasticElements::ElementVector f;
@@ -60,7 +59,7 @@ ElasticModel::Update NeoHookeanElasticity::linearizeAt(const Eigen::VectorXd& x)
   }
   update.largest_force = forces_.lpNorm<Eigen::Infinity>();
   // The law's force at x against the last linearization's, -(K x + f0).
-  if (assembled_) {
+  if (has_matrix_) {
     update.energy_before = elasticEnergy(x);  // leaves K x in product_
     mismatch_ = forces_ + product_ + force_offset_;
   } else {
@@ -69,7 +68,7 @@ ElasticModel::Update NeoHookeanElasticity::linearizeAt(const Eigen::VectorXd& x)
   }
   linearized_at_ = x;
   energy_at_ = update.energy;
-  assembled_ = false;
+  product_is_of_x0_ = has_matrix_;
   return update;
 }
 
@@ -78,14 +77,28 @@ void NeoHookeanElasticity::assemble() {
   if (exact_tangent_) {
     assembleExactTangent();
   } else {
+    warped_.linearizeAt(linearized_at_);
     warped_.assemble();
     stiffness_.blocks() = warped_.stiffness().blocks();  // the same pattern: no allocation
   }
-  stiffness_.multiply(linearized_at_, product_);
+  has_matrix_ = true;
+  product_is_of_x0_ = false;  // a new K
+  setOffset();
+}
+
+void NeoHookeanElasticity::assembleOffset() {
+  if (!has_matrix_) {
+    assemble();  // no K of this material yet to keep
+    return;
+  }
+  setOffset();
+}
+
+void NeoHookeanElasticity::setOffset() {
+  if (!product_is_of_x0_) stiffness_.multiply(linearized_at_, product_);
   force_offset_ = -forces_ - product_;
   energy_constant_ =
       energy_at_ - 0.5 * linearized_at_.dot(product_) - force_offset_.dot(linearized_at_);
-  assembled_ = true;
 }
 
 void NeoHookeanElasticity::assembleExactTangent() {
@@ -102,8 +115,9 @@ void NeoHookeanElasticity::assembleExactTangent() {
 }
 
 double NeoHookeanElasticity::elasticEnergy(const Eigen::VectorXd& x) const {
-  if (!assembled_) return elements_.energy(x);
+  if (!has_matrix_) return elements_.energy(x);
   stiffness_.multiply(x, product_);
+  product_is_of_x0_ = false;  // of x
   return 0.5 * x.dot(product_) + force_offset_.dot(x) + energy_constant_;
 }
 

@@ -129,17 +129,25 @@ class FiniteElementBody : public Body {
   ElasticModel::Update rotateToEnd(double h, StepReport& report);
   EnergyCheck checkRotationEnergy(const SystemMatrix& a, const ElasticModel::Update& end,
                                   RotationSettling& settling);
-  /// For a law that follows the positions (Neo-Hookean): whether the solve's linearization was
-  /// off the law at the end, on a free node, by more than kNewtonTolerance of the step's
-  /// impulses, so that another Newton iteration is needed; the excess is that impulse, N s.
-  EnergyCheck checkNewtonResidual(const ElasticModel::Update& end, double h) const;
-  /// Implicit Euler's incremental potential at the velocity v (the law's energy at x + h v, the
-  /// kinetic energy of the change, the loads' work and mass damping; Rayleigh's stiffness part
-  /// left out), J.
-  double stepPotential(const Eigen::VectorXd& v, double h);
-  /// Newton's line search: next_ becomes the point between the last iterate and the solve's
-  /// answer, the first of 1, 1/2, 1/4, ... of the way that lowers the step's potential.
-  void searchLine(double h, bool first, RotationSettling& settling);
+  /// For a law that follows the positions (Neo-Hookean): whether another Newton iteration is
+  /// needed, because implicit Euler's residual with the law's force at v = next_ is still above
+  /// kNewtonTolerance of the step's impulses on some free node, in its part from the law (its
+  /// difference from the linearization) or from the solve (unless within CG's tolerance); the
+  /// excess is the larger part's largest entry, N s.
+  EnergyCheck checkNewtonResidual(const SystemMatrix& a, const ElasticModel::Update& end, double h);
+  /// Implicit Euler's incremental potential at the velocity v given the law's energy at x + h v
+  /// (with the kinetic energy of the change, the loads' work, the springs of plane holds and
+  /// Rayleigh damping, its stiffness part with the linearization's K), J.
+  double stepPotential(const Eigen::VectorXd& v, double h, double elastic_energy);
+  /// Newton's line search, given the law linearized at the solve's answer (`end`): next_ becomes
+  /// the point between the last iterate and that answer, the first of 1, 1/2, 1/4, ... of the
+  /// way that lowers the step's potential; returns the law linearized there.
+  ElasticModel::Update searchLine(double h, RotationSettling& settling,
+                                  const ElasticModel::Update& end, StepReport& report);
+  /// Newton's first iterate: the predicted velocity in next_ or, where that has the higher step
+  /// potential, x itself with held nodes at their velocities; the law linearized at the end it
+  /// gives (with the matrix of the step's start), and the step's potential there.
+  void linearizeAtPrediction(double h, RotationSettling& settling, StepReport& report);
   /// The load on node i in a step: applied, gravity, plastic and the step's own forces.
   Eigen::Vector3d stepLoad(int i) const;
   /// Reactions, x+ and the velocity history once next_ holds the step's v+.
@@ -203,7 +211,9 @@ class FiniteElementBody : public Body {
   std::unique_ptr<DirectSolver> response_direct_;
   bool response_factored_ = false;
   Eigen::VectorXd rhs_, next_, scratch_;
-  Eigen::VectorXd newton_iterate_;  ///< Newton's last iterate (a law that follows positions)
+  Eigen::VectorXd newton_iterate_;   ///< Newton's last iterate (a law that follows positions)
+  double load_impulse_ = 0.0;        ///< h |loads| on the free nodes, of the last solve
+  Eigen::VectorXd damping_product_;  ///< K v, for the step's potential with stiffness damping
   /// The velocities of the last steps, newest first, for the solver's initial guess.
   std::array<Eigen::VectorXd, 3> v_history_;
   int history_size_ = 0;

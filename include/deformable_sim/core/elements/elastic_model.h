@@ -3,11 +3,12 @@
 // block pattern and an offset f0 with K x + f0 = -f(x), so that the elastic force of the
 // linearization at any x' is -(K x' + f0). The warped stiffness (corotational_elasticity.h) is
 // one such law, linearized by its elements' rotations; Neo-Hookean
-// (materials/neo_hookean_elasticity.h) another, by its tangent. The body's implicit step solves
-// with the linearization at the step's start, re-linearizes at the end and solves again: for the
-// warped stiffness while the change of rotations gains more energy than the step dissipates, for
-// a law that follows the positions by Newton's iterations with a line search, until its force
-// at the end is the linearization's (core/bodies/finite_element_body.h).
+// (materials/neo_hookean_elasticity.h) another, by its tangent or the warped stiffness. The
+// body's implicit step solves with the linearization at the step's start, re-linearizes at the
+// end and solves again: for the warped stiffness while the change of rotations gains more energy
+// than the step dissipates; for a law that follows the positions by (quasi-)Newton iterations
+// with a line search, from the predicted end, until implicit Euler's residual with the law's
+// force is small (core/bodies/finite_element_body.h).
 #pragma once
 
 #include <Eigen/Core>
@@ -57,6 +58,9 @@ class ElasticModel {
   }
   /// K and f0 of the last linearizeAt(). Allocates nothing.
   virtual void assemble() = 0;
+  /// Only f0 for the last linearizeAt(), K kept as last assembled: the matrix of a step's later
+  /// quasi-Newton iterations. By default the whole of assemble().
+  virtual void assembleOffset() { assemble(); }
   virtual const BlockSparseMatrix& stiffness() const = 0;  ///< K, N/m
   virtual const Eigen::VectorXd& forceOffset() const = 0;  ///< f0, N
   /// The energy of the last assembled linearization at x, J: the law's own at the positions it
