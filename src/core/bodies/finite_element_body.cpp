@@ -328,7 +328,10 @@ ElasticModel::Update FiniteElementBody::searchLine(double h, RotationSettling& s
   constexpr int kMaxHalvings = 12;
   ElasticModel::Update at = end;
   double potential = stepPotential(next_, h, at.energy);
-  for (int halving = 0; halving < kMaxHalvings && !(potential <= settling.potential); ++halving) {
+  // Within the law's rounding of its energy, a rise is no rise (a body at rest has only that).
+  for (int halving = 0;
+       halving < kMaxHalvings && !(potential <= settling.potential + at.energy_rounding);
+       ++halving) {
     next_ = 0.5 * (next_ + newton_iterate_);
     at = rotateToEnd(h, report);
     potential = stepPotential(next_, h, at.energy);
@@ -541,7 +544,8 @@ FiniteElementBody::EnergyCheck FiniteElementBody::checkNewtonResidual(
         momentum,
         mass_[i] * (next_.segment<3>(3 * i) - v_.segment<3>(3 * i)).lpNorm<Eigen::Infinity>());
   }
-  const double bound = kNewtonTolerance * (momentum + h * end.largest_force);
+  const double bound =
+      kNewtonTolerance * (momentum + h * end.largest_force) + h * end.force_rounding;
   const double cg_bound =
       settings_.solver.tolerance * std::max(std::sqrt(reference2), load_impulse_);
   const bool done = law <= bound && (solve <= bound || std::sqrt(solve2) <= cg_bound);

@@ -40,6 +40,7 @@ void HyperelasticElements::addElement(const std::array<int, kMaxNodes>& nodes, i
   element.first_point = static_cast<int>(points_.size());
   element.points = static_cast<int>(points.size());
   points_.insert(points_.end(), points.begin(), points.end());
+  for (const Point& point : points) volume_ += point.volume;
   elements_.push_back(element);
 }
 

@@ -1,6 +1,7 @@
 #include "deformable_sim/core/materials/neo_hookean_elasticity.h"
 
 #include <cassert>
+#include <cmath>
 #include <limits>
 
 namespace deformable_sim::core {
@@ -58,10 +59,15 @@ ElasticModel::Update NeoHookeanElasticity::linearizeAt(const Eigen::VectorXd& x)
       forces_.segment<3>(3 * nodes[i]) += f.segment<3>(3 * i);
   }
   update.largest_force = forces_.lpNorm<Eigen::Infinity>();
+  // W sums C10 J^(-2/3) I1 and -3 C10 (and more) over the elements: their rounding.
+  constexpr double kRounding = 64.0 * std::numeric_limits<double>::epsilon();
+  update.energy_rounding =
+      kRounding * (std::abs(update.energy) + 3.0 * elements_.law().c10() * elements_.volume());
   // The law's force at x against the last linearization's, -(K x + f0).
   if (has_matrix_) {
     update.energy_before = elasticEnergy(x);  // leaves K x in product_
     mismatch_ = forces_ + product_ + force_offset_;
+    update.force_rounding = kRounding * product_.lpNorm<Eigen::Infinity>();
   } else {
     update.energy_before = update.energy;
     mismatch_.setConstant(std::numeric_limits<double>::infinity());

@@ -29,8 +29,12 @@ class ElasticModel {
     double largest_change = 0.0;  ///< largest angle by which an element's rotation changed, rad
     double energy = 0.0;          ///< elastic energy of the law at x, J
     double energy_before = 0.0;   ///< elastic energy at x of the linearization before, J
-    /// For a law that follows the positions: its largest nodal force at x, N (else zero).
+    /// For a law that follows the positions: its largest nodal force at x, N, and the sizes
+    /// below which its energy (J) and its difference from the linearization before (N) are
+    /// rounding (the terms that cancel in them, times a few machine epsilons). Else zero.
     double largest_force = 0.0;
+    double energy_rounding = 0.0;
+    double force_rounding = 0.0;
   };
 
   /// A new material (validated first) for the next assembly; rest shape and pattern stay.

@@ -32,6 +32,7 @@ class HyperelasticElements {
   HyperelasticElements(const Mesh& mesh, const NeoHookean& law);
 
   int numNodes() const { return num_nodes_; }
+  double volume() const { return volume_; }  ///< the rest volume of all elements, m^3
   const NeoHookean& law() const { return law_; }
   void setLaw(const NeoHookean& law) { law_ = law; }
 
@@ -83,6 +84,7 @@ class HyperelasticElements {
 
   NeoHookean law_;
   int num_nodes_ = 0;
+  double volume_ = 0.0;
   std::vector<Element> elements_;
   std::vector<Point> points_;
 };
