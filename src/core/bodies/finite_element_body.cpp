@@ -446,20 +446,25 @@ void FiniteElementBody::advance(double h, int depth, StepReport& report) {
       advance(0.5 * h, depth + 1, report);
       return;
     }
-    const auto assembly_start = Clock::now();
-    // A law that follows the positions keeps one matrix from one iteration to the next (its
-    // Rayleigh damping, which takes K, then damps alike in all): only its offset follows.
-    if (new_matrix) {
-      elasticity_->assemble();
-      matrix_changed_ = true;
-    } else {
-      elasticity_->assembleOffset();
-    }
-    settling.product_is_current = false;
-    if (corotational_) settling.solve_start_energy = elasticity_->elasticEnergy(x_);
-    report.times.assembly += secondsSince(assembly_start);
+    assembleForNextSolve(new_matrix, settling, report);
   }
   finishAdvance(a, h, settling.product_is_current);
+}
+
+void FiniteElementBody::assembleForNextSolve(bool new_matrix, RotationSettling& settling,
+                                             StepReport& report) {
+  const auto assembly_start = Clock::now();
+  // A law that follows the positions keeps one matrix from one iteration to the next (its
+  // Rayleigh damping, which takes K, then damps alike in all): only its offset follows.
+  if (new_matrix) {
+    elasticity_->assemble();
+    matrix_changed_ = true;
+  } else {
+    elasticity_->assembleOffset();
+  }
+  settling.product_is_current = false;
+  if (corotational_) settling.solve_start_energy = elasticity_->elasticEnergy(x_);
+  report.times.assembly += secondsSince(assembly_start);
 }
 
 void FiniteElementBody::solveVelocity(const SystemMatrix& a, double h, bool step_start,

@@ -144,6 +144,9 @@ class FiniteElementBody : public Body {
   /// way that lowers the step's potential; returns the law linearized there.
   ElasticModel::Update searchLine(double h, RotationSettling& settling,
                                   const ElasticModel::Update& end, StepReport& report);
+  /// Between two solves of a step: a new matrix (the warped law's, or where a law that follows
+  /// the positions asks for one), else only the offset of the last linearization.
+  void assembleForNextSolve(bool new_matrix, RotationSettling& settling, StepReport& report);
   /// Newton's first iterate: the predicted velocity in next_ or, where that has the higher step
   /// potential, x itself with held nodes at their velocities; the law linearized at the end it
   /// gives (with the matrix of the step's start), and the step's potential there.
